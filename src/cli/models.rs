@@ -1,0 +1,34 @@
+use crate::model::{Kind, catalog, params};
+
+/// Arguments of `wbv models`.
+#[derive(Debug, clap::Args)]
+pub struct Args {
+    /// Also list each model's parameter paths (for sweeps and calibration).
+    #[arg(long)]
+    params: bool,
+}
+
+pub fn run(args: Args) -> crate::Result<()> {
+    let models = catalog::all()?;
+    let width = models.iter().map(|m| m.name.len()).max().unwrap_or(0);
+    for (title, kind) in [
+        ("Configurations (occupant on a seat):", Kind::System),
+        ("Occupants (rigid seat):", Kind::Occupant),
+        (
+            "Seat components (stack below an occupant with +):",
+            Kind::Seat,
+        ),
+    ] {
+        println!("{title}");
+        for m in models.iter().filter(|m| m.kind == kind) {
+            println!("  {:width$}  {:>2} DOF  {}", m.name, m.dof(), m.description);
+            if args.params {
+                println!("  {:width$}          {}", "", params::list(m).join(" "));
+            }
+        }
+    }
+    println!(
+        "\nUse a name, a path to a model TOML file, or stack components: `--model wan-schimmels-4dof+cushion-zener`."
+    );
+    Ok(())
+}

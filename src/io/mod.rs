@@ -1,0 +1,4 @@
+//! Reading and writing runs as files other tools understand.
+
+pub mod atomic;
+pub mod csv_run;

@@ -1,0 +1,18 @@
+//! wbv — time-domain whole-body-vibration simulation of seated occupants.
+//!
+//! Data flows one way: excitation → [`model`] → integrator → recorder → analysis → diagnosis.
+//! Frequency-domain responses of a model live in [`response`]. Units are SI throughout (m, s, kg, N);
+//! frequencies are in Hz unless a name says `omega` (rad/s).
+
+pub mod cli;
+pub mod error;
+pub mod excitation;
+pub mod io;
+pub mod model;
+pub mod plot;
+pub mod reproduce;
+pub mod response;
+pub mod signals;
+pub mod simulate;
+
+pub use error::{Error, Result};

@@ -1,0 +1,197 @@
+//! Constitutive laws of the spring–damper links between masses.
+//!
+//! Sign convention: a link joins an upper node `a` to a lower node `b` (a mass or the base). Its
+//! deflection is `d = x_a − x_b` in m (positive = extension) and its rate `v = ẋ_a − ẋ_b` in m/s. The
+//! link force `f` in N is the tension: it pulls `a` down with `−f` and `b` up with `+f`. Nonlinear laws
+//! act on the dynamic deflection about the static (seated) equilibrium, where they are tangent to the
+//! linear element, so that the frequency-domain responses are the small-amplitude linearisation.
+
+use num_complex::Complex64;
+
+/// The linear viscoelastic element of a link.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Element {
+    /// Spring `k` (N/m) in parallel with dashpot `c` (N·s/m): `f = k·d + c·v`.
+    KelvinVoigt { k: f64, c: f64 },
+    /// Spring `k` (N/m) in series with dashpot `c` (N·s/m): `ḟ = k·(v − f/c)`; no static stiffness.
+    Maxwell { k: f64, c: f64 },
+    /// Standard linear solid: spring `k` (N/m) in parallel with a Maxwell arm (`k_m` N/m in series
+    /// with `c_m` N·s/m): `f = k·d + q`, `q̇ = k_m·(v − q/c_m)`.
+    Zener { k: f64, k_m: f64, c_m: f64 },
+}
+
+impl Element {
+    /// Complex dynamic stiffness `F/D` at angular frequency `omega` (rad/s), in N/m.
+    ///
+    /// Kelvin–Voigt `k + iωc`; Maxwell `k·iωc/(k + iωc)`; Zener `k + k_m·iωc_m/(k_m + iωc_m)`.
+    pub fn dynamic_stiffness(&self, omega: f64) -> Complex64 {
+        let series = |k: f64, c: f64| {
+            let iwc = Complex64::new(0.0, omega * c);
+            if c == 0.0 {
+                Complex64::new(0.0, 0.0)
+            } else {
+                k * iwc / (k + iwc)
+            }
+        };
+        match *self {
+            Element::KelvinVoigt { k, c } => Complex64::new(k, omega * c),
+            Element::Maxwell { k, c } => series(k, c),
+            Element::Zener { k, k_m, c_m } => Complex64::new(k, 0.0) + series(k_m, c_m),
+        }
+    }
+
+    /// Stiffness with every dashpot locked (the instantaneous or "glassy" stiffness), in N/m. Used for
+    /// the undamped modes: for a Kelvin–Voigt link it is `k`, for a Maxwell link `k`, for Zener
+    /// `k + k_m`.
+    pub fn locked_stiffness(&self) -> f64 {
+        match *self {
+            Element::KelvinVoigt { k, .. } | Element::Maxwell { k, .. } => k,
+            Element::Zener { k, k_m, .. } => k + k_m,
+        }
+    }
+
+    /// Static stiffness (every dashpot free), in N/m: `k` for Kelvin–Voigt and Zener, 0 for Maxwell.
+    pub fn static_stiffness(&self) -> f64 {
+        match *self {
+            Element::KelvinVoigt { k, .. } | Element::Zener { k, .. } => k,
+            Element::Maxwell { .. } => 0.0,
+        }
+    }
+
+    /// Parallel (Kelvin–Voigt) damping coefficient in N·s/m; series dashpots live in internal states.
+    pub fn parallel_damping(&self) -> f64 {
+        match *self {
+            Element::KelvinVoigt { c, .. } => c,
+            _ => 0.0,
+        }
+    }
+
+    /// The relaxing arm `(k_m, c_m)` that carries an internal force state, if any.
+    pub fn relaxing_arm(&self) -> Option<(f64, f64)> {
+        match *self {
+            Element::KelvinVoigt { .. } => None,
+            Element::Maxwell { k, c } => Some((k, c)),
+            Element::Zener { k_m, c_m, .. } => Some((k_m, c_m)),
+        }
+    }
+
+    /// Stiffness of the spring acting in parallel with `d` (not through an internal state), in N/m.
+    pub fn parallel_stiffness(&self) -> f64 {
+        match *self {
+            Element::KelvinVoigt { k, .. } | Element::Zener { k, .. } => k,
+            Element::Maxwell { .. } => 0.0,
+        }
+    }
+}
+
+/// A nonlinear law added to a Kelvin–Voigt link. Each is tangent to the linear element at `d = v = 0`
+/// except `Friction`, whose smoothed tangent `f_c/v_ref` adds viscous damping at rest.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Law {
+    /// Hardening spring: extra force `k3·d³`, `k3` in N/m³ (foam that stiffens as it is compressed).
+    Cubic { k3: f64 },
+    /// Saturating (softening) spring: the linear spring force `k·d` becomes `k·d_ref·tanh(d/d_ref)`,
+    /// `d_ref` in m; the stiffness falls as amplitude grows.
+    Softening { d_ref: f64 },
+    /// Smoothed Coulomb friction: extra force `f_c·tanh(v/v_ref)`, `f_c` in N, `v_ref` in m/s.
+    Friction { f_c: f64, v_ref: f64 },
+    /// End stop: beyond a free travel `gap` (m) either way a contact spring `k_stop` (N/m) engages:
+    /// extra force `k_stop·(|d| − gap)·sign(d)` for `|d| > gap`.
+    EndStop { gap: f64, k_stop: f64 },
+}
+
+impl Law {
+    /// Force and tangents `(f, ∂f/∂d, ∂f/∂v)` of the parallel part of a Kelvin–Voigt link with spring
+    /// `k` and dashpot `c` under this law, at deflection `d` and rate `v`.
+    pub fn force(&self, k: f64, c: f64, d: f64, v: f64) -> (f64, f64, f64) {
+        match *self {
+            Law::Cubic { k3 } => (k * d + k3 * d * d * d + c * v, k + 3.0 * k3 * d * d, c),
+            Law::Softening { d_ref } => {
+                let th = (d / d_ref).tanh();
+                (k * d_ref * th + c * v, k * (1.0 - th * th), c)
+            }
+            Law::Friction { f_c, v_ref } => {
+                let th = (v / v_ref).tanh();
+                (
+                    k * d + c * v + f_c * th,
+                    k,
+                    c + f_c / v_ref * (1.0 - th * th),
+                )
+            }
+            Law::EndStop { gap, k_stop } => {
+                let over = d.abs() - gap;
+                if over > 0.0 {
+                    (k * d + c * v + k_stop * over * d.signum(), k + k_stop, c)
+                } else {
+                    (k * d + c * v, k, c)
+                }
+            }
+        }
+    }
+
+    /// Small-amplitude tangent `(∂f/∂d, ∂f/∂v)` at rest, used by the frequency-domain responses.
+    pub fn tangent_at_rest(&self, k: f64, c: f64) -> (f64, f64) {
+        let (_, kd, cv) = self.force(k, c, 0.0, 0.0);
+        (kd, cv)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn maxwell_limits() {
+        let e = Element::Maxwell { k: 1e4, c: 100.0 };
+        // Low frequency: dashpot dominates, F/D → iωc. High frequency: spring dominates, → k.
+        let lo = e.dynamic_stiffness(1e-3);
+        assert!((lo.im - 1e-3 * 100.0).abs() < 1e-6 && lo.re.abs() < 1e-6);
+        let hi = e.dynamic_stiffness(1e7);
+        assert!((hi.re - 1e4).abs() / 1e4 < 1e-6);
+    }
+
+    #[test]
+    fn zener_between_its_static_and_glassy_stiffness() {
+        let e = Element::Zener {
+            k: 1e4,
+            k_m: 2e4,
+            c_m: 300.0,
+        };
+        assert!((e.dynamic_stiffness(0.0).re - 1e4).abs() < 1e-9);
+        assert!((e.dynamic_stiffness(1e8).re - 3e4).abs() < 1e-2);
+    }
+
+    #[test]
+    fn law_tangents_match_finite_differences() {
+        let laws = [
+            Law::Cubic { k3: 1e9 },
+            Law::Softening { d_ref: 0.004 },
+            Law::Friction {
+                f_c: 20.0,
+                v_ref: 0.01,
+            },
+            Law::EndStop {
+                gap: 0.002,
+                k_stop: 1e6,
+            },
+        ];
+        for law in laws {
+            for &(d, v) in &[(0.0011, 0.02), (-0.0031, -0.005), (0.005, 0.0)] {
+                let (_, kd, cv) = law.force(5e4, 300.0, d, v);
+                let h = 1e-8;
+                let fd = (law.force(5e4, 300.0, d + h, v).0 - law.force(5e4, 300.0, d - h, v).0)
+                    / (2.0 * h);
+                let fv = (law.force(5e4, 300.0, d, v + h).0 - law.force(5e4, 300.0, d, v - h).0)
+                    / (2.0 * h);
+                assert!(
+                    (kd - fd).abs() <= 1e-5 * kd.abs().max(1.0),
+                    "{law:?} {kd} {fd}"
+                );
+                assert!(
+                    (cv - fv).abs() <= 1e-4 * cv.abs().max(1.0),
+                    "{law:?} {cv} {fv}"
+                );
+            }
+        }
+    }
+}
