@@ -145,7 +145,7 @@ fn render<DB: DrawingBackend>(
     charts: &[Chart],
 ) -> std::result::Result<(), String> {
     root.fill(&WHITE).map_err(|e| e.to_string())?;
-    let panels = root.split_evenly((charts.len().div_ceil(2).max(1), charts.len().min(2).max(1)));
+    let panels = root.split_evenly((charts.len().div_ceil(2).max(1), charts.len().clamp(1, 2)));
     for (area, chart) in panels.iter().zip(charts) {
         draw_chart(area, chart)?;
     }
@@ -167,7 +167,7 @@ pub fn draw(charts: &[Chart], path: &Path, overwrite: Overwrite) -> Result<()> {
         .unwrap_or("")
         .to_ascii_lowercase();
     let rows = charts.len().div_ceil(2).max(1) as u32;
-    let cols = charts.len().min(2).max(1) as u32;
+    let cols = charts.len().clamp(1, 2) as u32;
     let size = (640 * cols, 420 * rows);
     if let Some(dir) = path.parent().filter(|d| !d.as_os_str().is_empty()) {
         std::fs::create_dir_all(dir).map_err(|e| Error::io(dir, e))?;

@@ -46,7 +46,7 @@ impl Signals {
                 ),
             ));
         }
-        if self.names.iter().any(|n| *n == name) {
+        if self.names.contains(&name) {
             return Err(Error::data(
                 &self.source,
                 None,

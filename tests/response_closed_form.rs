@@ -63,7 +63,8 @@ fn maxwell_and_zener_one_dof_match_their_complex_stiffness() {
         let iwc = Complex64::new(0.0, w * 700.0);
         20_000.0 + 30_000.0 * iwc / (30_000.0 + iwc)
     }
-    let cases: [(&str, fn(f64) -> Complex64); 2] = [
+    type Stiffness = fn(f64) -> Complex64;
+    let cases: [(&str, Stiffness); 2] = [
         ("type = \"maxwell\"\nk = 40000.0\nc = 900.0", maxwell),
         (
             "type = \"zener\"\nk = 20000.0\nk_m = 30000.0\nc_m = 700.0",
@@ -74,7 +75,11 @@ fn maxwell_and_zener_one_dof_match_their_complex_stiffness() {
         let model = one_dof(spec);
         for f in [0.5, 2.0, 4.7, 9.0, 25.0] {
             let w = 2.0 * PI * f;
-            let t = frf::compute(&model, &[f]).unwrap().get("stht").unwrap().values[0];
+            let t = frf::compute(&model, &[f])
+                .unwrap()
+                .get("stht")
+                .unwrap()
+                .values[0];
             let ks = kstar(w);
             let expect = ks / (ks - m * w * w);
             assert!(close(t, expect, 1e-10), "{spec} at {f} Hz");
@@ -136,7 +141,11 @@ interface = ["lower"]
         let am = set.get("apms").unwrap().values[0];
         assert!(close(am, force, 1e-9), "{am} vs {force}");
         // Newton: the interface force accelerates both masses: F = m1·A1 + m2·A2.
-        assert!(close(am, m1 * z1 + m2 * z2, 1e-9), "{am} vs {}", m1 * z1 + m2 * z2);
+        assert!(
+            close(am, m1 * z1 + m2 * z2, 1e-9),
+            "{am} vs {}",
+            m1 * z1 + m2 * z2
+        );
     }
 }
 
@@ -187,8 +196,8 @@ fn undamped_modes_are_eigenvalues_of_m_inv_k() {
     let b = -(m1 * (k1 + k2) + m2 * k1);
     let c = k1 * k2;
     let disc = (b * b - 4.0 * a * c).sqrt();
-    let mut expect = [(-b - disc) / (2.0 * a), (-b + disc) / (2.0 * a)]
-        .map(|l: f64| l.sqrt() / (2.0 * PI));
+    let mut expect =
+        [(-b - disc) / (2.0 * a), (-b + disc) / (2.0 * a)].map(|l: f64| l.sqrt() / (2.0 * PI));
     expect.sort_by(f64::total_cmp);
     let got = modes::undamped(&model).unwrap();
     for (g, e) in got.iter().zip(expect) {
@@ -207,7 +216,12 @@ fn undamped_modes_are_eigenvalues_of_m_inv_k() {
         eig.sort_by(f64::total_cmp);
         let got = modes::undamped(&model).unwrap();
         for (g, e) in got.iter().zip(&eig) {
-            assert!((g.freq_hz - e).abs() < 1e-6 * e.max(1.0), "{}: {} vs {e}", model.name, g.freq_hz);
+            assert!(
+                (g.freq_hz - e).abs() < 1e-6 * e.max(1.0),
+                "{}: {} vs {e}",
+                model.name,
+                g.freq_hz
+            );
         }
     }
 }
@@ -232,7 +246,14 @@ fn stacked_configurations_have_the_expected_structure() {
     let names: Vec<_> = full.masses.iter().map(|m| m.name.as_str()).collect();
     assert_eq!(
         names,
-        ["head", "upper_torso", "lower_torso", "pelvis", "cushion", "seat_frame"]
+        [
+            "head",
+            "upper_torso",
+            "lower_torso",
+            "pelvis",
+            "cushion",
+            "seat_frame"
+        ]
     );
     // The occupant's seat link now ends on the cushion, and the cushion on the suspension.
     let k4 = &full.links[full.link_index("k4").unwrap()];

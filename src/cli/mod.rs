@@ -4,6 +4,7 @@
 mod frf;
 mod models;
 mod modes;
+mod reproduce;
 
 use clap::{Parser, Subcommand};
 use std::process::ExitCode;
@@ -24,6 +25,8 @@ enum Command {
     Frf(frf::Args),
     /// Undamped and damped natural frequencies, damping ratios and mode shapes.
     Modes(modes::Args),
+    /// Regenerate the reproduction table of the source papers (docs/reproduction.md).
+    Reproduce(reproduce::Args),
 }
 
 /// Runs the command line; prints errors as one line on stderr.
@@ -33,6 +36,7 @@ pub fn main() -> ExitCode {
         Command::Models(a) => models::run(a),
         Command::Frf(a) => frf::run(a),
         Command::Modes(a) => modes::run(a),
+        Command::Reproduce(a) => reproduce::run(a),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
