@@ -5,8 +5,10 @@
 //! frequencies are in Hz unless a name says `omega` (rad/s).
 
 pub mod cli;
+pub mod dynamics;
 pub mod error;
 pub mod excitation;
+pub mod integrator;
 pub mod io;
 pub mod model;
 pub mod plot;

@@ -72,3 +72,38 @@ pub trait Observer {
     /// Called once after the last step; an observer that writes a file completes it here.
     fn end(&mut self) -> Result<()>;
 }
+
+impl Layout {
+    /// Names of the measured-run channels this model yields (`../shared/specs/measured-runs.md`):
+    /// `a_base_z`, `a_seat_z` (seat surface), `a_head_z` when a head is defined, and `f_seat_z` (the
+    /// seat-surface force on the body, static weight removed) when interface links are defined.
+    pub fn measured_channels(&self) -> Vec<&'static str> {
+        let mut names = vec!["a_base_z", "a_seat_z"];
+        if self.head.is_some() {
+            names.push("a_head_z");
+        }
+        if !self.interface.is_empty() {
+            names.push("f_seat_z");
+        }
+        names
+    }
+
+    /// Values of [`Layout::measured_channels`] at `step`, in the same order, into `out`.
+    pub fn measured(&self, step: &Step<'_>, out: &mut Vec<f64>) {
+        out.clear();
+        out.push(step.a_base);
+        out.push(self.seat.map_or(step.a_base, |i| step.abs_acceleration(i)));
+        if let Some(h) = self.head {
+            out.push(step.abs_acceleration(h));
+        }
+        if !self.interface.is_empty() {
+            out.push(
+                -self
+                    .interface
+                    .iter()
+                    .map(|&l| step.link_force[l])
+                    .sum::<f64>(),
+            );
+        }
+    }
+}

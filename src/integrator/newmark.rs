@@ -1,0 +1,176 @@
+//! Newmark-β (Newmark 1959, J. Eng. Mech. Div. 85(3)) with Newton iterations on the accelerations.
+//!
+//! `x₊ = x + dt·v + dt²·((½ − β)·a + β·a₊)`, `v₊ = v + dt·((1 − γ)·a + γ·a₊)`, and the arm forces
+//! follow the same γ-rule, `q₊ = q + dt·((1 − γ)·q̇ + γ·q̇₊)`, which is linear in `q₊` and the link
+//! rate, so each arm condenses into an equivalent dashpot `α·γ·dt·k_m` with
+//! `α = 1/(1 + γ·dt·k_m/c_m)`. The residual `R(a₊) = M·a₊ + f(x₊, v₊, q₊) + M·1·a_base₊` is solved by
+//! Newton's method with the Jacobian `M + γ·dt·C_t + β·dt²·K_t`; for a linear model the Jacobian is
+//! constant, factorised once, and one Newton step is exact.
+
+use super::{Integrator, State};
+use crate::dynamics::{Dynamics, LinkDyn};
+use crate::error::{Error, Result};
+use nalgebra::{DMatrix, DVector, Dyn, LU};
+
+/// Most Newton iterations per step before the step is reported as failed.
+pub const MAX_ITERATIONS: usize = 50;
+/// Newton convergence: the correction must fall below this fraction of the acceleration scale.
+pub const TOLERANCE: f64 = 1e-10;
+
+/// The Newmark-β integrator.
+pub struct Newmark {
+    dynamics: Dynamics,
+    dt: f64,
+    gamma: f64,
+    beta: f64,
+    /// `α_r` of each arm.
+    alpha: Vec<f64>,
+    /// Factorised constant Jacobian of a linear model.
+    linear: Option<LU<f64, Dyn, Dyn>>,
+    x_pred: Vec<f64>,
+    v_pred: Vec<f64>,
+    q_pred: Vec<f64>,
+    x: Vec<f64>,
+    v: Vec<f64>,
+    q: Vec<f64>,
+    f: Vec<f64>,
+}
+
+fn stamp(jac: &mut DMatrix<f64>, l: &LinkDyn, s: f64) {
+    if let Some(i) = l.a {
+        jac[(i, i)] += s;
+    }
+    if let Some(j) = l.b {
+        jac[(j, j)] += s;
+    }
+    if let (Some(i), Some(j)) = (l.a, l.b) {
+        jac[(i, j)] -= s;
+        jac[(j, i)] -= s;
+    }
+}
+
+impl Newmark {
+    /// Creates the integrator; factorises the Jacobian once for linear models.
+    pub fn new(dynamics: Dynamics, dt: f64, gamma: f64, beta: f64) -> Self {
+        let n = dynamics.dof();
+        let r = dynamics.arms;
+        let mut alpha = vec![0.0; r];
+        for l in &dynamics.links {
+            if let Some((k_m, c_m, idx)) = l.arm {
+                alpha[idx] = 1.0 / (1.0 + gamma * dt * k_m / c_m);
+            }
+        }
+        let mut me = Newmark {
+            dt,
+            gamma,
+            beta,
+            alpha,
+            linear: None,
+            x_pred: vec![0.0; n],
+            v_pred: vec![0.0; n],
+            q_pred: vec![0.0; r],
+            x: vec![0.0; n],
+            v: vec![0.0; n],
+            q: vec![0.0; r],
+            f: vec![0.0; n],
+            dynamics,
+        };
+        if !me.dynamics.is_nonlinear() {
+            let zeros = vec![0.0; n];
+            me.linear = Some(me.jacobian(&zeros, &zeros).lu());
+        }
+        me
+    }
+
+    /// `M + γ·dt·C_t + β·dt²·K_t` at displacements `x` and velocities `v`.
+    fn jacobian(&self, x: &[f64], v: &[f64]) -> DMatrix<f64> {
+        let n = self.dynamics.dof();
+        let (g, b, dt) = (self.gamma, self.beta, self.dt);
+        let mut jac = DMatrix::from_diagonal(&DVector::from_column_slice(&self.dynamics.mass));
+        for l in &self.dynamics.links {
+            let (_, kd, cv) =
+                Dynamics::parallel(l, Dynamics::relative(l, x), Dynamics::relative(l, v));
+            let mut s = g * dt * cv + b * dt * dt * kd;
+            if let Some((k_m, _, r)) = l.arm {
+                s += g * dt * self.alpha[r] * g * dt * k_m;
+            }
+            stamp(&mut jac, l, s);
+        }
+        debug_assert_eq!(jac.nrows(), n);
+        jac
+    }
+
+    /// Positions, velocities and arm forces at the end of the step for trial accelerations `a`.
+    fn trial(&mut self, a: &[f64]) {
+        let (g, b, dt) = (self.gamma, self.beta, self.dt);
+        for i in 0..a.len() {
+            self.x[i] = self.x_pred[i] + b * dt * dt * a[i];
+            self.v[i] = self.v_pred[i] + g * dt * a[i];
+        }
+        for l in &self.dynamics.links {
+            if let Some((k_m, _, r)) = l.arm {
+                self.q[r] =
+                    self.q_pred[r] + self.alpha[r] * g * dt * k_m * Dynamics::relative(l, &self.v);
+            }
+        }
+    }
+}
+
+impl Integrator for Newmark {
+    fn advance(&mut self, state: &mut State, a_base: &[f64], t: f64) -> Result<()> {
+        let (g, b, dt) = (self.gamma, self.beta, self.dt);
+        let ab = *a_base
+            .last()
+            .expect("base acceleration at the end of the step");
+        let n = state.x.len();
+        for i in 0..n {
+            self.x_pred[i] = state.x[i] + dt * state.v[i] + dt * dt * (0.5 - b) * state.a[i];
+            self.v_pred[i] = state.v[i] + dt * (1.0 - g) * state.a[i];
+        }
+        for r in 0..state.q.len() {
+            self.q_pred[r] = self.alpha[r] * (state.q[r] + dt * (1.0 - g) * state.qdot[r]);
+        }
+        let mut a = state.a.clone();
+        let mut converged = false;
+        for _ in 0..MAX_ITERATIONS {
+            self.trial(&a);
+            self.dynamics
+                .forces(&self.x, &self.v, &self.q, &mut self.f, None, None);
+            let residual =
+                DVector::from_fn(n, |i, _| -(self.dynamics.mass[i] * (a[i] + ab) + self.f[i]));
+            let delta = match &self.linear {
+                Some(lu) => lu.solve(&residual),
+                None => self.jacobian(&self.x, &self.v).lu().solve(&residual),
+            }
+            .ok_or_else(|| {
+                Error::parameter(
+                    "integrator",
+                    format!("singular Newmark Jacobian at t = {t:.6} s"),
+                )
+            })?;
+            let scale = a.iter().fold(ab.abs(), |m, v| m.max(v.abs())).max(1e-12);
+            for (ai, d) in a.iter_mut().zip(delta.iter()) {
+                *ai += d;
+            }
+            if self.linear.is_some() || delta.amax() <= TOLERANCE * scale {
+                converged = true;
+                break;
+            }
+        }
+        if !converged {
+            return Err(Error::parameter(
+                "integrator",
+                format!(
+                    "Newton iterations did not converge at t = {t:.6} s within {MAX_ITERATIONS} iterations; reduce --dt"
+                ),
+            ));
+        }
+        self.trial(&a);
+        state.x.copy_from_slice(&self.x);
+        state.v.copy_from_slice(&self.v);
+        state.a.copy_from_slice(&a);
+        state.q.copy_from_slice(&self.q);
+        self.dynamics.arm_rates(&state.v, &state.q, &mut state.qdot);
+        Ok(())
+    }
+}
