@@ -103,9 +103,9 @@ impl Newmark {
     /// Positions, velocities and arm forces at the end of the step for trial accelerations `a`.
     fn trial(&mut self, a: &[f64]) {
         let (g, b, dt) = (self.gamma, self.beta, self.dt);
-        for i in 0..a.len() {
-            self.x[i] = self.x_pred[i] + b * dt * dt * a[i];
-            self.v[i] = self.v_pred[i] + g * dt * a[i];
+        for (i, ai) in a.iter().enumerate() {
+            self.x[i] = self.x_pred[i] + b * dt * dt * ai;
+            self.v[i] = self.v_pred[i] + g * dt * ai;
         }
         for l in &self.dynamics.links {
             if let Some((k_m, _, r)) = l.arm {

@@ -153,8 +153,6 @@ pub fn run(
     let mut done = 0u64;
     while done < total {
         let block = ((total - done) as usize).min(BLOCK);
-        let last = buf[0];
-        buf[0] = last;
         excitation.fill(&mut buf[1..=block * s]);
         for k in 0..block {
             let inputs = &buf[k * s..=(k + 1) * s];
