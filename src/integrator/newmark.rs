@@ -34,6 +34,9 @@ pub struct Newmark {
     v: Vec<f64>,
     q: Vec<f64>,
     f: Vec<f64>,
+    /// Trial accelerations and the Newton right-hand side (reused every step).
+    a_trial: Vec<f64>,
+    rhs: DVector<f64>,
 }
 
 fn stamp(jac: &mut DMatrix<f64>, l: &LinkDyn, s: f64) {
@@ -73,6 +76,8 @@ impl Newmark {
             v: vec![0.0; n],
             q: vec![0.0; r],
             f: vec![0.0; n],
+            a_trial: vec![0.0; n],
+            rhs: DVector::zeros(n),
             dynamics,
         };
         if !me.dynamics.is_nonlinear() {
@@ -130,34 +135,41 @@ impl Integrator for Newmark {
         for r in 0..state.q.len() {
             self.q_pred[r] = self.alpha[r] * (state.q[r] + dt * (1.0 - g) * state.qdot[r]);
         }
-        let mut a = state.a.clone();
+        let mut a = std::mem::take(&mut self.a_trial);
+        a.copy_from_slice(&state.a);
         let mut converged = false;
         for _ in 0..MAX_ITERATIONS {
             self.trial(&a);
             self.dynamics
                 .forces(&self.x, &self.v, &self.q, &mut self.f, None, None);
-            let residual =
-                DVector::from_fn(n, |i, _| -(self.dynamics.mass[i] * (a[i] + ab) + self.f[i]));
-            let delta = match &self.linear {
-                Some(lu) => lu.solve(&residual),
-                None => self.jacobian(&self.x, &self.v).lu().solve(&residual),
+            for i in 0..n {
+                self.rhs[i] = -(self.dynamics.mass[i] * (a[i] + ab) + self.f[i]);
             }
-            .ok_or_else(|| {
-                Error::parameter(
+            let solved = match &self.linear {
+                Some(lu) => lu.solve_mut(&mut self.rhs),
+                None => self
+                    .jacobian(&self.x, &self.v)
+                    .lu()
+                    .solve_mut(&mut self.rhs),
+            };
+            if !solved {
+                self.a_trial = a;
+                return Err(Error::parameter(
                     "integrator",
                     format!("singular Newmark Jacobian at t = {t:.6} s"),
-                )
-            })?;
+                ));
+            }
             let scale = a.iter().fold(ab.abs(), |m, v| m.max(v.abs())).max(1e-12);
-            for (ai, d) in a.iter_mut().zip(delta.iter()) {
+            for (ai, d) in a.iter_mut().zip(self.rhs.iter()) {
                 *ai += d;
             }
-            if self.linear.is_some() || delta.amax() <= TOLERANCE * scale {
+            if self.linear.is_some() || self.rhs.amax() <= TOLERANCE * scale {
                 converged = true;
                 break;
             }
         }
         if !converged {
+            self.a_trial = a;
             return Err(Error::parameter(
                 "integrator",
                 format!(
@@ -169,8 +181,43 @@ impl Integrator for Newmark {
         state.x.copy_from_slice(&self.x);
         state.v.copy_from_slice(&self.v);
         state.a.copy_from_slice(&a);
+        self.a_trial = a;
         state.q.copy_from_slice(&self.q);
         self.dynamics.arm_rates(&state.v, &state.q, &mut state.qdot);
         Ok(())
     }
+}
+
+/// The linear average-acceleration Newmark step written as a discrete state-space recursion
+/// `y₊ = Φ·y + Γ₀·a_base + Γ₁·a_base₊` over `y = [x, v, a]` (Kelvin–Voigt links only), obtained by
+/// stepping the integrator from unit states. Used as the hand-written lower bound in benchmarks and
+/// to check that the integrator is exactly this linear map.
+pub fn discrete_recursion(
+    model: &crate::model::Model,
+    dt: f64,
+) -> (DMatrix<f64>, DVector<f64>, DVector<f64>) {
+    let dynamics = Dynamics::new(model);
+    let n = dynamics.dof();
+    let mut integ = Newmark::new(dynamics.clone(), dt, 0.5, 0.25);
+    let mut phi = DMatrix::zeros(3 * n, 3 * n);
+    let mut step = |y: &[f64], u0: f64, u1: f64| -> Vec<f64> {
+        let mut s = State::at_rest(&dynamics, 0.0);
+        s.x.copy_from_slice(&y[..n]);
+        s.v.copy_from_slice(&y[n..2 * n]);
+        s.a.copy_from_slice(&y[2 * n..]);
+        integ.advance(&mut s, &[u0, u1], 0.0).expect("linear step");
+        [s.x, s.v, s.a].concat()
+    };
+    for j in 0..3 * n {
+        let mut e = vec![0.0; 3 * n];
+        e[j] = 1.0;
+        let col = step(&e, 0.0, 0.0);
+        for i in 0..3 * n {
+            phi[(i, j)] = col[i];
+        }
+    }
+    let zero = vec![0.0; 3 * n];
+    let g0 = DVector::from_vec(step(&zero, 1.0, 0.0));
+    let g1 = DVector::from_vec(step(&zero, 0.0, 1.0));
+    (phi, g0, g1)
 }
