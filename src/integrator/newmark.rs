@@ -142,8 +142,8 @@ impl Integrator for Newmark {
             self.trial(&a);
             self.dynamics
                 .forces(&self.x, &self.v, &self.q, &mut self.f, None, None);
-            for i in 0..n {
-                self.rhs[i] = -(self.dynamics.mass[i] * (a[i] + ab) + self.f[i]);
+            for (i, ai) in a.iter().enumerate() {
+                self.rhs[i] = -(self.dynamics.mass[i] * (ai + ab) + self.f[i]);
             }
             let solved = match &self.linear {
                 Some(lu) => lu.solve_mut(&mut self.rhs),
