@@ -1,6 +1,7 @@
 //! Command-line interface: argument parsing and one function per subcommand. Every subcommand is a
 //! thin layer over the library; errors are printed as one line and give a non-zero exit code.
 
+mod excitations;
 mod frf;
 mod models;
 mod modes;
@@ -24,6 +25,10 @@ enum Command {
     Frf(frf::Args),
     /// Undamped and damped natural frequencies, damping ratios and mode shapes.
     Modes(modes::Args),
+    /// List the built-in base excitations.
+    Excitations(excitations::ListArgs),
+    /// Write a base excitation as a measured-run CSV (t_s, a_base_z) to inspect it.
+    ExcitationExport(excitations::ExportArgs),
 }
 
 /// Runs the command line; prints errors as one line on stderr.
@@ -33,6 +38,8 @@ pub fn main() -> ExitCode {
         Command::Models(a) => models::run(a),
         Command::Frf(a) => frf::run(a),
         Command::Modes(a) => modes::run(a),
+        Command::Excitations(a) => excitations::list(a),
+        Command::ExcitationExport(a) => excitations::export(a),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
