@@ -39,7 +39,8 @@ fn resampled_sine_within_stated_error() {
     let mut y = vec![0.0; 100];
     exc.fill(&mut y);
     let rec = csv_run::read(&path).unwrap();
-    assert_eq!(&y[..], &rec.signals.get("a_base_z").unwrap()[..100]);
+    let r = &rec.signals.get("a_base_z").unwrap()[..100];
+    assert!(y.iter().zip(r).all(|(p, q)| (p - q).abs() < 1e-12));
 }
 
 #[test]

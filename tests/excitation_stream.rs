@@ -74,10 +74,10 @@ fn sine_and_sweep_follow_their_closed_forms() {
         phase_deg: 90.0,
         fade_in_s: 2.0,
     };
-    let x = samples(&ExcitationSpec::new(k, "fade").unwrap(), 0.125, 1, 40, 5);
+    let x = samples(&ExcitationSpec::new(k, "fade").unwrap(), 0.0625, 1, 60, 5);
     assert_eq!(x[0], 0.0);
     assert!(
-        (x[8] - 0.5).abs() < 1e-12 && (x[16] - 1.0).abs() < 1e-12 && (x[24] - 1.0).abs() < 1e-12
+        (x[16] - 0.5).abs() < 1e-12 && (x[32] - 1.0).abs() < 1e-12 && (x[48] - 1.0).abs() < 1e-12
     );
     // Log sweep 1→16 Hz in 40 s: 10 s per octave, so at t = 20 s the frequency is 4 Hz; zero after.
     let k = Kind::Sweep {
