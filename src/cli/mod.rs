@@ -1,6 +1,7 @@
 //! Command-line interface: argument parsing and one function per subcommand. Every subcommand is a
 //! thin layer over the library; errors are printed as one line and give a non-zero exit code.
 
+mod excitations;
 mod frf;
 mod models;
 mod modes;
@@ -27,6 +28,10 @@ enum Command {
     Modes(modes::Args),
     /// Regenerate the reproduction table of the source papers (docs/reproduction.md).
     Reproduce(reproduce::Args),
+    /// List the built-in base excitations.
+    Excitations(excitations::ListArgs),
+    /// Write a base excitation as a measured-run CSV (t_s, a_base_z) to inspect it.
+    ExcitationExport(excitations::ExportArgs),
 }
 
 /// Runs the command line; prints errors as one line on stderr.
@@ -37,6 +42,8 @@ pub fn main() -> ExitCode {
         Command::Frf(a) => frf::run(a),
         Command::Modes(a) => modes::run(a),
         Command::Reproduce(a) => reproduce::run(a),
+        Command::Excitations(a) => excitations::list(a),
+        Command::ExcitationExport(a) => excitations::export(a),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

@@ -1,0 +1,155 @@
+//! Command-line choice of an excitation, shared by `wbv simulate` and `wbv excitation-export`.
+
+use super::spec::{DEFAULT_BAND_HZ, ExcitationSpec, Kind};
+use super::synth::SweepLaw;
+use crate::error::{Error, Result};
+use std::path::PathBuf;
+
+/// Excitation options (flatten into a subcommand's arguments).
+#[derive(Debug, Clone, clap::Args)]
+pub struct ExcitationArgs {
+    /// Excitation: a built-in name (`wbv excitations`), a TOML file, or one of
+    /// random | psd | road | recorded | sine | sweep built from the options below.
+    #[arg(long, default_value = "white-0.5-80")]
+    pub excitation: String,
+    /// random: r.m.s. acceleration in m/s².
+    #[arg(long)]
+    pub rms: Option<f64>,
+    /// random: band in Hz as F1,F2 (default 0.5,80).
+    #[arg(long, value_delimiter = ',')]
+    pub band: Option<Vec<f64>>,
+    /// sine: frequency in Hz.
+    #[arg(long)]
+    pub freq: Option<f64>,
+    /// sine, sweep: peak amplitude in m/s².
+    #[arg(long)]
+    pub amplitude: Option<f64>,
+    /// sine, sweep: raised-cosine fade-in time in s.
+    #[arg(long, default_value_t = 0.0)]
+    pub fade_in: f64,
+    /// sweep: start and end frequency in Hz as F0,F1.
+    #[arg(long, value_delimiter = ',')]
+    pub sweep: Option<Vec<f64>>,
+    /// sweep: frequency law.
+    #[arg(long, value_enum, default_value_t = LawArg::Log)]
+    pub sweep_law: LawArg,
+    /// sweep: duration in s (default: the whole run).
+    #[arg(long)]
+    pub sweep_duration: Option<f64>,
+    /// recorded: measured-run CSV (column a_base_z); psd: CSV `freq_hz,psd` in Hz, (m/s²)²/Hz.
+    #[arg(long)]
+    pub input: Option<PathBuf>,
+    /// road: ISO 8608 class A–H.
+    #[arg(long, default_value = "C")]
+    pub road_class: String,
+    /// road: vehicle speed in m/s.
+    #[arg(long)]
+    pub speed: Option<f64>,
+}
+
+/// Sweep law on the command line.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+pub enum LawArg {
+    Linear,
+    Log,
+}
+
+fn need<T: Copy>(v: Option<T>, flag: &str, kind: &str) -> Result<T> {
+    v.ok_or_else(|| Error::parameter(flag, format!("required with --excitation {kind}")))
+}
+
+fn pair(v: &[f64], flag: &str) -> Result<[f64; 2]> {
+    match v {
+        [a, b] => Ok([*a, *b]),
+        _ => Err(Error::parameter(
+            flag,
+            format!("{} values given; expected two, as F1,F2 in Hz", v.len()),
+        )),
+    }
+}
+
+/// Turns the options into a validated [`ExcitationSpec`].
+pub fn resolve(args: &ExcitationArgs) -> Result<ExcitationSpec> {
+    let kind = args.excitation.as_str();
+    let spec = match kind {
+        "random" => {
+            let rms = need(args.rms, "--rms", kind)?;
+            let band = match args.band.as_deref() {
+                Some(v) => pair(v, "--band")?,
+                None => DEFAULT_BAND_HZ,
+            };
+            let d = format!(
+                "Gaussian random, flat PSD {}–{} Hz, {rms} m/s² r.m.s.",
+                band[0], band[1]
+            );
+            ExcitationSpec::new(
+                Kind::Random {
+                    rms_m_s2: rms,
+                    band_hz: band,
+                },
+                d,
+            )?
+        }
+        "psd" => {
+            let csv = need(args.input.as_ref(), "--input", kind)?.clone();
+            let d = format!("Gaussian random shaped to the PSD table {}", csv.display());
+            ExcitationSpec::new(
+                Kind::Psd {
+                    points: Vec::new(),
+                    csv: Some(csv),
+                    table: None,
+                },
+                d,
+            )?
+        }
+        "road" => {
+            let speed = need(args.speed, "--speed", kind)?;
+            let d = format!(
+                "ISO 8608 class {} road at {speed} m/s through a passenger-car quarter car",
+                args.road_class
+            );
+            let k = Kind::Road {
+                class: Some(args.road_class.clone()),
+                gd_n0_m3: None,
+                speed_m_s: speed,
+                vehicle: None,
+            };
+            ExcitationSpec::new(k, d)?
+        }
+        "recorded" => {
+            let csv = need(args.input.as_ref(), "--input", kind)?.clone();
+            let d = format!("recorded run {}", csv.display());
+            ExcitationSpec::new(Kind::Recorded { csv }, d)?
+        }
+        "sine" => {
+            let f = need(args.freq, "--freq", kind)?;
+            let a = need(args.amplitude, "--amplitude", kind)?;
+            let k = Kind::Sine {
+                frequency_hz: f,
+                amplitude_m_s2: a,
+                phase_deg: 0.0,
+                fade_in_s: args.fade_in,
+            };
+            ExcitationSpec::new(k, format!("sine {f} Hz, {a} m/s² peak"))?
+        }
+        "sweep" => {
+            let [f0, f1] = pair(need(args.sweep.as_deref(), "--sweep", kind)?, "--sweep")?;
+            let a = need(args.amplitude, "--amplitude", kind)?;
+            let law = match args.sweep_law {
+                LawArg::Linear => SweepLaw::Linear,
+                LawArg::Log => SweepLaw::Log,
+            };
+            let k = Kind::Sweep {
+                from_hz: f0,
+                to_hz: f1,
+                amplitude_m_s2: a,
+                law,
+                duration_s: args.sweep_duration,
+                fade_in_s: args.fade_in,
+            };
+            ExcitationSpec::new(k, format!("{law:?} sweep {f0}–{f1} Hz, {a} m/s² peak"))?
+        }
+        name => ExcitationSpec::load(name)?,
+    };
+    Ok(spec)
+}
