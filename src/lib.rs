@@ -14,6 +14,7 @@ pub mod model;
 pub mod plot;
 pub mod reproduce;
 pub mod response;
+pub mod scenario;
 pub mod signals;
 pub mod simulate;
 

@@ -6,6 +6,7 @@ mod frf;
 mod models;
 mod modes;
 mod reproduce;
+mod simulate;
 
 use clap::{Parser, Subcommand};
 use std::process::ExitCode;
@@ -26,6 +27,8 @@ enum Command {
     Frf(frf::Args),
     /// Undamped and damped natural frequencies, damping ratios and mode shapes.
     Modes(modes::Args),
+    /// Simulate a model shaken by a base excitation (time domain).
+    Simulate(simulate::Args),
     /// Regenerate the reproduction table of the source papers (docs/reproduction.md).
     Reproduce(reproduce::Args),
     /// List the built-in base excitations.
@@ -42,6 +45,7 @@ pub fn main() -> ExitCode {
         Command::Frf(a) => frf::run(a),
         Command::Modes(a) => modes::run(a),
         Command::Reproduce(a) => reproduce::run(a),
+        Command::Simulate(a) => simulate::run(a),
         Command::Excitations(a) => excitations::list(a),
         Command::ExcitationExport(a) => excitations::export(a),
     };

@@ -57,8 +57,8 @@ impl QuarterCar {
     /// c_s = 0.3·2·m_s·sqrt(k_s k_t/(k_s + k_t)/m_s) = 1 841 N·s/m. Body mode ≈ 1.2 Hz, wheel hop
     /// ≈ 12 Hz, in the usual ranges for cars (Gillespie 1992, ch. 5: 1–1.5 Hz and 10–12 Hz).
     pub fn passenger_car() -> Self {
-        let (ms, ks, kt) = (410.0, 25_500.0, 230_000.0);
-        let wn = (ks * kt / (ks + kt) / ms as f64).sqrt();
+        let (ms, ks, kt): (f64, f64, f64) = (410.0, 25_500.0, 230_000.0);
+        let wn = (ks * kt / (ks + kt) / ms).sqrt();
         QuarterCar {
             sprung_mass_kg: ms,
             unsprung_mass_kg: 45.0,

@@ -38,7 +38,8 @@ impl Settings {
         (self.duration_s / self.dt).round() as u64
     }
 
-    fn validate(&self) -> Result<()> {
+    /// Checks duration and step.
+    pub fn validate(&self) -> Result<()> {
         if !(self.duration_s.is_finite() && self.duration_s > 0.0) {
             return Err(Error::parameter(
                 "--duration",
