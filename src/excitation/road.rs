@@ -57,8 +57,8 @@ impl QuarterCar {
     /// c_s = 0.3·2·m_s·sqrt(k_s k_t/(k_s + k_t)/m_s) = 1 841 N·s/m. Body mode ≈ 1.2 Hz, wheel hop
     /// ≈ 12 Hz, in the usual ranges for cars (Gillespie 1992, ch. 5: 1–1.5 Hz and 10–12 Hz).
     pub fn passenger_car() -> Self {
-        let (ms, ks, kt) = (410.0, 25_500.0, 230_000.0);
-        let wn = (ks * kt / (ks + kt) / ms as f64).sqrt();
+        let (ms, ks, kt): (f64, f64, f64) = (410.0, 25_500.0, 230_000.0);
+        let wn = (ks * kt / (ks + kt) / ms).sqrt();
         QuarterCar {
             sprung_mass_kg: ms,
             unsprung_mass_kg: 45.0,
@@ -171,10 +171,22 @@ mod tests {
             .sqrt()
             / (2.0 * PI);
         assert!((fb - 1.19).abs() < 0.01, "{fb}");
-        let peak = (1..400)
-            .map(|i| q.transmissibility(i as f64 * 0.01).norm())
-            .fold(0.0, f64::max);
-        assert!(peak > 1.6 && peak < 2.1, "{peak}");
+        // Rigid tyre limit: the single-DOF base-excitation transmissibility
+        // |T| = sqrt(1 + (2ζr)²)/sqrt((1 − r²)² + (2ζr)²), r = ω/ω_n, ω_n² = k_s/m_s, ζ = c_s/(2 sqrt(k_s m_s)).
+        let stiff = QuarterCar {
+            tyre_stiffness_n_m: 1e13,
+            ..q
+        };
+        let wn = (q.suspension_stiffness_n_m / q.sprung_mass_kg).sqrt();
+        let zeta = q.suspension_damping_n_s_m
+            / (2.0 * (q.suspension_stiffness_n_m * q.sprung_mass_kg).sqrt());
+        for f in [0.3, 1.0, 1.25, 2.0, 5.0] {
+            let r = 2.0 * PI * f / wn;
+            let want = (1.0 + (2.0 * zeta * r).powi(2)).sqrt()
+                / ((1.0 - r * r).powi(2) + (2.0 * zeta * r).powi(2)).sqrt();
+            let got = stiff.transmissibility(f).norm();
+            assert!((got / want - 1.0).abs() < 1e-5, "f={f}: {got} vs {want}");
+        }
         // Velocity PSD of class C at 20 m/s is white: 4π²·256e-6·0.01·20 = 2.02e-3 (m/s)²/Hz.
         let r = Road {
             gd_n0_m3: 256e-6,

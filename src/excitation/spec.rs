@@ -315,13 +315,7 @@ impl ExcitationSpec {
             Kind::Random {
                 rms_m_s2,
                 band_hz: [lo, hi],
-            } => {
-                if f_hz >= *lo && f_hz <= *hi {
-                    rms_m_s2 * rms_m_s2 / (hi - lo)
-                } else {
-                    0.0
-                }
-            }
+            } if f_hz >= *lo && f_hz <= *hi => rms_m_s2 * rms_m_s2 / (hi - lo),
             Kind::Psd { table, .. } => table.as_ref().map_or(0.0, |t| t.eval(f_hz)),
             Kind::Helicopter(h) => h.broadband_psd(f_hz),
             Kind::Road { .. } => self.road().map_or(0.0, |r| r.psd(f_hz)),
