@@ -1,6 +1,6 @@
 //! Road excitation: ISO 8608 road roughness seen through a quarter-car vehicle model.
 //!
-//! ISO 8608:2016 §5 and Annex C: displacement PSD G_d(n) = G_d(n0)·(n/n0)^(−w) with n0 = 0.1 cycle/m,
+//! ISO 8608:2016 (Annex C, as quoted by public ISO 8608 synthesis code): displacement PSD G_d(n) = G_d(n0)·(n/n0)^(−w) with n0 = 0.1 cycle/m,
 //! waviness w = 2, over n = 0.011–2.83 cycle/m; class A–H geometric means G_d(n0) = 16·4^k ×10⁻⁶ m³
 //! (A = 16e-6 … H = 262 144e-6 m³; Table C.2). At speed v the temporal frequency is f = v·n and the
 //! one-sided road displacement PSD is G_z(f) = G_d(f/v)/v (m²/Hz). The seat base is taken as the
