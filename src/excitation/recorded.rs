@@ -3,8 +3,8 @@
 //! Resampling is cubic Hermite interpolation with Catmull–Rom tangents (Keys, "Cubic convolution
 //! interpolation for digital image processing", IEEE Trans. ASSP 29(6), 1981, a = −½), which is
 //! third-order accurate: for a sine of frequency f sampled at step h the error is of order
-//! (2πfh)³/16 of the amplitude (measured in tests/excitation_recorded.rs: below 1e-4 for 5 Hz at
-//! 500 Hz). It does not low-pass, so resampling to a coarser step than the record's is refused
+//! (2πfh)³/16 of the amplitude (measured in tests/excitation_recorded.rs: 4e-6 of the amplitude for
+//! 5 Hz recorded at 500 Hz; the test bound is 1e-4). It does not low-pass, so resampling to a coarser step than the record's is refused
 //! (it would alias). The record is held in memory: its size is that of the input file.
 
 use super::Excitation;

@@ -2,12 +2,12 @@
 //!
 //! Method: white Gaussian samples `w[n] ~ N(0, 1)` (one-sided PSD `2/fs`) pass through a long
 //! linear-phase FIR filter whose magnitude is sampled from the target, `|H(f)| = sqrt(S(f)·fs/2)`, so
-//! that the output PSD is `|H|²·2/fs = S(f)` (frequency-sampling design, Oppenheim & Schafer,
-//! *Discrete-Time Signal Processing*, 3rd ed., §7.6; output PSD of a filtered white sequence, ibid.
-//! eq. 2.200). The zero-phase impulse response is made causal by a half-length delay and tapered by a
+//! that the output PSD is `|H|²·2/fs = S(f)` (frequency-sampling FIR design and the output PSD
+//! |H|²·S_in of a filtered stationary sequence: Oppenheim & Schafer, *Discrete-Time Signal
+//! Processing*, chapters on FIR design and random signals). The zero-phase impulse response is made causal by a half-length delay and tapered by a
 //! Hann window, which smooths the sampled response over ±1 bin of `fs/L` and removes the ripple of the
 //! frequency-sampling design between bins. The convolution is evaluated block-wise by FFT
-//! overlap-save (ibid. §8.7.3), which is an exact linear convolution: no block seams, no periodicity.
+//! overlap-save (ibid., block convolution with the DFT), which is an exact linear convolution: no block seams, no periodicity.
 //! The filter history is primed with noise, so the output is stationary from the first sample.
 
 use rand::{RngExt, SeedableRng};
@@ -17,7 +17,7 @@ use realfft::{ComplexToReal, RealFftPlanner, RealToComplex};
 use rustfft::num_complex::Complex;
 use std::sync::Arc;
 
-/// Longest FIR filter, in taps (2^20: 17 min at 1 kHz; 8 MiB of state per stream).
+/// Longest FIR filter, in taps (2^20: 17 min at 1 kHz; about 72 bytes of state per tap, 72 MiB).
 pub const MAX_TAPS: usize = 1 << 20;
 /// Shortest FIR filter, in taps.
 pub const MIN_TAPS: usize = 1 << 10;

@@ -25,8 +25,8 @@ use rand_chacha::ChaCha8Rng;
 use serde::Deserialize;
 use std::path::{Path, PathBuf};
 
-/// Default band of flat random excitation in Hz: 0.5–80 Hz, the frequency range of ISO 2631-1:1997
-/// §6.4.1 ("0.5 Hz to 80 Hz for health, comfort and perception").
+/// Default band of flat random excitation in Hz: 0.5–80 Hz, the frequency range ISO 2631-1:1997
+/// gives for health, comfort and perception.
 pub const DEFAULT_BAND_HZ: [f64; 2] = [0.5, 80.0];
 
 fn default_band() -> [f64; 2] {
