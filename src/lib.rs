@@ -4,6 +4,7 @@
 //! Frequency-domain responses of a model live in [`response`]. Units are SI throughout (m, s, kg, N);
 //! frequencies are in Hz unless a name says `omega` (rad/s).
 
+pub mod analysis;
 pub mod cli;
 pub mod dynamics;
 pub mod error;

@@ -1,6 +1,7 @@
 //! Command-line interface: argument parsing and one function per subcommand. Every subcommand is a
 //! thin layer over the library; errors are printed as one line and give a non-zero exit code.
 
+mod analyze;
 mod excitations;
 mod frf;
 mod models;
@@ -21,6 +22,8 @@ pub struct Cli {
 
 #[derive(Debug, Subcommand)]
 enum Command {
+    /// ISO 2631-1 analysis of a run: weighted r.m.s., VDV, MTVV, crest factor, SEAT, comfort.
+    Analyze(analyze::Args),
     /// List the built-in models (occupants, seat components and configurations).
     Models(models::Args),
     /// Frequency responses (STHT, seat transmissibility, apparent mass, impedance) to CSV and plot.
@@ -41,6 +44,7 @@ enum Command {
 pub fn main() -> ExitCode {
     let cli = Cli::parse();
     let result = match cli.command {
+        Command::Analyze(a) => analyze::run(a),
         Command::Models(a) => models::run(a),
         Command::Frf(a) => frf::run(a),
         Command::Modes(a) => modes::run(a),

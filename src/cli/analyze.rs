@@ -1,0 +1,123 @@
+use crate::analysis::{self, Options, Report, Segment, WelchOptions, Window};
+use crate::io::atomic::Overwrite;
+use std::path::PathBuf;
+
+/// Arguments of `wbv analyze`.
+#[derive(Debug, clap::Args)]
+pub struct Args {
+    /// Run file to analyse (measured-run CSV).
+    path: PathBuf,
+    /// Print the report as JSON (keys `a_w`, `vdv`, `mtvv`, `crest_factor`, `seat_percent`,
+    /// `comfort`, …; units under `units`).
+    #[arg(long)]
+    json: bool,
+    /// Write PSD, weighted-PSD and transmissibility plots into this directory.
+    #[arg(long, value_name = "DIR")]
+    plot: Option<PathBuf>,
+    /// Plot file format.
+    #[arg(long, default_value = "png", value_parser = ["png", "svg"])]
+    plot_format: String,
+    /// Daily exposure in hours for the health figures (A(8), VDV, caution zone).
+    #[arg(long)]
+    exposure_hours: Option<f64>,
+    /// Spectral resolution of the Welch PSD in Hz.
+    #[arg(long, default_value_t = 0.125)]
+    resolution: f64,
+    /// Replace existing plot files.
+    #[arg(long)]
+    force: bool,
+}
+
+pub fn run(args: Args) -> crate::Result<()> {
+    let signals = analysis::load_signals(&args.path)?;
+    let welch = WelchOptions {
+        window: Window::Hann,
+        segment: Segment::ResolutionHz(args.resolution),
+        ..WelchOptions::default()
+    };
+    let opts = Options {
+        exposure_hours: args.exposure_hours,
+        welch,
+        ..Options::default()
+    };
+    let report = Report::from_signals(&signals, &opts)?;
+    if let Some(dir) = &args.plot {
+        let ow = if args.force {
+            Overwrite::Allow
+        } else {
+            Overwrite::Refuse
+        };
+        for p in
+            analysis::plots::write_plots(&signals, &report, &welch, dir, &args.plot_format, ow)?
+        {
+            eprintln!("wrote {}", p.display());
+        }
+    }
+    if args.json {
+        println!(
+            "{}",
+            serde_json::to_string_pretty(&report).expect("report serializes")
+        );
+    } else {
+        print_table(&report);
+    }
+    Ok(())
+}
+
+fn print_table(r: &Report) {
+    println!(
+        "{}: {:.1} s at {} Hz",
+        r.source, r.duration_s, r.sample_rate_hz
+    );
+    println!(
+        "  {:<12} {:>4} {:>5} {:>10} {:>10} {:>11} {:>10} {:>8} {:>11}",
+        "channel",
+        "W",
+        "k",
+        "rms m/s²",
+        "a_w m/s²",
+        "VDV m/s^1.75",
+        "MTVV m/s²",
+        "CF",
+        "MSDV m/s^1.5"
+    );
+    for c in &r.channels {
+        println!(
+            "  {:<12} {:>4} {:>5.2} {:>10.4} {:>10.4} {:>11.4} {:>10.4} {:>8.2} {:>11}",
+            c.name,
+            c.weighting.name(),
+            c.k,
+            c.rms,
+            c.a_w,
+            c.vdv,
+            c.mtvv,
+            c.crest_factor,
+            c.msdv.map_or("-".into(), |m| format!("{m:.4}"))
+        );
+    }
+    println!(
+        "\nComfort ({}): a_v = {:.4} m/s², class: {}",
+        r.comfort_place, r.total_value, r.comfort
+    );
+    println!("  {}", r.comfort_statement);
+    if let Some(s) = r.seat_percent {
+        println!("SEAT (a_seat_z / a_base_z, Wk): {s:.1} %");
+    }
+    if let Some(h) = &r.health {
+        println!(
+            "Health ({} h, axis {}): A(8) = {:.3} m/s² ({:?}), VDV = {:.2} m/s^1.75 ({:?}); \
+             caution zone B.1: {:?}, B.2: {:?}",
+            h.exposure_hours,
+            h.axis,
+            h.a8,
+            h.a8_status,
+            h.vdv_exposure,
+            h.vdv_status,
+            h.zone_b1,
+            h.zone_b2
+        );
+    }
+    for n in &r.notes {
+        println!("note: {n}");
+    }
+}
