@@ -10,6 +10,7 @@ pub mod excitation;
 pub mod io;
 pub mod model;
 pub mod plot;
+pub mod record;
 pub mod reproduce;
 pub mod response;
 pub mod signals;

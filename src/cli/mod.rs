@@ -2,6 +2,7 @@
 //! thin layer over the library; errors are printed as one line and give a non-zero exit code.
 
 mod frf;
+mod inspect;
 mod models;
 mod modes;
 
@@ -24,6 +25,8 @@ enum Command {
     Frf(frf::Args),
     /// Undamped and damped natural frequencies, damping ratios and mode shapes.
     Modes(modes::Args),
+    /// Channels, message counts, duration and provenance of a recorded run (MCAP).
+    Inspect(inspect::Args),
 }
 
 /// Runs the command line; prints errors as one line on stderr.
@@ -33,6 +36,7 @@ pub fn main() -> ExitCode {
         Command::Models(a) => models::run(a),
         Command::Frf(a) => frf::run(a),
         Command::Modes(a) => modes::run(a),
+        Command::Inspect(a) => inspect::run(a),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
