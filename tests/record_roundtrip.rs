@@ -125,7 +125,7 @@ fn truncated_file_gives_one_clear_error_at_every_offset() {
     offsets.extend(n - 64..n);
     for len in offsets {
         std::fs::write(&cut, &bytes[..len]).unwrap();
-        let err = read_run(\&cut).expect_err("a truncated file must not read");
+        let err = read_run(&cut).expect_err("a truncated file must not read");
         let line = err.to_string();
         assert!(
             !line.contains('\n') && line.contains("cut.mcap"),
