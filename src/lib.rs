@@ -13,6 +13,7 @@ pub mod integrator;
 pub mod io;
 pub mod model;
 pub mod plot;
+pub mod record;
 pub mod reproduce;
 pub mod response;
 pub mod scenario;

@@ -4,6 +4,7 @@
 mod analyze;
 mod excitations;
 mod frf;
+mod inspect;
 mod models;
 mod modes;
 mod reproduce;
@@ -38,6 +39,8 @@ enum Command {
     Excitations(excitations::ListArgs),
     /// Write a base excitation as a measured-run CSV (t_s, a_base_z) to inspect it.
     ExcitationExport(excitations::ExportArgs),
+    /// Channels, message counts, duration and provenance of a recorded run (MCAP).
+    Inspect(inspect::Args),
 }
 
 /// Runs the command line; prints errors as one line on stderr.
@@ -52,6 +55,7 @@ pub fn main() -> ExitCode {
         Command::Simulate(a) => simulate::run(a),
         Command::Excitations(a) => excitations::list(a),
         Command::ExcitationExport(a) => excitations::export(a),
+        Command::Inspect(a) => inspect::run(a),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

@@ -1,0 +1,108 @@
+//! Synthetic steps of a 5-mass seated-occupant layout, for recorder tests, benchmarks and the
+//! `record_demo` example. The motion is a sum of sines (not a simulation): it exercises every
+//! field with values across many magnitudes, deterministically.
+
+use crate::error::Result;
+use crate::simulate::observer::{Layout, Observer, Step};
+
+/// A 5-mass chain (head … pelvis on a cushion top) sampled at `fs` Hz for `steps` steps.
+pub fn layout(fs: f64, steps: u64) -> Layout {
+    let s = |v: &[&str]| v.iter().map(|x| x.to_string()).collect::<Vec<_>>();
+    Layout {
+        model: "demo-5dof".into(),
+        masses: s(&["head", "upper_torso", "lower_torso", "pelvis", "cushion"]),
+        mass_roles: s(&["body", "body", "body", "body", "cushion"]),
+        links: s(&["k1", "k2", "k3", "k4", "cushion"]),
+        link_roles: s(&["body", "body", "body", "body", "cushion"]),
+        link_nodes: [
+            ("head", "upper_torso"),
+            ("upper_torso", "lower_torso"),
+            ("lower_torso", "pelvis"),
+            ("pelvis", "cushion"),
+            ("cushion", "base"),
+        ]
+        .iter()
+        .map(|(a, b)| (a.to_string(), b.to_string()))
+        .collect(),
+        seat: Some(4),
+        head: Some(0),
+        interface: vec![3],
+        dt: 1.0 / fs,
+        steps,
+    }
+}
+
+/// The owned state of step `index` (time `index · dt`).
+#[derive(Debug, Clone, PartialEq)]
+pub struct State {
+    pub index: u64,
+    pub t: f64,
+    pub base: [f64; 3],
+    pub x: Vec<f64>,
+    pub v: Vec<f64>,
+    pub a: Vec<f64>,
+    pub deflection: Vec<f64>,
+    pub force: Vec<f64>,
+}
+
+impl State {
+    /// The deterministic state at step `index` for step `dt`.
+    pub fn at(index: u64, dt: f64) -> Self {
+        let t = index as f64 * dt;
+        let sine = |amp: f64, f: f64, phase: f64| {
+            let w = 2.0 * std::f64::consts::PI * f;
+            let s = (w * t + phase).sin();
+            let c = (w * t + phase).cos();
+            [amp * s, amp * w * c, -amp * w * w * s]
+        };
+        let b = sine(1e-3, 4.0, 0.0);
+        let mut state = State {
+            index,
+            t,
+            base: [b[2], b[1], b[0]],
+            x: vec![],
+            v: vec![],
+            a: vec![],
+            deflection: vec![],
+            force: vec![],
+        };
+        for i in 0..5 {
+            let m = sine(1e-4 * (i + 1) as f64, 3.0 + 1.7 * i as f64, 0.3 * i as f64);
+            state.x.push(m[0]);
+            state.v.push(m[1]);
+            state.a.push(m[2]);
+        }
+        for l in 0..5 {
+            let lower = if l < 4 { state.x[l + 1] } else { 0.0 };
+            let d = state.x[l] - lower;
+            state.deflection.push(d);
+            state.force.push(-8.0e4 * d);
+        }
+        state
+    }
+
+    /// The borrowed [`Step`] of this state.
+    pub fn step(&self) -> Step<'_> {
+        Step {
+            index: self.index,
+            t: self.t,
+            a_base: self.base[0],
+            v_base: self.base[1],
+            x_base: self.base[2],
+            x: &self.x,
+            v: &self.v,
+            a: &self.a,
+            link_deflection: &self.deflection,
+            link_force: &self.force,
+        }
+    }
+}
+
+/// Drives `observer` through `steps` synthetic steps at `fs` Hz (begin, every step, end).
+pub fn drive(observer: &mut dyn Observer, fs: f64, steps: u64) -> Result<()> {
+    observer.begin(&layout(fs, steps))?;
+    for i in 0..steps {
+        observer.step(&State::at(i, 1.0 / fs).step())?;
+    }
+    observer.end()
+}

@@ -1,0 +1,137 @@
+//! Every simulation run recorded to MCAP (<https://mcap.dev/spec>), readable by Foxglove, Lichtblick
+//! and PlotJuggler, and read back by [`read_run`] so that a recorded run stands in for a measurement.
+//!
+//! File layout (all channels `json` messages with a `jsonschema` schema, because PlotJuggler skips
+//! schemaless channels and Lichtblick only parses single-`type` JSON-schema properties):
+//!
+//! | topic | content (SI units) |
+//! |---|---|
+//! | `/wbv/measured` | `t`, `a_base_z`, `a_seat_z`, `a_head_z`, `f_seat_z`: the measured-run channel names |
+//! | `/wbv/state` | per mass: `x`, `v`, `a` relative to the base and `x_abs`, `v_abs`, `a_abs` |
+//! | `/wbv/links` | per link: `deflection` (m), `force` (N, tension positive) |
+//! | `/wbv/base` | base `a`, `v`, `x` |
+//! | `/wbv/scene` | `foxglove.SceneUpdate`, 3-D replay at the scene rate, displacements magnified |
+//!
+//! Time: `log_time = publish_time = round(t·1e9)` ns from 0 (Foxglove plays by log time, PlotJuggler
+//! plots publish time), `sequence` = step index. No wall-clock time is written anywhere, so the same
+//! inputs give a byte-identical file. Provenance is stored in metadata records (`wbv.run`,
+//! `wbv.model`, `wbv.excitation`) and the exact model TOML as an attachment; analysis results given
+//! to [`McapRecorder::attach_results`] go to `wbv.results` metadata and `<name>.json` attachments.
+
+pub mod demo;
+mod json;
+mod lowpass;
+mod meta;
+mod reader;
+mod scene;
+mod topics;
+mod writer;
+
+pub use json::check_lichtblick_subset;
+pub use lowpass::LowPass;
+pub use reader::{RecordedRun, RunSummary, TopicSummary, inspect, read_run};
+pub use writer::McapRecorder;
+
+pub use crate::io::atomic::Overwrite;
+
+/// Chunk compression of the MCAP file.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Compression {
+    /// Zstandard (smallest files).
+    Zstd,
+    /// LZ4 (fastest compressed option; the default, see `benches/record.rs`).
+    Lz4,
+    /// No compression (largest files, fastest to write).
+    None,
+}
+
+impl Compression {
+    /// Parses `zstd`, `lz4` or `none`.
+    pub fn parse(s: &str) -> crate::Result<Self> {
+        match s {
+            "zstd" => Ok(Compression::Zstd),
+            "lz4" => Ok(Compression::Lz4),
+            "none" => Ok(Compression::None),
+            _ => Err(crate::Error::parameter(
+                "compression",
+                format!("`{s}` is not one of zstd, lz4, none"),
+            )),
+        }
+    }
+
+    /// The name used on the command line and in the metadata.
+    pub fn as_str(&self) -> &'static str {
+        match self {
+            Compression::Zstd => "zstd",
+            Compression::Lz4 => "lz4",
+            Compression::None => "none",
+        }
+    }
+}
+
+/// How a run is recorded.
+#[derive(Debug, Clone, PartialEq)]
+pub struct RecordOptions {
+    /// Chunk compression.
+    pub compression: Compression,
+    /// Rate of the time-series topics in Hz; `None` records every step. A lower rate must divide
+    /// the simulation rate `1/dt` by an integer `N`; the signals then pass a 4th-order Butterworth
+    /// low-pass at [`LowPass::CUTOFF_FRACTION`]` · record_rate_hz` before keeping every `N`-th step,
+    /// so that nothing above the new Nyquist frequency aliases into the record.
+    pub record_rate_hz: Option<f64>,
+    /// Rate of the 3-D scene in Hz (30–60): a video rate is enough to watch the motion.
+    pub scene_rate_hz: f64,
+    /// Factor by which displacements are magnified in the 3-D scene only (vibration amplitudes are
+    /// millimetres); stated in the scene and in the `wbv.run` metadata. Recorded signals are never
+    /// scaled.
+    pub magnification: f64,
+    /// Whether an existing file may be replaced.
+    pub overwrite: Overwrite,
+}
+
+impl Default for RecordOptions {
+    fn default() -> Self {
+        RecordOptions {
+            compression: Compression::Lz4,
+            record_rate_hz: None,
+            scene_rate_hz: 30.0,
+            magnification: 20.0,
+            overwrite: Overwrite::Refuse,
+        }
+    }
+}
+
+/// Where a run came from: everything needed to reproduce it, stored in the file's metadata.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct Provenance {
+    /// Model name (catalogue name or path).
+    pub model: String,
+    /// The exact model TOML text that was simulated.
+    pub model_toml: String,
+    /// One-line description of the excitation.
+    pub excitation: String,
+    /// The excitation definition (TOML/JSON/CLI text) from which it can be regenerated.
+    pub excitation_definition: String,
+    /// Integrator name, e.g. `newmark`.
+    pub integrator: String,
+    /// Integration step in s.
+    pub dt: f64,
+    /// Random seed, if the excitation is random.
+    pub seed: Option<u64>,
+    /// Simulated duration in s.
+    pub duration: f64,
+    /// wbv version that wrote the run (`env!("CARGO_PKG_VERSION")`).
+    pub version: String,
+    /// The command line that produced the run.
+    pub command_line: String,
+}
+
+impl Provenance {
+    /// A provenance with the running wbv version filled in.
+    pub fn new() -> Self {
+        Provenance {
+            version: env!("CARGO_PKG_VERSION").to_string(),
+            ..Provenance::default()
+        }
+    }
+}

@@ -1,0 +1,401 @@
+//! Reading a recorded run back: [`read_run`] (signals, provenance, results) and [`inspect`] (summary
+//! only). A truncated or corrupt file gives one error line naming the file, never a panic: the
+//! magic bytes, footer and every index offset are checked before the `mcap` crate slices with them.
+
+use super::Provenance;
+use super::meta::{self, Map};
+use super::topics::channel_name;
+use crate::error::{Error, Result};
+use crate::signals::Signals;
+use serde::de::{DeserializeSeed, Deserializer, Error as _, MapAccess, Visitor};
+use std::collections::BTreeMap;
+use std::fmt;
+use std::path::{Path, PathBuf};
+
+/// The time-series topics read into [`Signals`], in channel order.
+const SIGNAL_TOPICS: [&str; 4] = ["/wbv/measured", "/wbv/state", "/wbv/links", "/wbv/base"];
+
+/// One channel of the file.
+#[derive(Debug, Clone, PartialEq)]
+pub struct TopicSummary {
+    pub topic: String,
+    /// Schema name, e.g. `wbv.State` or `foxglove.SceneUpdate`.
+    pub schema: String,
+    pub message_encoding: String,
+    pub messages: u64,
+}
+
+/// What [`inspect`] finds in a run without decoding its messages.
+#[derive(Debug, Clone, PartialEq)]
+pub struct RunSummary {
+    pub path: PathBuf,
+    /// Writer library from the MCAP header.
+    pub library: String,
+    pub topics: Vec<TopicSummary>,
+    /// First and last message log time, ns.
+    pub start_ns: u64,
+    pub end_ns: u64,
+    /// Metadata records by name.
+    pub metadata: BTreeMap<String, Map>,
+    /// Attachments: name, media type, size in bytes.
+    pub attachments: Vec<(String, String, u64)>,
+}
+
+/// A run read back from its MCAP file.
+#[derive(Debug, Clone, PartialEq)]
+pub struct RecordedRun {
+    /// Measured-run channels (`a_base_z`, `a_seat_z`, `a_head_z`, `f_seat_z`) and state channels
+    /// named like their plot paths without `/wbv/` (`state.head.a_abs`, `links.k1.force`, `base.a`).
+    pub signals: Signals,
+    pub provenance: Provenance,
+    /// Results stored with `attach_results`, by name.
+    pub results: BTreeMap<String, serde_json::Value>,
+    pub summary: RunSummary,
+}
+
+fn corrupt(path: &Path, what: impl fmt::Display) -> Error {
+    Error::data(path, None, format!("corrupt or truncated MCAP run: {what}"))
+}
+
+/// Checks the framing of a whole-file buffer and reads its summary section.
+fn summary(path: &Path, buf: &[u8]) -> Result<mcap::Summary> {
+    if buf.len() < 8 || !buf.starts_with(mcap::MAGIC) {
+        return Err(Error::data(
+            path,
+            None,
+            "not an MCAP file (bad magic bytes)",
+        ));
+    }
+    if buf.len() < 8 + 29 + 8 || !buf.ends_with(mcap::MAGIC) {
+        return Err(Error::data(
+            path,
+            None,
+            "incomplete MCAP run (no footer): the recording was interrupted or the file is truncated",
+        ));
+    }
+    match mcap::Summary::read(buf) {
+        Ok(Some(s)) => Ok(s),
+        Ok(None) => Err(Error::data(path, None, "MCAP file has no summary section")),
+        Err(e) => Err(corrupt(path, e)),
+    }
+}
+
+/// The slice `offset..offset+length` of `buf`, if it lies inside it.
+fn within(buf: &[u8], offset: u64, length: u64) -> bool {
+    offset
+        .checked_add(length)
+        .is_some_and(|end| end <= buf.len() as u64)
+}
+
+fn summarize(path: &Path, buf: &[u8], s: &mcap::Summary) -> Result<RunSummary> {
+    let library = match mcap::read::LinearReader::new(buf)
+        .map_err(|e| corrupt(path, e))?
+        .next()
+    {
+        Some(Ok(mcap::records::Record::Header(h))) => h.library,
+        _ => return Err(corrupt(path, "no header record")),
+    };
+    let stats = s
+        .stats
+        .as_ref()
+        .ok_or_else(|| corrupt(path, "no statistics record"))?;
+    let mut ids: Vec<_> = s.channels.keys().copied().collect();
+    ids.sort_unstable();
+    let topics = ids
+        .iter()
+        .map(|id| {
+            let c = &s.channels[id];
+            TopicSummary {
+                topic: c.topic.clone(),
+                schema: c.schema.as_ref().map_or(String::new(), |x| x.name.clone()),
+                message_encoding: c.message_encoding.clone(),
+                messages: stats.channel_message_counts.get(id).copied().unwrap_or(0),
+            }
+        })
+        .collect();
+    let mut metadata = BTreeMap::new();
+    for idx in &s.metadata_indexes {
+        if !within(buf, idx.offset, idx.length) {
+            return Err(corrupt(path, "metadata index points outside the file"));
+        }
+        let m = mcap::read::metadata(buf, idx).map_err(|e| corrupt(path, e))?;
+        metadata.insert(m.name, m.metadata);
+    }
+    let attachments = s
+        .attachment_indexes
+        .iter()
+        .map(|a| (a.name.clone(), a.media_type.clone(), a.data_size))
+        .collect();
+    Ok(RunSummary {
+        path: path.to_path_buf(),
+        library,
+        topics,
+        start_ns: stats.message_start_time,
+        end_ns: stats.message_end_time,
+        metadata,
+        attachments,
+    })
+}
+
+/// Largest record (or decompressed chunk) accepted; the recorder writes 1 MiB chunks.
+const MAX_RECORD_BYTES: usize = 64 << 20;
+
+/// Calls `f(topic, sequence, data)` for every message, in file order. Chunk CRCs are checked
+/// before any record of a chunk is parsed and record lengths are bounded, so corrupt bytes give an
+/// error rather than a huge allocation inside the `mcap` crate.
+fn for_each_message(
+    path: &Path,
+    buf: &[u8],
+    s: &mcap::Summary,
+    mut f: impl FnMut(&str, u32, &[u8]) -> Result<()>,
+) -> Result<()> {
+    use mcap::sans_io::{LinearReadEvent, LinearReader, LinearReaderOptions};
+    let mut reader = LinearReader::new_with_options(
+        LinearReaderOptions::default()
+            .with_prevalidate_chunk_crcs(true)
+            .with_validate_data_section_crc(true)
+            .with_record_length_limit(MAX_RECORD_BYTES),
+    );
+    let mut rest = buf;
+    while let Some(event) = reader.next_event() {
+        match event.map_err(|e| corrupt(path, e))? {
+            LinearReadEvent::ReadRequest(n) => {
+                let k = n.min(rest.len());
+                reader.insert(k).copy_from_slice(&rest[..k]);
+                reader.notify_read(k);
+                rest = &rest[k..];
+            }
+            LinearReadEvent::Record { opcode, data } => {
+                if opcode != mcap::records::op::MESSAGE {
+                    continue;
+                }
+                match mcap::parse_record(opcode, data).map_err(|e| corrupt(path, e))? {
+                    mcap::records::Record::Message { header, data } => {
+                        let channel = s.channels.get(&header.channel_id).ok_or_else(|| {
+                            corrupt(path, format!("unknown channel {}", header.channel_id))
+                        })?;
+                        f(&channel.topic, header.sequence, &data)?;
+                    }
+                    _ => return Err(corrupt(path, "message record expected")),
+                }
+            }
+        }
+    }
+    Ok(())
+}
+
+fn read_file(path: &Path) -> Result<Vec<u8>> {
+    std::fs::read(path).map_err(|e| Error::io(path, e))
+}
+
+/// Channels, message counts, duration, metadata and attachments of a run, from its summary section.
+pub fn inspect(path: &Path) -> Result<RunSummary> {
+    let buf = read_file(path)?;
+    let s = summary(path, &buf)?;
+    summarize(path, &buf, &s)
+}
+
+/// Reads a run recorded by [`McapRecorder`](super::McapRecorder): every time-series message (CRCs
+/// checked), its provenance and its stored results.
+pub fn read_run(path: &Path) -> Result<RecordedRun> {
+    let buf = read_file(path)?;
+    let s = summary(path, &buf)?;
+    let summary = summarize(path, &buf, &s)?;
+    let provenance = meta::provenance(path, &summary.metadata)?;
+    let run = &summary.metadata[meta::RUN];
+    let fs: f64 = run
+        .get("sample_rate_hz")
+        .and_then(|r| r.parse().ok())
+        .filter(|r: &f64| r.is_finite() && *r > 0.0)
+        .ok_or_else(|| corrupt(path, "metadata `wbv.run.sample_rate_hz` missing or invalid"))?;
+
+    let mut tables: Vec<Table> = SIGNAL_TOPICS.iter().map(|_| Table::default()).collect();
+    for_each_message(path, &buf, &s, |topic, sequence, data| {
+        let Some(k) = SIGNAL_TOPICS.iter().position(|t| *t == topic) else {
+            return Ok(());
+        };
+        tables[k]
+            .add(data)
+            .map_err(|e| Error::data(path, None, format!("{topic} message {sequence}: {e}")))
+    })?;
+
+    let mut signals = Signals::new(fs, path.display().to_string());
+    for (topic, table) in SIGNAL_TOPICS.iter().zip(tables) {
+        if table.names.is_empty() {
+            if *topic == SIGNAL_TOPICS[0] {
+                return Err(Error::data(
+                    path,
+                    None,
+                    "not a wbv run: no /wbv/measured messages",
+                ));
+            }
+            continue;
+        }
+        table
+            .check_time(fs)
+            .map_err(|e| Error::data(path, None, format!("{topic}: {e}")))?;
+        for (name, col) in table.names.into_iter().zip(table.columns) {
+            if name.len() != 1 || name[0] != "t" {
+                signals.push(channel_name(topic, &name), col)?;
+            }
+        }
+    }
+    let mut results = BTreeMap::new();
+    for (name, text) in summary.metadata.get(meta::RESULTS).into_iter().flatten() {
+        let v = serde_json::from_str(text)
+            .map_err(|e| corrupt(path, format!("results `{name}` are not JSON: {e}")))?;
+        results.insert(name.clone(), v);
+    }
+    Ok(RecordedRun {
+        signals,
+        provenance,
+        results,
+        summary,
+    })
+}
+
+/// The numeric fields of one topic's messages, flattened in document order.
+#[derive(Default)]
+struct Table {
+    /// Field paths, learnt from the first message.
+    names: Vec<Vec<String>>,
+    columns: Vec<Vec<f64>>,
+}
+
+impl Table {
+    fn add(&mut self, data: &[u8]) -> std::result::Result<(), String> {
+        let learning = self.names.is_empty();
+        let mut st = Flat {
+            table: self,
+            learning,
+            path: Vec::new(),
+            depth: 0,
+            k: 0,
+        };
+        let mut de = serde_json::Deserializer::from_slice(data);
+        ObjectSeed(&mut st)
+            .deserialize(&mut de)
+            .and_then(|()| de.end())
+            .map_err(|e| e.to_string())?;
+        let k = st.k;
+        if k != self.names.len() {
+            return Err(format!(
+                "{k} fields where the first message had {}",
+                self.names.len()
+            ));
+        }
+        Ok(())
+    }
+
+    /// Sample times must be `i / fs` (uniform sampling from 0), to 0.1 % of a sample.
+    fn check_time(&self, fs: f64) -> std::result::Result<(), String> {
+        let t = self
+            .names
+            .iter()
+            .position(|n| n.len() == 1 && n[0] == "t")
+            .ok_or("no `t` field")?;
+        for (i, &ti) in self.columns[t].iter().enumerate() {
+            if (ti * fs - i as f64).abs() > 1e-3 {
+                return Err(format!(
+                    "message {i} has t = {ti} s, expected {} s",
+                    i as f64 / fs
+                ));
+            }
+        }
+        Ok(())
+    }
+}
+
+struct Flat<'a> {
+    table: &'a mut Table,
+    learning: bool,
+    path: Vec<String>,
+    depth: usize,
+    k: usize,
+}
+
+impl Flat<'_> {
+    fn number<E: serde::de::Error>(&mut self, key: &str, v: f64) -> std::result::Result<(), E> {
+        if self.learning {
+            let mut p = self.path.clone();
+            p.push(key.to_string());
+            self.table.names.push(p);
+            self.table.columns.push(Vec::new());
+        } else if self
+            .table
+            .names
+            .get(self.k)
+            .and_then(|n| n.last())
+            .map(String::as_str)
+            != Some(key)
+        {
+            return Err(E::custom(format!("unexpected field `{key}`")));
+        }
+        self.table.columns[self.k].push(v);
+        self.k += 1;
+        Ok(())
+    }
+}
+
+struct ObjectSeed<'a, 'b>(&'a mut Flat<'b>);
+
+impl<'de> DeserializeSeed<'de> for ObjectSeed<'_, '_> {
+    type Value = ();
+    fn deserialize<D: Deserializer<'de>>(self, d: D) -> std::result::Result<(), D::Error> {
+        d.deserialize_map(self)
+    }
+}
+
+impl<'de> Visitor<'de> for ObjectSeed<'_, '_> {
+    type Value = ();
+    fn expecting(&self, f: &mut fmt::Formatter) -> fmt::Result {
+        f.write_str("a JSON object of numbers")
+    }
+    fn visit_map<A: MapAccess<'de>>(self, mut map: A) -> std::result::Result<(), A::Error> {
+        while let Some(key) = map.next_key::<&'de str>()? {
+            map.next_value_seed(FieldSeed(&mut *self.0, key))?;
+        }
+        Ok(())
+    }
+}
+
+struct FieldSeed<'a, 'b, 'k>(&'a mut Flat<'b>, &'k str);
+
+impl<'de> DeserializeSeed<'de> for FieldSeed<'_, '_, '_> {
+    type Value = ();
+    fn deserialize<D: Deserializer<'de>>(self, d: D) -> std::result::Result<(), D::Error> {
+        d.deserialize_any(self)
+    }
+}
+
+impl<'de> Visitor<'de> for FieldSeed<'_, '_, '_> {
+    type Value = ();
+    fn expecting(&self, f: &mut fmt::Formatter) -> fmt::Result {
+        write!(f, "a number or an object for `{}`", self.1)
+    }
+    fn visit_f64<E: serde::de::Error>(self, v: f64) -> std::result::Result<(), E> {
+        self.0.number(self.1, v)
+    }
+    fn visit_i64<E: serde::de::Error>(self, v: i64) -> std::result::Result<(), E> {
+        self.0.number(self.1, v as f64)
+    }
+    fn visit_u64<E: serde::de::Error>(self, v: u64) -> std::result::Result<(), E> {
+        self.0.number(self.1, v as f64)
+    }
+    fn visit_map<A: MapAccess<'de>>(self, map: A) -> std::result::Result<(), A::Error> {
+        if self.0.depth >= 4 {
+            return Err(A::Error::custom("objects nested too deeply"));
+        }
+        // Paths are only needed while learning the field names from the first message.
+        if self.0.learning {
+            self.0.path.push(self.1.to_string());
+        }
+        self.0.depth += 1;
+        let r = ObjectSeed(&mut *self.0).visit_map(map);
+        self.0.depth -= 1;
+        if self.0.learning {
+            self.0.path.pop();
+        }
+        r
+    }
+}

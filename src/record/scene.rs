@@ -1,0 +1,206 @@
+//! 3-D replay: `foxglove.SceneUpdate` (a box per mass, a base plate, a line per link) and
+//! `foxglove.FrameTransforms` (`world → base`, `world → <mass>`) in JSON, every field the published
+//! all-required schemas (npm `@foxglove/schemas` 2.1.0, embedded in `schemas/`) ask for.
+//!
+//! The masses are stacked at rest heights `LEVEL_SPACING · level` (level = number of links down to
+//! the base) and move by `magnification · absolute displacement`, the factor being stated in the
+//! scene as a text label; nothing else is scaled.
+
+use super::json::write_f64;
+use super::topics::plot_key;
+use crate::simulate::observer::{Layout, Step};
+use std::io::Write;
+
+/// `foxglove.SceneUpdate` JSON schema, verbatim from npm `@foxglove/schemas` 2.1.0.
+pub const SCENE_UPDATE_SCHEMA: &str = include_str!("schemas/foxglove.SceneUpdate.json");
+/// `foxglove.FrameTransforms` JSON schema, verbatim from npm `@foxglove/schemas` 2.1.0.
+pub const FRAME_TRANSFORMS_SCHEMA: &str = include_str!("schemas/foxglove.FrameTransforms.json");
+
+/// Vertical distance between stacked masses at rest, m (display only).
+const LEVEL_SPACING: f64 = 0.2;
+
+struct Body {
+    key: String,
+    rest_z: f64,
+    size: [f64; 3],
+    color: [f64; 4],
+}
+
+/// Builds the scene messages of a layout.
+pub struct Scene {
+    bodies: Vec<Body>,
+    /// Per link: upper and lower node as mass index (`None` = base), and colour.
+    links: Vec<(Option<usize>, Option<usize>, [f64; 4])>,
+    magnification: f64,
+}
+
+fn role_look(role: &str) -> ([f64; 3], [f64; 4]) {
+    match role {
+        "cushion" => ([0.45, 0.45, 0.06], [0.2, 0.4, 0.8, 1.0]),
+        "suspension" => ([0.5, 0.5, 0.05], [0.5, 0.5, 0.5, 1.0]),
+        "frame" => ([0.5, 0.5, 0.05], [0.3, 0.3, 0.3, 1.0]),
+        _ => ([0.3, 0.3, 0.1], [0.9, 0.7, 0.5, 1.0]),
+    }
+}
+
+impl Scene {
+    pub fn new(layout: &Layout, magnification: f64) -> Self {
+        let n = layout.masses.len();
+        let node = |name: &str| layout.masses.iter().position(|m| m == name);
+        let links: Vec<_> = layout
+            .link_nodes
+            .iter()
+            .enumerate()
+            .map(|(l, (up, low))| {
+                let role = layout.link_roles.get(l).map_or("body", String::as_str);
+                let mut color = role_look(role).1;
+                color[3] = 0.8;
+                (node(up), node(low), color)
+            })
+            .collect();
+        // Longest path down to the base, by relaxation (at most n rounds for an acyclic chain).
+        let mut level: Vec<usize> = vec![0; n];
+        for _ in 0..n {
+            for &(up, low, _) in &links {
+                if let Some(u) = up {
+                    level[u] = level[u].max(low.map_or(0, |l| level[l]) + 1);
+                }
+            }
+        }
+        let bodies = (0..n)
+            .map(|i| {
+                let lv = if level[i] == 0 { i + 1 } else { level[i] };
+                let (size, color) =
+                    role_look(layout.mass_roles.get(i).map_or("body", String::as_str));
+                Body {
+                    key: plot_key(&layout.masses[i]),
+                    rest_z: LEVEL_SPACING * lv as f64,
+                    size,
+                    color,
+                }
+            })
+            .collect();
+        Scene {
+            bodies,
+            links,
+            magnification,
+        }
+    }
+
+    /// Display height of a node (mass `Some(i)` or the base) at step `s`, m.
+    fn z(&self, node: Option<usize>, s: &Step<'_>) -> f64 {
+        let m = self.magnification;
+        match node {
+            Some(i) => self.bodies[i].rest_z + m * (s.x[i] + s.x_base),
+            None => m * s.x_base,
+        }
+    }
+
+    /// Appends the `foxglove.SceneUpdate` JSON of step `s` to `out`.
+    pub fn scene_update(&self, s: &Step<'_>, out: &mut Vec<u8>) {
+        let ts = stamp(s.t);
+        let _ = write!(
+            out,
+            r#"{{"deletions":[],"entities":[{{"timestamp":{ts},"frame_id":"world","id":"wbv","lifetime":{{"sec":0,"nsec":0}},"frame_locked":false,"metadata":[{{"key":"display_magnification","value":""#
+        );
+        write_num(out, self.magnification);
+        out.extend_from_slice(
+            br#""}],"arrows":[],"spheres":[],"cylinders":[],"triangles":[],"models":[],"cubes":["#,
+        );
+        cube(out, self.z(None, s), [0.6, 0.6, 0.02], [0.2, 0.2, 0.2, 1.0]);
+        for (i, b) in self.bodies.iter().enumerate() {
+            out.push(b',');
+            cube(out, self.z(Some(i), s), b.size, b.color);
+        }
+        out.extend_from_slice(b"],\"lines\":[");
+        for (k, &(up, low, color)) in self.links.iter().enumerate() {
+            if k > 0 {
+                out.push(b',');
+            }
+            out.extend_from_slice(br#"{"type":2,"pose":"#);
+            pose(out, 0.0);
+            out.extend_from_slice(
+                br#","thickness":0.01,"scale_invariant":false,"points":[{"x":0.1,"y":0,"z":"#,
+            );
+            write_num(out, self.z(low, s));
+            out.extend_from_slice(br#"},{"x":0.1,"y":0,"z":"#);
+            write_num(out, self.z(up, s));
+            out.extend_from_slice(b"}],\"color\":");
+            rgba(out, color);
+            out.extend_from_slice(br#","colors":[],"indices":[]}"#);
+        }
+        let top = self.bodies.iter().map(|b| b.rest_z).fold(0.0, f64::max) + 0.25;
+        out.extend_from_slice(b"],\"texts\":[{\"pose\":");
+        pose(out, top);
+        let _ = write!(
+            out,
+            r#","billboard":true,"font_size":0.05,"scale_invariant":false,"color":{{"r":1,"g":1,"b":1,"a":1}},"text":"displacements ×{} (t = {:.3} s)"}}]}}]}}"#,
+            self.magnification, s.t
+        );
+    }
+
+    /// Appends the `foxglove.FrameTransforms` JSON (`world → base`, `world → <mass>`) of step `s`.
+    pub fn frame_transforms(&self, s: &Step<'_>, out: &mut Vec<u8>) {
+        let ts = stamp(s.t);
+        out.extend_from_slice(b"{\"transforms\":[");
+        for k in 0..=self.bodies.len() {
+            let (name, node) = match k {
+                0 => ("base", None),
+                _ => (self.bodies[k - 1].key.as_str(), Some(k - 1)),
+            };
+            if k > 0 {
+                out.push(b',');
+            }
+            let _ = write!(
+                out,
+                r#"{{"timestamp":{ts},"parent_frame_id":"world","child_frame_id":"{name}","translation":{{"x":0,"y":0,"z":"#
+            );
+            write_num(out, self.z(node, s));
+            out.extend_from_slice(br#"},"rotation":{"x":0,"y":0,"z":0,"w":1}}"#);
+        }
+        out.extend_from_slice(b"]}");
+    }
+}
+
+/// `{"sec":…,"nsec":…}` of a non-negative simulation time.
+fn stamp(t: f64) -> String {
+    let ns = (t * 1e9).round().max(0.0) as u64;
+    format!(
+        r#"{{"sec":{},"nsec":{}}}"#,
+        ns / 1_000_000_000,
+        ns % 1_000_000_000
+    )
+}
+
+fn write_num(out: &mut Vec<u8>, v: f64) {
+    // Display positions of finite states are finite; a non-finite state is refused before this.
+    if write_f64(out, v).is_err() {
+        out.push(b'0');
+    }
+}
+
+fn pose(out: &mut Vec<u8>, z: f64) {
+    out.extend_from_slice(br#"{"position":{"x":0,"y":0,"z":"#);
+    write_num(out, z);
+    out.extend_from_slice(br#"},"orientation":{"x":0,"y":0,"z":0,"w":1}}"#);
+}
+
+fn rgba(out: &mut Vec<u8>, c: [f64; 4]) {
+    let _ = write!(
+        out,
+        r#"{{"r":{},"g":{},"b":{},"a":{}}}"#,
+        c[0], c[1], c[2], c[3]
+    );
+}
+
+fn cube(out: &mut Vec<u8>, z: f64, size: [f64; 3], color: [f64; 4]) {
+    out.extend_from_slice(br#"{"pose":"#);
+    pose(out, z);
+    let _ = write!(
+        out,
+        r#","size":{{"x":{},"y":{},"z":{}}},"color":"#,
+        size[0], size[1], size[2]
+    );
+    rgba(out, color);
+    out.push(b'}');
+}

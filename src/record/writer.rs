@@ -1,0 +1,492 @@
+//! [`McapRecorder`]: an [`Observer`] that records every step of a run to an MCAP file.
+//!
+//! The simulation thread renders JSON messages into batches; a second thread frames and compresses
+//! them into the MCAP file (two cores: formatting and compression overlap). Message order, and so the
+//! file, does not depend on the thread timing.
+
+use super::json::Template;
+use super::lowpass::{LowPass, decimation};
+use super::meta;
+use super::scene::{FRAME_TRANSFORMS_SCHEMA, SCENE_UPDATE_SCHEMA, Scene};
+use super::topics::{Quantity, Topic, channel_name, eval, topics};
+use super::{Compression, Provenance, RecordOptions};
+use crate::error::{Error, Result};
+use crate::io::atomic::{Overwrite, partial_path};
+use crate::simulate::observer::{Layout, Observer, Step};
+use mcap::records::{MessageHeader, Metadata};
+use std::collections::BTreeMap;
+use std::fs::{self, File};
+use std::io::BufWriter;
+use std::path::{Path, PathBuf};
+use std::sync::mpsc::{Receiver, SyncSender, sync_channel};
+use std::thread::JoinHandle;
+
+type McapWriter = mcap::Writer<BufWriter<File>>;
+
+/// Messages rendered on the simulation thread, written in order by the writer thread.
+#[derive(Default)]
+struct Batch {
+    data: Vec<u8>,
+    /// Header and end offset in `data` of each message (the start is the previous end).
+    messages: Vec<(MessageHeader, usize)>,
+}
+
+/// Target batch size; large enough to amortise the channel hand-over, small enough to overlap.
+const BATCH_BYTES: usize = 1 << 20;
+
+struct Pipeline {
+    tx: SyncSender<Batch>,
+    handle: JoinHandle<std::result::Result<McapWriter, Box<(McapWriter, mcap::McapError)>>>,
+}
+
+fn spawn(mut writer: McapWriter) -> Pipeline {
+    let (tx, rx): (SyncSender<Batch>, Receiver<Batch>) = sync_channel(2);
+    let handle = std::thread::spawn(move || {
+        for batch in rx {
+            let mut start = 0;
+            for (header, end) in &batch.messages {
+                if let Err(e) = writer.write_to_known_channel(header, &batch.data[start..*end]) {
+                    return Err(Box::new((writer, e)));
+                }
+                start = *end;
+            }
+        }
+        Ok(writer)
+    });
+    Pipeline { tx, handle }
+}
+
+/// Records a run to `<path>` (through `<path>.partial`, renamed only once complete).
+pub struct McapRecorder {
+    path: PathBuf,
+    partial: PathBuf,
+    provenance: Provenance,
+    options: RecordOptions,
+    /// The MCAP writer before `begin` (then owned by the pipeline).
+    writer: Option<McapWriter>,
+    pipeline: Option<Pipeline>,
+    batch: Batch,
+    topics: Vec<(Topic, u16)>,
+    scene: Option<(Scene, u16, u16)>,
+    interface: Vec<usize>,
+    quantities: Vec<Quantity>,
+    values: Vec<f64>,
+    lowpass: Option<LowPass>,
+    every: u64,
+    next_scene_frame: u64,
+    last_time_ns: u64,
+    results: Vec<(String, serde_json::Value)>,
+    ended: bool,
+    /// The file was renamed into place.
+    completed: bool,
+}
+
+fn mcap_err(path: &Path) -> impl Fn(mcap::McapError) -> Error + '_ {
+    move |e| Error::data(path, None, format!("MCAP write failed: {e}"))
+}
+
+impl McapRecorder {
+    /// Opens `<path>.partial` for a new run; refuses an existing `path` unless
+    /// `options.overwrite` allows it.
+    pub fn create(path: &Path, provenance: Provenance, options: RecordOptions) -> Result<Self> {
+        if options.overwrite == Overwrite::Refuse && path.exists() {
+            return Err(Error::parameter(
+                path.display().to_string(),
+                "already exists; refusing to overwrite it (pass --force to replace it)",
+            ));
+        }
+        if !(15.0..=120.0).contains(&options.scene_rate_hz) {
+            return Err(Error::parameter(
+                "scene rate",
+                format!(
+                    "{} Hz: expected 15–120 Hz (30–60 is typical)",
+                    options.scene_rate_hz
+                ),
+            ));
+        }
+        if !(options.magnification.is_finite() && options.magnification > 0.0) {
+            return Err(Error::parameter(
+                "display magnification",
+                format!("{}: expected a positive factor", options.magnification),
+            ));
+        }
+        if let Some(dir) = path.parent().filter(|d| !d.as_os_str().is_empty()) {
+            fs::create_dir_all(dir).map_err(|e| Error::io(dir, e))?;
+        }
+        let partial = partial_path(path);
+        let file = File::create(&partial).map_err(|e| Error::io(&partial, e))?;
+        let compression = match options.compression {
+            Compression::Zstd => Some(mcap::Compression::Zstd),
+            Compression::Lz4 => Some(mcap::Compression::Lz4),
+            Compression::None => None,
+        };
+        let writer = mcap::WriteOptions::new()
+            .compression(compression)
+            .compression_threads(0)
+            .library(format!("wbv/{} mcap-rust/0.26", provenance.version))
+            .create(BufWriter::with_capacity(1 << 20, file))
+            .map_err(mcap_err(&partial))?;
+        Ok(McapRecorder {
+            path: path.to_path_buf(),
+            partial,
+            provenance,
+            options,
+            writer: Some(writer),
+            pipeline: None,
+            batch: Batch::default(),
+            topics: Vec::new(),
+            scene: None,
+            interface: Vec::new(),
+            quantities: Vec::new(),
+            values: Vec::new(),
+            lowpass: None,
+            every: 1,
+            next_scene_frame: 0,
+            last_time_ns: 0,
+            results: Vec::new(),
+            ended: false,
+            completed: false,
+        })
+    }
+
+    /// Stores analysis results under `name` (letters, digits, `_`, `-`, `.`): written at `end()` as
+    /// the attachment `<name>.json` and as key `name` of the `wbv.results` metadata record.
+    pub fn attach_results(&mut self, name: &str, json: &serde_json::Value) -> Result<()> {
+        let ok = !name.is_empty()
+            && name
+                .chars()
+                .all(|c| c.is_ascii_alphanumeric() || "_-.".contains(c));
+        if !ok || self.results.iter().any(|(n, _)| n == name) {
+            return Err(Error::parameter(
+                "results name",
+                format!(
+                    "`{name}`: expected a new non-empty name of letters, digits, `_`, `-`, `.`"
+                ),
+            ));
+        }
+        if self.ended {
+            return Err(Error::parameter("results", "the run has already ended"));
+        }
+        self.results.push((name.to_string(), json.clone()));
+        Ok(())
+    }
+
+    /// The final path of the run.
+    pub fn path(&self) -> &Path {
+        &self.path
+    }
+
+    fn setup(&mut self, layout: &Layout) -> Result<()> {
+        let partial = self.partial.clone();
+        let err = mcap_err(&partial);
+        let w = self
+            .writer
+            .as_mut()
+            .ok_or_else(|| Error::parameter("recorder", "begin() called twice"))?;
+        let fs = 1.0 / layout.dt;
+        let rate = self.options.record_rate_hz.unwrap_or(fs);
+        self.every = decimation(fs, rate)?;
+        let topics = topics(layout)?;
+        self.quantities = topics.iter().flat_map(|t| t.quantities.clone()).collect();
+        if self.every > 1 {
+            let fc = LowPass::CUTOFF_FRACTION * rate;
+            self.lowpass = Some(LowPass::new(fs, fc, self.quantities.len())?);
+        }
+        self.interface = layout.interface.clone();
+
+        let mut run = meta::run_record(&self.provenance);
+        let o = &self.options;
+        for (k, v) in [
+            ("simulation_rate_hz", fs.to_string()),
+            ("sample_rate_hz", (fs / self.every as f64).to_string()),
+            ("decimation", self.every.to_string()),
+            (
+                "anti_alias",
+                self.lowpass
+                    .as_ref()
+                    .map_or("none (full rate)".into(), |_| {
+                        format!(
+                            "4th-order Butterworth low-pass, -3 dB at {} Hz, before decimation",
+                            LowPass::CUTOFF_FRACTION * rate
+                        )
+                    }),
+            ),
+            ("scene_rate_hz", o.scene_rate_hz.to_string()),
+            ("display_magnification", o.magnification.to_string()),
+            ("compression", o.compression.as_str().to_string()),
+            ("steps", layout.steps.to_string()),
+            ("masses", layout.masses.join(",")),
+            ("links", layout.links.join(",")),
+        ] {
+            run.insert(k.to_string(), v);
+        }
+        let mut records = vec![(meta::RUN, run)];
+        records.extend(meta::records(&self.provenance));
+        for (name, metadata) in records {
+            w.write_metadata(&Metadata {
+                name: name.to_string(),
+                metadata,
+            })
+            .map_err(&err)?;
+        }
+        w.attach(&mcap::Attachment {
+            log_time: 0,
+            create_time: 0,
+            name: "model.toml".into(),
+            media_type: "application/toml".into(),
+            data: self.provenance.model_toml.as_bytes().into(),
+        })
+        .map_err(&err)?;
+
+        for t in topics {
+            let schema = serde_json::to_vec(&t.schema).expect("schema serialises");
+            let sid = w
+                .add_schema(t.schema_name, "jsonschema", &schema)
+                .map_err(&err)?;
+            let cid = w
+                .add_channel(sid, t.topic, "json", &BTreeMap::new())
+                .map_err(&err)?;
+            self.topics.push((t, cid));
+        }
+        let scene = Scene::new(layout, self.options.magnification);
+        let sid = w
+            .add_schema(
+                "foxglove.SceneUpdate",
+                "jsonschema",
+                SCENE_UPDATE_SCHEMA.as_bytes(),
+            )
+            .map_err(&err)?;
+        let scene_id = w
+            .add_channel(sid, "/wbv/scene", "json", &BTreeMap::new())
+            .map_err(&err)?;
+        let sid = w
+            .add_schema(
+                "foxglove.FrameTransforms",
+                "jsonschema",
+                FRAME_TRANSFORMS_SCHEMA.as_bytes(),
+            )
+            .map_err(&err)?;
+        let tf_id = w
+            .add_channel(sid, "/tf", "json", &BTreeMap::new())
+            .map_err(&err)?;
+        self.scene = Some((scene, scene_id, tf_id));
+        let writer = self.writer.take().expect("checked above");
+        self.pipeline = Some(spawn(writer));
+        Ok(())
+    }
+
+    fn push_message(&mut self, channel_id: u16, sequence: u32, time_ns: u64) {
+        self.batch.messages.push((
+            MessageHeader {
+                channel_id,
+                sequence,
+                log_time: time_ns,
+                publish_time: time_ns,
+            },
+            self.batch.data.len(),
+        ));
+    }
+
+    fn send_batch(&mut self) -> Result<()> {
+        let batch = std::mem::take(&mut self.batch);
+        let p = self.pipeline.as_ref().expect("recording");
+        if p.tx.send(batch).is_err() {
+            // The writer thread stopped on an error: collect it.
+            return Err(self.stop().err().unwrap_or_else(|| {
+                Error::data(&self.partial, None, "MCAP writer stopped unexpectedly")
+            }));
+        }
+        self.batch.data.reserve(BATCH_BYTES + (BATCH_BYTES >> 3));
+        Ok(())
+    }
+
+    /// Stops the writer thread and returns the writer.
+    fn stop(&mut self) -> Result<McapWriter> {
+        let p = self
+            .pipeline
+            .take()
+            .ok_or_else(|| Error::parameter("recorder", "not recording"))?;
+        drop(p.tx);
+        match p.handle.join() {
+            Ok(Ok(w)) => Ok(w),
+            Ok(Err(failed)) => {
+                let (w, e) = *failed;
+                self.writer = Some(w);
+                Err(mcap_err(&self.partial)(e))
+            }
+            Err(_) => Err(Error::data(
+                &self.partial,
+                None,
+                "MCAP writer thread panicked",
+            )),
+        }
+    }
+
+    fn record(&mut self, s: &Step<'_>) -> Result<()> {
+        eval(&self.quantities, s, &self.interface, &mut self.values);
+        if let Some(i) = self.values.iter().position(|v| !v.is_finite()) {
+            return Err(self.non_finite(s, i));
+        }
+        if let Some(lp) = self.lowpass.as_mut() {
+            lp.process(&mut self.values);
+        }
+        if !s.index.is_multiple_of(self.every) {
+            return Ok(());
+        }
+        let sequence = u32::try_from(s.index).map_err(|_| {
+            Error::parameter("steps", "more than 2³² steps cannot be numbered in MCAP")
+        })?;
+        let time_ns = (s.t * 1e9).round() as u64;
+        let mut offset = 0;
+        for k in 0..self.topics.len() {
+            let (topic, cid) = &self.topics[k];
+            let (n, cid) = (topic.template.len(), *cid);
+            let vals = &mut self.values[offset..offset + n];
+            vals[0] = s.t; // time is exact, never filtered
+            render(&topic.template, vals, &mut self.batch.data);
+            offset += n;
+            self.push_message(cid, sequence, time_ns);
+        }
+        self.last_time_ns = time_ns;
+        Ok(())
+    }
+
+    fn non_finite(&self, s: &Step<'_>, mut i: usize) -> Error {
+        let mut field = String::new();
+        for (t, _) in &self.topics {
+            if i < t.leaves.len() {
+                field = channel_name(t.topic, &t.leaves[i].path);
+                break;
+            }
+            i -= t.leaves.len();
+        }
+        Error::parameter(
+            field,
+            format!(
+                "is not finite at step {} (t = {} s); refusing to record NaN or infinity",
+                s.index, s.t
+            ),
+        )
+    }
+
+    fn record_scene(&mut self, s: &Step<'_>) -> Result<()> {
+        let rate = self.options.scene_rate_hz;
+        if (self.next_scene_frame as f64) / rate > s.t + 1e-9 {
+            return Ok(());
+        }
+        self.next_scene_frame = (s.t * rate + 1e-9).floor() as u64 + 1;
+        let sequence = u32::try_from(self.next_scene_frame - 1).unwrap_or(u32::MAX);
+        let time_ns = (s.t * 1e9).round() as u64;
+        let (scene, scene_id, tf_id) = self.scene.as_ref().expect("recording");
+        let (scene_id, tf_id) = (*scene_id, *tf_id);
+        scene.scene_update(s, &mut self.batch.data);
+        self.push_message(scene_id, sequence, time_ns);
+        let (scene, _, _) = self.scene.as_ref().expect("recording");
+        scene.frame_transforms(s, &mut self.batch.data);
+        self.push_message(tf_id, sequence, time_ns);
+        self.last_time_ns = self.last_time_ns.max(time_ns);
+        Ok(())
+    }
+
+    fn finish(&mut self) -> Result<()> {
+        if !self.batch.messages.is_empty() {
+            self.send_batch()?;
+        }
+        let mut w = self.stop()?;
+        let err = mcap_err(&self.partial);
+        let mut results = BTreeMap::new();
+        for (name, json) in &self.results {
+            let text = serde_json::to_string_pretty(json).expect("a JSON value serialises");
+            w.attach(&mcap::Attachment {
+                log_time: self.last_time_ns,
+                create_time: 0,
+                name: format!("{name}.json"),
+                media_type: "application/json".into(),
+                data: text.as_bytes().into(),
+            })
+            .map_err(&err)?;
+            results.insert(name.clone(), json.to_string());
+        }
+        if !results.is_empty() {
+            w.write_metadata(&Metadata {
+                name: meta::RESULTS.into(),
+                metadata: results,
+            })
+            .map_err(&err)?;
+        }
+        w.finish().map_err(&err)?;
+        let file = w
+            .into_inner()
+            .into_inner()
+            .map_err(|e| Error::io(&self.partial, e.into_error()))?;
+        file.sync_all().map_err(|e| Error::io(&self.partial, e))?;
+        drop(file);
+        if self.options.overwrite == Overwrite::Refuse && self.path.exists() {
+            return Err(Error::parameter(
+                self.path.display().to_string(),
+                "appeared while recording; refusing to overwrite it",
+            ));
+        }
+        fs::rename(&self.partial, &self.path).map_err(|e| Error::io(&self.path, e))?;
+        self.completed = true;
+        Ok(())
+    }
+}
+
+/// Renders one message; values were checked finite before filtering, and a stable low-pass of
+/// finite values stays finite.
+fn render(template: &Template, values: &[f64], out: &mut Vec<u8>) {
+    let start = out.len();
+    if template.render(values, out).is_err() {
+        out.truncate(start);
+        unreachable!("values are checked finite before rendering");
+    }
+}
+
+impl Observer for McapRecorder {
+    fn begin(&mut self, layout: &Layout) -> Result<()> {
+        self.setup(layout)
+    }
+
+    fn step(&mut self, step: &Step<'_>) -> Result<()> {
+        if self.pipeline.is_none() {
+            return Err(Error::parameter("recorder", "step() outside begin()/end()"));
+        }
+        self.record(step)?;
+        self.record_scene(step)?;
+        if self.batch.data.len() >= BATCH_BYTES {
+            self.send_batch()?;
+        }
+        Ok(())
+    }
+
+    fn end(&mut self) -> Result<()> {
+        if self.ended || self.pipeline.is_none() {
+            return Err(Error::parameter(
+                "recorder",
+                "end() without a recording in progress",
+            ));
+        }
+        self.ended = true;
+        self.finish()
+    }
+}
+
+impl Drop for McapRecorder {
+    /// A run that did not end successfully leaves no file that looks complete: the writer is
+    /// abandoned without writing its summary and the partial file is removed.
+    fn drop(&mut self) {
+        if self.completed {
+            return;
+        }
+        if self.pipeline.is_some()
+            && let Ok(w) = self.stop()
+        {
+            self.writer = Some(w);
+        }
+        if let Some(w) = self.writer.take() {
+            drop(w.into_inner());
+        }
+        let _ = fs::remove_file(&self.partial);
+    }
+}
