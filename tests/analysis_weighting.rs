@@ -188,8 +188,7 @@ fn spot_values_of_iso8041_annex_b_and_table_1() {
     ] {
         let f = 10f64.powf(n as f64 / 10.0);
         assert!(
-            (Weighting::Wk.magnitude(f) - v).abs()
-                <= 0.5e-4 * 10f64.powf((v as f64).log10().floor() + 1.0),
+            (Weighting::Wk.magnitude(f) - v).abs() <= 0.5e-4 * 10f64.powf(v.log10().floor() + 1.0),
             "Wk n={n}"
         );
     }
