@@ -32,18 +32,13 @@ impl Biquad {
         num / den
     }
 
-    /// Filters `x` in place from rest (transposed direct form II).
-    fn run(&self, x: &mut [f64]) {
-        let [b0, b1, b2] = self.b;
-        let [a1, a2] = self.a;
-        let (mut s1, mut s2) = (0.0, 0.0);
-        for v in x.iter_mut() {
-            let u = *v;
-            let y = b0 * u + s1;
-            s1 = b1 * u - a1 * y + s2;
-            s2 = b2 * u - a2 * y;
-            *v = y;
-        }
+    /// One sample through the section in transposed direct form II; `st` holds its two states.
+    #[inline]
+    fn step(&self, u: f64, st: &mut [f64; 2]) -> f64 {
+        let y = self.b[0] * u + st[0];
+        st[0] = self.b[1] * u - self.a[0] * y + st[1];
+        st[1] = self.b[2] * u - self.a[1] * y;
+        y
     }
 }
 
@@ -214,10 +209,16 @@ impl WeightingFilter {
         y
     }
 
-    /// Weights `x` in place, starting from rest.
+    /// Weights `x` in place, starting from rest. All sections advance together sample by sample,
+    /// so their independent recursions overlap in the CPU pipeline.
     pub fn apply_in_place(&self, x: &mut [f64]) {
-        for s in &self.sections {
-            s.run(x);
+        let mut state = vec![[0.0f64; 2]; self.sections.len()];
+        for v in x.iter_mut() {
+            let mut u = *v;
+            for (s, st) in self.sections.iter().zip(state.iter_mut()) {
+                u = s.step(u, st);
+            }
+            *v = u;
         }
     }
 }
