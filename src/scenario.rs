@@ -67,3 +67,104 @@ impl Scenario {
         collector.into_signals(&format!("simulated {}", self.model.name))
     }
 }
+
+/// Where a scenario's run goes.
+#[derive(Debug, Clone)]
+pub struct Outputs {
+    /// The MCAP recording and how to write it; `None` for `--no-record`.
+    pub mcap: Option<(std::path::PathBuf, crate::record::RecordOptions)>,
+    /// A measured-run CSV of the simulated channels.
+    pub csv: Option<std::path::PathBuf>,
+    /// The command line, for the run's provenance.
+    pub command_line: String,
+}
+
+/// What a recorded run produced.
+#[derive(Debug)]
+pub struct Outcome {
+    /// The ISO 2631-1 report of the simulated measured channels, when the sample rate allows it.
+    pub report: Option<crate::analysis::Report>,
+    /// Why there is no report.
+    pub report_skipped: Option<String>,
+    /// Wall-clock time of simulation, recording and analysis in s.
+    pub elapsed_s: f64,
+}
+
+impl Scenario {
+    /// The provenance stored with a recording of this scenario.
+    pub fn provenance(&self, command_line: &str) -> crate::record::Provenance {
+        crate::record::Provenance {
+            model: self.model.name.clone(),
+            model_toml: self.model.text.clone(),
+            excitation: self.excitation.summary(),
+            excitation_definition: format!(
+                "origin: {}\n{:#?}",
+                self.excitation.origin, self.excitation.kind
+            ),
+            integrator: self.settings.method.name(),
+            dt: self.settings.dt,
+            seed: Some(self.seed),
+            duration: self.settings.duration_s,
+            command_line: command_line.to_string(),
+            ..crate::record::Provenance::new()
+        }
+    }
+
+    /// Simulates, records (MCAP and/or CSV, each written atomically) and analyses the run; the
+    /// analysis results are stored in the recording before it is completed.
+    pub fn execute(
+        &self,
+        outputs: &Outputs,
+        progress: Option<&indicatif::ProgressBar>,
+    ) -> Result<Outcome> {
+        let start = std::time::Instant::now();
+        let mut recorder = match &outputs.mcap {
+            Some((path, options)) => Some(crate::record::McapRecorder::create(
+                path,
+                self.provenance(&outputs.command_line),
+                options.clone(),
+            )?),
+            None => None,
+        };
+        let overwrite = outputs
+            .mcap
+            .as_ref()
+            .map_or(crate::io::atomic::Overwrite::Refuse, |(_, o)| o.overwrite);
+        let mut csv = match &outputs.csv {
+            Some(p) => Some(crate::io::csv_run::CsvWriter::create(p, overwrite)?),
+            None => None,
+        };
+        let mut collector = Collector::new();
+        {
+            let mut observers: Vec<&mut dyn Observer> = vec![&mut collector];
+            if let Some(r) = recorder.as_mut() {
+                observers.push(r);
+            }
+            if let Some(c) = csv.as_mut() {
+                observers.push(c);
+            }
+            self.simulate(&mut observers, progress)?;
+        }
+        let signals = collector.into_signals(&format!("simulated {}", self.model.name))?;
+        let (report, report_skipped) =
+            match crate::analysis::Report::from_signals(&signals, &Default::default()) {
+                Ok(r) => (Some(r), None),
+                Err(e) => (None, Some(e.to_string())),
+            };
+        if let Some(mut r) = recorder {
+            if let Some(rep) = &report {
+                let json = serde_json::to_value(rep).expect("report serializes");
+                r.attach_results("analysis", &json)?;
+            }
+            r.end()?;
+        }
+        if let Some(mut c) = csv {
+            c.end()?;
+        }
+        Ok(Outcome {
+            report,
+            report_skipped,
+            elapsed_s: start.elapsed().as_secs_f64(),
+        })
+    }
+}

@@ -23,8 +23,23 @@ use crate::error::Result;
 use crate::signals::Signals;
 use std::path::Path;
 
-/// Loads the channels of a run file for analysis. Today: measured-run CSV
-/// (`../shared/specs/measured-runs.md`); the one place to add other formats (MCAP).
+/// Loads the measured-run channels of a run file for analysis: a measured-run CSV
+/// (`../shared/specs/measured-runs.md`) or an MCAP run recorded by wbv (its `a_*` and `f_*`
+/// channels; a run directory stands for its `run.mcap`).
 pub fn load_signals(path: &Path) -> Result<Signals> {
-    Ok(crate::io::csv_run::read(path)?.signals)
+    let path = crate::record::run_file(path);
+    if path
+        .extension()
+        .is_some_and(|e| e.eq_ignore_ascii_case("mcap"))
+    {
+        let run = crate::record::read_run(&path)?;
+        let mut out = Signals::new(run.signals.sample_rate_hz, path.display().to_string());
+        for (name, data) in run.signals.names.iter().zip(run.signals.data) {
+            if name.starts_with("a_") || name.starts_with("f_") {
+                out.push(name.clone(), data)?;
+            }
+        }
+        return Ok(out);
+    }
+    Ok(crate::io::csv_run::read(&path)?.signals)
 }

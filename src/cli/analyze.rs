@@ -5,7 +5,7 @@ use std::path::PathBuf;
 /// Arguments of `wbv analyze`.
 #[derive(Debug, clap::Args)]
 pub struct Args {
-    /// Run file to analyse (measured-run CSV).
+    /// Run to analyse: a measured-run CSV, an MCAP run or a run directory.
     path: PathBuf,
     /// Print the report as JSON (keys `a_w`, `vdv`, `mtvv`, `crest_factor`, `seat_percent`,
     /// `comfort`, …; units under `units`).
@@ -64,7 +64,7 @@ pub fn run(args: Args) -> crate::Result<()> {
     Ok(())
 }
 
-fn print_table(r: &Report) {
+pub(crate) fn print_table(r: &Report) {
     println!(
         "{}: {:.1} s at {} Hz",
         r.source, r.duration_s, r.sample_rate_hz

@@ -7,7 +7,9 @@ mod frf;
 mod inspect;
 mod models;
 mod modes;
+mod replay;
 mod reproduce;
+mod run;
 mod simulate;
 
 use clap::{Parser, Subcommand};
@@ -31,6 +33,10 @@ enum Command {
     Frf(frf::Args),
     /// Undamped and damped natural frequencies, damping ratios and mode shapes.
     Modes(modes::Args),
+    /// The main job: simulate, record and analyse the built-in default scenario.
+    Run(run::Args),
+    /// Re-read a recorded run's signals and re-run its analysis.
+    Replay(replay::Args),
     /// Simulate a model shaken by a base excitation (time domain).
     Simulate(simulate::Args),
     /// Regenerate the reproduction table of the source papers (docs/reproduction.md).
@@ -53,6 +59,8 @@ pub fn main() -> ExitCode {
         Command::Modes(a) => modes::run(a),
         Command::Reproduce(a) => reproduce::run(a),
         Command::Simulate(a) => simulate::run(a),
+        Command::Run(a) => run::run(a),
+        Command::Replay(a) => replay::run(a),
         Command::Excitations(a) => excitations::list(a),
         Command::ExcitationExport(a) => excitations::export(a),
         Command::Inspect(a) => inspect::run(a),

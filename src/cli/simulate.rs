@@ -1,12 +1,11 @@
 use crate::excitation::{ExcitationArgs, args::resolve};
 use crate::integrator::Method;
 use crate::io::atomic::Overwrite;
-use crate::io::csv_run::CsvWriter;
 use crate::model::catalog;
-use crate::scenario::Scenario;
+use crate::record::{Compression, RUN_FILE, RecordOptions};
+use crate::scenario::{Outcome, Outputs, Scenario};
 use crate::simulate::Settings;
-use crate::simulate::observer::Observer;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 /// Arguments of `wbv simulate`.
 #[derive(Debug, clap::Args)]
@@ -29,6 +28,18 @@ pub struct Args {
     /// Integrator: newmark (average acceleration), newmark-linear or rk4.
     #[arg(long, default_value = "newmark")]
     pub integrator: String,
+    /// Run directory; the recording is `<DIR>/run.mcap` (default `runs/<model>-s<seed>`).
+    #[arg(long)]
+    pub out: Option<PathBuf>,
+    /// Do not write the MCAP recording (batch work).
+    #[arg(long)]
+    pub no_record: bool,
+    /// Record the time series at this rate in Hz (low-pass filtered first); default: every step.
+    #[arg(long)]
+    pub record_rate: Option<f64>,
+    /// MCAP chunk compression: lz4, zstd or none.
+    #[arg(long, default_value = "lz4")]
+    pub compression: String,
     /// Also write the measured-run channels (t_s, a_base_z, a_seat_z, a_head_z, f_seat_z) as CSV.
     #[arg(long)]
     pub csv: Option<PathBuf>,
@@ -66,23 +77,25 @@ pub fn progress(steps: u64) -> indicatif::ProgressBar {
     bar
 }
 
-pub fn run(args: Args) -> crate::Result<()> {
-    let scenario = args.scenario()?;
-    let overwrite = Overwrite::from_force(args.force);
-    let mut csv = match &args.csv {
-        Some(p) => Some(CsvWriter::create(p, overwrite)?),
-        None => None,
+/// The command line as typed, for provenance.
+pub fn command_line() -> String {
+    std::env::args().collect::<Vec<_>>().join(" ")
+}
+
+/// Runs `scenario` into `dir` (unless `record` is false) and prints what it produced.
+pub fn execute(
+    scenario: &Scenario,
+    dir: Option<&Path>,
+    options: RecordOptions,
+    csv: Option<PathBuf>,
+) -> crate::Result<Outcome> {
+    let outputs = Outputs {
+        mcap: dir.map(|d| (d.join(RUN_FILE), options)),
+        csv,
+        command_line: command_line(),
     };
-    let mut observers: Vec<&mut dyn Observer> = Vec::new();
-    if let Some(c) = csv.as_mut() {
-        observers.push(c);
-    }
     let bar = progress(scenario.settings.steps());
-    let start = std::time::Instant::now();
-    scenario.simulate(&mut observers, Some(&bar))?;
-    for o in observers.iter_mut() {
-        o.end()?;
-    }
+    let outcome = scenario.execute(&outputs, Some(&bar))?;
     bar.finish_and_clear();
     println!(
         "simulated {} s of `{}` under {} with {} in {:.2} s",
@@ -90,10 +103,45 @@ pub fn run(args: Args) -> crate::Result<()> {
         scenario.model.name,
         scenario.excitation.summary(),
         scenario.settings.method.name(),
-        start.elapsed().as_secs_f64()
+        outcome.elapsed_s
     );
-    if let Some(p) = &args.csv {
+    if let Some((p, _)) = &outputs.mcap {
+        println!("recorded {}", p.display());
+    }
+    if let Some(p) = &outputs.csv {
         println!("wrote {}", p.display());
     }
+    match (&outcome.report, &outcome.report_skipped) {
+        (Some(r), _) => {
+            println!();
+            super::analyze::print_table(r);
+        }
+        (None, Some(why)) => println!("analysis skipped: {why}"),
+        (None, None) => {}
+    }
+    Ok(outcome)
+}
+
+pub fn run(args: Args) -> crate::Result<()> {
+    let scenario = args.scenario()?;
+    let options = RecordOptions {
+        compression: Compression::parse(&args.compression)?,
+        record_rate_hz: args.record_rate,
+        overwrite: Overwrite::from_force(args.force),
+        ..RecordOptions::default()
+    };
+    let dir = args.out.clone().unwrap_or_else(|| {
+        PathBuf::from("runs").join(format!(
+            "{}-s{}",
+            scenario.model.name.replace('+', "_"),
+            scenario.seed
+        ))
+    });
+    execute(
+        &scenario,
+        (!args.no_record).then_some(dir.as_path()),
+        options,
+        args.csv.clone(),
+    )?;
     Ok(())
 }

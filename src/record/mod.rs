@@ -34,6 +34,18 @@ pub use writer::McapRecorder;
 
 pub use crate::io::atomic::Overwrite;
 
+/// File name of the recording inside a run directory (`runs/<name>/run.mcap`).
+pub const RUN_FILE: &str = "run.mcap";
+
+/// The MCAP file a path names: a run directory stands for its [`RUN_FILE`], a file for itself.
+pub fn run_file(path: &std::path::Path) -> std::path::PathBuf {
+    if path.is_dir() {
+        path.join(RUN_FILE)
+    } else {
+        path.to_path_buf()
+    }
+}
+
 /// Chunk compression of the MCAP file.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Compression {
