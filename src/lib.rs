@@ -16,5 +16,6 @@ pub mod reproduce;
 pub mod response;
 pub mod signals;
 pub mod simulate;
+pub mod study;
 
 pub use error::{Error, Result};

@@ -1,10 +1,13 @@
 //! Command-line interface: argument parsing and one function per subcommand. Every subcommand is a
 //! thin layer over the library; errors are printed as one line and give a non-zero exit code.
 
+mod calibrate;
 mod frf;
 mod models;
 mod modes;
 mod reproduce;
+mod sensitivity;
+mod sweep;
 
 use clap::{Parser, Subcommand};
 use std::process::ExitCode;
@@ -27,6 +30,14 @@ enum Command {
     Modes(modes::Args),
     /// Regenerate the reproduction table of the source papers (docs/reproduction.md).
     Reproduce(reproduce::Args),
+    /// Sweep one or two parameters: responses, peaks, curves and a heat map.
+    Sweep(sweep::Args),
+    /// Merge the CSV outputs of sharded runs (`--shard K/N`) into the unsharded result.
+    MergeShards(sweep::MergeArgs),
+    /// Single-factor sensitivity of the response peak (paper 000 §5.1) with influence weights.
+    Sensitivity(sensitivity::Args),
+    /// Fit parameters to a target response (GA, Levenberg–Marquardt, cubic surrogate).
+    Calibrate(calibrate::Args),
 }
 
 /// Runs the command line; prints errors as one line on stderr.
@@ -37,6 +48,10 @@ pub fn main() -> ExitCode {
         Command::Frf(a) => frf::run(a),
         Command::Modes(a) => modes::run(a),
         Command::Reproduce(a) => reproduce::run(a),
+        Command::Sweep(a) => sweep::run(a),
+        Command::MergeShards(a) => sweep::merge(a),
+        Command::Sensitivity(a) => sensitivity::run(a),
+        Command::Calibrate(a) => calibrate::run(a),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
