@@ -120,3 +120,25 @@ fn surrogate_moves_towards_the_measured_peak() {
     .unwrap();
     assert!(fit.fitted.se < fit.original.se, "{fit:?}");
 }
+
+/// Paper 000's GA settings (200 × 300) on a 4-parameter fit; run with `--ignored` (the criterion
+/// bench `benches/calibrate.rs` measures the same in the release profile).
+#[test]
+#[ignore]
+fn paper_settings_ga_on_four_parameters_within_30_s() {
+    let mut p = problem(0.0);
+    for (name, lo, hi, start) in [
+        ("link.k4.k", 30_000.0, 300_000.0, 60_000.0),
+        ("link.k4.c", 500.0, 6_000.0, 3_000.0),
+    ] {
+        params::set(&mut p.model, name, start).unwrap();
+        p.params.push(Param::parse(name, &p.model).unwrap());
+        p.bounds.push((lo, hi));
+    }
+    let fit = calibrate(&p, Method::Ga(ga::Settings::paper(1))).unwrap();
+    println!(
+        "GA 200x300, 4 parameters: {:.2} s, {} evaluations, values {:?}, R² {:.6}",
+        fit.seconds, fit.evaluations, fit.values, fit.fitted.r2
+    );
+    assert!(fit.seconds < 30.0);
+}

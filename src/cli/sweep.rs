@@ -120,31 +120,43 @@ fn plots(spec: &Spec, pts: &[Point], title: &str, path: &Path, ow: Overwrite) ->
         ..Chart::default()
     };
     crate::plot::draw(&[chart], path, ow)?;
-    let hm = match spec.values.len() {
-        1 => HeatMap {
-            title: title.into(),
-            x_label: "frequency [Hz]".into(),
-            y_label: spec.params[0].spec.clone(),
-            z_label: format!("|{}|", spec.response),
-            x: spec.freq_hz.clone(),
-            y: spec.values[0].clone(),
-            z: pts
-                .iter()
-                .map(|p| p.response.iter().map(|v| v.norm()).collect())
-                .collect(),
-        },
-        _ => HeatMap {
+    // Parameters with a single value are fixed settings, not axes.
+    let axes: Vec<usize> = (0..spec.values.len())
+        .filter(|&i| spec.values[i].len() > 1)
+        .collect();
+    let hm = match axes[..] {
+        [a, b, ..] => HeatMap {
             title: format!("{title}: peak of |{}|", spec.response),
-            x_label: spec.params[1].spec.clone(),
-            y_label: spec.params[0].spec.clone(),
+            x_label: spec.params[b].spec.clone(),
+            y_label: spec.params[a].spec.clone(),
             z_label: "peak".into(),
-            x: spec.values[1].clone(),
-            y: spec.values[0].clone(),
-            z: pts
-                .chunks(spec.values[1].len())
-                .map(|row| row.iter().map(|p| p.peak.value).collect())
+            x: spec.values[b].clone(),
+            y: spec.values[a].clone(),
+            z: spec.values[a]
+                .iter()
+                .map(|va| {
+                    pts.iter()
+                        .filter(|p| p.values[a] == *va)
+                        .map(|p| p.peak.value)
+                        .collect()
+                })
                 .collect(),
         },
+        _ => {
+            let a = axes.first().copied().unwrap_or(0);
+            HeatMap {
+                title: title.into(),
+                x_label: "frequency [Hz]".into(),
+                y_label: spec.params[a].spec.clone(),
+                z_label: format!("|{}|", spec.response),
+                x: spec.freq_hz.clone(),
+                y: pts.iter().map(|p| p.values[a]).collect(),
+                z: pts
+                    .iter()
+                    .map(|p| p.response.iter().map(|v| v.norm()).collect())
+                    .collect(),
+            }
+        }
     };
     heatmap::draw(&hm, &sibling(path, "-heatmap"), ow)
 }
