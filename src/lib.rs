@@ -19,5 +19,6 @@ pub mod response;
 pub mod scenario;
 pub mod signals;
 pub mod simulate;
+pub mod study;
 
 pub use error::{Error, Result};

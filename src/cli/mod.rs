@@ -2,6 +2,7 @@
 //! thin layer over the library; errors are printed as one line and give a non-zero exit code.
 
 mod analyze;
+mod calibrate;
 mod excitations;
 mod frf;
 mod inspect;
@@ -10,7 +11,9 @@ mod modes;
 mod replay;
 mod reproduce;
 mod run;
+mod sensitivity;
 mod simulate;
+mod sweep;
 
 use clap::{Parser, Subcommand};
 use std::process::ExitCode;
@@ -47,6 +50,14 @@ enum Command {
     ExcitationExport(excitations::ExportArgs),
     /// Channels, message counts, duration and provenance of a recorded run (MCAP).
     Inspect(inspect::Args),
+    /// Sweep one or two parameters: responses, peaks, curves and a heat map.
+    Sweep(sweep::Args),
+    /// Merge the CSV outputs of sharded runs (`--shard K/N`) into the unsharded result.
+    MergeShards(sweep::MergeArgs),
+    /// Single-factor sensitivity of the response peak (paper 000 §5.1) with influence weights.
+    Sensitivity(sensitivity::Args),
+    /// Fit parameters to a target response (GA, Levenberg–Marquardt, cubic surrogate).
+    Calibrate(calibrate::Args),
 }
 
 /// Runs the command line; prints errors as one line on stderr.
@@ -64,6 +75,10 @@ pub fn main() -> ExitCode {
         Command::Excitations(a) => excitations::list(a),
         Command::ExcitationExport(a) => excitations::export(a),
         Command::Inspect(a) => inspect::run(a),
+        Command::Sweep(a) => sweep::run(a),
+        Command::MergeShards(a) => sweep::merge(a),
+        Command::Sensitivity(a) => sensitivity::run(a),
+        Command::Calibrate(a) => calibrate::run(a),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

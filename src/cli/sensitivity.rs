@@ -1,0 +1,102 @@
+use super::sweep::{progress, sibling};
+use crate::error::Error;
+use crate::io::atomic::{Overwrite, write_atomic};
+use crate::model::catalog;
+use crate::response::frf;
+use crate::study::param::{Param, parse_values};
+use crate::study::sensitivity;
+use crate::study::shard::Shard;
+use std::path::PathBuf;
+
+/// Arguments of `wbv sensitivity`.
+#[derive(Debug, clap::Args)]
+pub struct Args {
+    /// Model: a built-in name, a TOML file, or components joined by `+`.
+    #[arg(long, default_value = catalog::DEFAULT)]
+    model: String,
+    /// Parameter to perturb (repeat).
+    #[arg(long = "param", required = true)]
+    params: Vec<String>,
+    /// Levels in % of the model's value (paper 000: −30, 0, +30).
+    #[arg(long, default_value = "-30,0,30", allow_hyphen_values = true)]
+    levels: String,
+    /// Response: stht, seat, apms, dpmi or t_<mass>.
+    #[arg(long, default_value = "seat")]
+    response: String,
+    /// Lowest frequency in Hz.
+    #[arg(long, default_value_t = 0.5)]
+    from: f64,
+    /// Highest frequency in Hz.
+    #[arg(long, default_value_t = 20.0)]
+    to: f64,
+    /// Number of frequency points (linear grid).
+    #[arg(long, default_value_t = 800)]
+    points: usize,
+    /// CSV `point,param,level_pct,value,peak_freq_hz,peak_mag`; the weights go to
+    /// `<stem>-weights.csv` (not for shards: merge first, then `--weights-of`).
+    #[arg(long)]
+    out: Option<PathBuf>,
+    /// Run only shard K of N.
+    #[arg(long)]
+    shard: Option<String>,
+    /// Replace existing output files.
+    #[arg(long)]
+    force: bool,
+}
+
+pub fn run(args: Args) -> crate::Result<()> {
+    let model = catalog::resolve(&args.model)?;
+    let params = args
+        .params
+        .iter()
+        .map(|p| Param::parse(p, &model))
+        .collect::<crate::Result<Vec<_>>>()?;
+    let levels = parse_values(&args.levels, "--levels")?;
+    let freq = frf::grid(args.from, args.to, args.points, false)?;
+    let shard = args
+        .shard
+        .as_deref()
+        .map(Shard::parse)
+        .transpose()?
+        .unwrap_or_default();
+    let bar = progress(shard.points(params.len() * levels.len()).len());
+    bar.set_position(0);
+    let rows = sensitivity::run(&model, &params, &levels, &args.response, &freq, shard)?;
+    bar.finish_and_clear();
+    let ow = if args.force {
+        Overwrite::Allow
+    } else {
+        Overwrite::Refuse
+    };
+    if let Some(out) = &args.out {
+        write_atomic(out, ow, |w| {
+            sensitivity::write(&rows, w).map_err(|e| Error::io(out, e))
+        })?;
+    }
+    if shard.count > 1 {
+        return Ok(());
+    }
+    let inf = sensitivity::influence(&rows);
+    let mut table = String::from("param,peak_freq_range_pct,peak_mag_range_pct,weight\n");
+    for i in &inf {
+        table += &format!(
+            "{},{:.4},{:.4},{:.4}\n",
+            i.param, i.freq_range_pct, i.mag_range_pct, i.weight
+        );
+    }
+    match &args.out {
+        Some(out) => {
+            let p = sibling(out, "-weights");
+            write_atomic(&p, ow, |w| {
+                std::io::Write::write_all(w, table.as_bytes()).map_err(|e| Error::io(&p, e))
+            })?;
+        }
+        None => {
+            let mut so = std::io::stdout().lock();
+            sensitivity::write(&rows, &mut so).map_err(|e| Error::io("stdout", e))?;
+            std::io::Write::write_all(&mut so, format!("\n{table}").as_bytes())
+                .map_err(|e| Error::io("stdout", e))?;
+        }
+    }
+    Ok(())
+}

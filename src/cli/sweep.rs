@@ -1,0 +1,229 @@
+use crate::error::Error;
+use crate::io::atomic::{Overwrite, write_atomic};
+use crate::model::catalog;
+use crate::plot::{Chart, Series};
+use crate::response::frf;
+use crate::study::heatmap::{self, HeatMap};
+use crate::study::param::{Param, parse_values};
+use crate::study::shard::{self, Shard};
+use crate::study::sweep::{self, Point, Spec};
+use std::path::{Path, PathBuf};
+
+/// Arguments of `wbv sweep`.
+#[derive(Debug, clap::Args)]
+pub struct Args {
+    /// Model: a built-in name, a TOML file, or components joined by `+`.
+    #[arg(long, default_value = catalog::DEFAULT)]
+    model: String,
+    /// Swept parameter (repeat for a 2-D grid): `link.cushion.k`, or `link.cushion.zeta@60` for a
+    /// damping ratio referred to 60 kg (`c = 2ζ√(k·60)`).
+    #[arg(long = "param", required = true)]
+    params: Vec<String>,
+    /// Values of each parameter, in order: `from:to:count` or `a,b,c`.
+    #[arg(long = "values", required = true)]
+    values: Vec<String>,
+    /// Response: stht, seat, apms, dpmi or t_<mass>.
+    #[arg(long, default_value = "stht")]
+    response: String,
+    /// Lowest frequency in Hz.
+    #[arg(long, default_value_t = 0.5)]
+    from: f64,
+    /// Highest frequency in Hz.
+    #[arg(long, default_value_t = 20.0)]
+    to: f64,
+    /// Number of frequency points (linear grid).
+    #[arg(long, default_value_t = 400)]
+    points: usize,
+    /// Long-format CSV `point,<params>,freq_hz,mag,phase_deg`; the peaks table goes to
+    /// `<stem>-peaks.csv` beside it. Peaks are printed when omitted.
+    #[arg(long)]
+    out: Option<PathBuf>,
+    /// Plot (.png/.svg): curves per value; the heat map goes to `<stem>-heatmap.<ext>`.
+    #[arg(long)]
+    plot: Option<PathBuf>,
+    /// Run only shard K of N (`K/N`); merge the outputs with `wbv merge-shards`.
+    #[arg(long)]
+    shard: Option<String>,
+    /// Replace existing output files.
+    #[arg(long)]
+    force: bool,
+}
+
+/// Arguments of `wbv merge-shards`.
+#[derive(Debug, clap::Args)]
+pub struct MergeArgs {
+    /// Shard CSV files (any order).
+    #[arg(required = true)]
+    files: Vec<PathBuf>,
+    /// Merged output file.
+    #[arg(long)]
+    out: PathBuf,
+    /// Replace an existing output file.
+    #[arg(long)]
+    force: bool,
+}
+
+fn overwrite(force: bool) -> Overwrite {
+    if force {
+        Overwrite::Allow
+    } else {
+        Overwrite::Refuse
+    }
+}
+
+/// `<dir>/<stem><suffix>.<ext>` beside `path`.
+pub(crate) fn sibling(path: &Path, suffix: &str) -> PathBuf {
+    let stem = path.file_stem().unwrap_or_default().to_string_lossy();
+    let ext = path
+        .extension()
+        .map(|e| format!(".{}", e.to_string_lossy()))
+        .unwrap_or_default();
+    path.with_file_name(format!("{stem}{suffix}{ext}"))
+}
+
+/// A progress bar on stderr, hidden when stderr is not a terminal.
+pub(crate) fn progress(len: usize) -> indicatif::ProgressBar {
+    let bar = indicatif::ProgressBar::with_draw_target(
+        Some(len as u64),
+        indicatif::ProgressDrawTarget::stderr(),
+    );
+    bar.set_style(
+        indicatif::ProgressStyle::with_template("{bar:40} {pos}/{len} points, {eta} left")
+            .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar()),
+    );
+    bar
+}
+
+fn plots(spec: &Spec, pts: &[Point], title: &str, path: &Path, ow: Overwrite) -> crate::Result<()> {
+    let label = |p: &Point| {
+        spec.params
+            .iter()
+            .zip(&p.values)
+            .map(|(q, v)| format!("{}={v}", q.spec))
+            .collect::<Vec<_>>()
+            .join(", ")
+    };
+    let step = pts.len().div_ceil(12).max(1);
+    let chart = Chart {
+        title: format!("{title}: |{}|", spec.response),
+        x_label: "frequency [Hz]".into(),
+        y_label: format!("|{}|", spec.response),
+        series: pts
+            .iter()
+            .step_by(step)
+            .map(|p| Series {
+                label: label(p),
+                x: spec.freq_hz.clone(),
+                y: p.response.iter().map(|v| v.norm()).collect(),
+            })
+            .collect(),
+        ..Chart::default()
+    };
+    crate::plot::draw(&[chart], path, ow)?;
+    // Parameters with a single value are fixed settings, not axes.
+    let axes: Vec<usize> = (0..spec.values.len())
+        .filter(|&i| spec.values[i].len() > 1)
+        .collect();
+    let hm = match axes[..] {
+        [a, b, ..] => HeatMap {
+            title: format!("{title}: peak of |{}|", spec.response),
+            x_label: spec.params[b].spec.clone(),
+            y_label: spec.params[a].spec.clone(),
+            z_label: "peak".into(),
+            x: spec.values[b].clone(),
+            y: spec.values[a].clone(),
+            z: spec.values[a]
+                .iter()
+                .map(|va| {
+                    pts.iter()
+                        .filter(|p| p.values[a] == *va)
+                        .map(|p| p.peak.value)
+                        .collect()
+                })
+                .collect(),
+        },
+        _ => {
+            let a = axes.first().copied().unwrap_or(0);
+            HeatMap {
+                title: title.into(),
+                x_label: "frequency [Hz]".into(),
+                y_label: spec.params[a].spec.clone(),
+                z_label: format!("|{}|", spec.response),
+                x: spec.freq_hz.clone(),
+                y: pts.iter().map(|p| p.values[a]).collect(),
+                z: pts
+                    .iter()
+                    .map(|p| p.response.iter().map(|v| v.norm()).collect())
+                    .collect(),
+            }
+        }
+    };
+    heatmap::draw(&hm, &sibling(path, "-heatmap"), ow)
+}
+
+pub fn run(args: Args) -> crate::Result<()> {
+    let model = catalog::resolve(&args.model)?;
+    if args.params.len() != args.values.len() {
+        return Err(Error::parameter(
+            "--values",
+            "give one --values per --param, in the same order",
+        ));
+    }
+    let params = args
+        .params
+        .iter()
+        .map(|p| Param::parse(p, &model))
+        .collect::<crate::Result<Vec<_>>>()?;
+    let values = args
+        .values
+        .iter()
+        .map(|v| parse_values(v, "--values"))
+        .collect::<crate::Result<Vec<_>>>()?;
+    let spec = Spec {
+        params,
+        values,
+        response: args.response.clone(),
+        freq_hz: frf::grid(args.from, args.to, args.points, false)?,
+    };
+    let shard = args
+        .shard
+        .as_deref()
+        .map(Shard::parse)
+        .transpose()?
+        .unwrap_or_default();
+    let bar = progress(shard.points(spec.grid().len()).len());
+    let pts = sweep::run(&model, &spec, shard, &[], &|| bar.inc(1))?;
+    bar.finish_and_clear();
+    let ow = overwrite(args.force);
+    match &args.out {
+        Some(out) => {
+            write_atomic(out, ow, |w| {
+                sweep::write_long(&spec, &pts, w).map_err(|e| Error::io(out, e))
+            })?;
+            let peaks = sibling(out, "-peaks");
+            write_atomic(&peaks, ow, |w| {
+                sweep::write_peaks(&spec, &pts, &[], w).map_err(|e| Error::io(&peaks, e))
+            })?;
+        }
+        None => sweep::write_peaks(&spec, &pts, &[], &mut std::io::stdout().lock())
+            .map_err(|e| Error::io("stdout", e))?,
+    }
+    if let Some(path) = &args.plot {
+        if shard.count > 1 {
+            return Err(Error::parameter(
+                "--plot",
+                "plot the merged output, not a shard",
+            ));
+        }
+        plots(&spec, &pts, &model.name, path, ow)?;
+    }
+    Ok(())
+}
+
+pub fn merge(args: MergeArgs) -> crate::Result<()> {
+    let files: Vec<&Path> = args.files.iter().map(|p| p.as_path()).collect();
+    let text = shard::merge(&files)?;
+    write_atomic(&args.out, overwrite(args.force), |w| {
+        std::io::Write::write_all(w, text.as_bytes()).map_err(|e| Error::io(&args.out, e))
+    })
+}

@@ -1,0 +1,162 @@
+//! Heat maps (a value over two axes, e.g. |T| over frequency × swept parameter), PNG or SVG, drawn
+//! with plotters and the same embedded DejaVu font as [`crate::plot`]. Colour runs from blue (lowest)
+//! to red (highest); the caption states the range.
+
+use crate::error::{Error, Result};
+use crate::io::atomic::Overwrite;
+use plotters::prelude::*;
+use std::path::Path;
+
+/// A value `z[iy][ix]` on the cell centres `x[ix]`, `y[iy]` (increasing, possibly uneven).
+#[derive(Debug, Clone, Default)]
+pub struct HeatMap {
+    /// Title; the colour range is appended.
+    pub title: String,
+    /// X-axis label with unit.
+    pub x_label: String,
+    /// Y-axis label with unit.
+    pub y_label: String,
+    /// Label of the coloured quantity with unit.
+    pub z_label: String,
+    /// Cell centres along x.
+    pub x: Vec<f64>,
+    /// Cell centres along y.
+    pub y: Vec<f64>,
+    /// Values, one row per y.
+    pub z: Vec<Vec<f64>>,
+}
+
+fn edges(c: &[f64]) -> Vec<f64> {
+    match c.len() {
+        0 => vec![],
+        1 => vec![
+            c[0] - 0.5 * c[0].abs().max(1.0),
+            c[0] + 0.5 * c[0].abs().max(1.0),
+        ],
+        n => {
+            let mut e = vec![c[0] - 0.5 * (c[1] - c[0])];
+            e.extend(c.windows(2).map(|w| 0.5 * (w[0] + w[1])));
+            e.push(c[n - 1] + 0.5 * (c[n - 1] - c[n - 2]));
+            e
+        }
+    }
+}
+
+fn render<DB: DrawingBackend>(
+    root: DrawingArea<DB, plotters::coord::Shift>,
+    h: &HeatMap,
+) -> std::result::Result<(), String> {
+    let e = |x: DrawingAreaErrorKind<DB::ErrorType>| x.to_string();
+    root.fill(&WHITE).map_err(e)?;
+    let (xe, ye) = (edges(&h.x), edges(&h.y));
+    let finite = h.z.iter().flatten().copied().filter(|v| v.is_finite());
+    let (lo, hi) = finite.fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), v| {
+        (a.min(v), b.max(v))
+    });
+    let span = if hi > lo { hi - lo } else { 1.0 };
+    let caption = format!(
+        "{} — {}: {lo:.3} (blue) … {hi:.3} (red)",
+        h.title, h.z_label
+    );
+    let mut ctx = ChartBuilder::on(&root)
+        .caption(caption, ("sans-serif", 18))
+        .margin(12)
+        .x_label_area_size(40)
+        .y_label_area_size(80)
+        .build_cartesian_2d(xe[0]..xe[xe.len() - 1], ye[0]..ye[ye.len() - 1])
+        .map_err(e)?;
+    ctx.configure_mesh()
+        .disable_mesh()
+        .x_desc(h.x_label.as_str())
+        .y_desc(h.y_label.as_str())
+        .label_style(("sans-serif", 14))
+        .draw()
+        .map_err(e)?;
+    let cells = h.z.iter().enumerate().flat_map(|(iy, row)| {
+        let (xe, ye) = (&xe, &ye);
+        row.iter().enumerate().map(move |(ix, v)| {
+            let t = if v.is_finite() { (v - lo) / span } else { 0.0 };
+            let colour = HSLColor(0.66 * (1.0 - t), 0.85, 0.5);
+            Rectangle::new(
+                [(xe[ix], ye[iy]), (xe[ix + 1], ye[iy + 1])],
+                colour.filled(),
+            )
+        })
+    });
+    ctx.draw_series(cells).map_err(e)?;
+    root.present().map_err(e)
+}
+
+/// Draws `h` to `path` (`.png` or `.svg`), written beside the target and renamed when complete.
+pub fn draw(h: &HeatMap, path: &Path, overwrite: Overwrite) -> Result<()> {
+    if h.x.is_empty()
+        || h.y.is_empty()
+        || h.z.len() != h.y.len()
+        || h.z.iter().any(|r| r.len() != h.x.len())
+    {
+        return Err(Error::parameter("heat map", "empty or ragged grid"));
+    }
+    if overwrite == Overwrite::Refuse && path.exists() {
+        return Err(Error::parameter(
+            path.display().to_string(),
+            "already exists; refusing to overwrite it (pass --force to replace it)",
+        ));
+    }
+    // Registers the embedded font (idempotent; same bytes as crate::plot).
+    let _ =
+        plotters::style::register_font("sans-serif", FontStyle::Normal, dejavu::sans::regular());
+    let ext = path
+        .extension()
+        .and_then(|e| e.to_str())
+        .unwrap_or("")
+        .to_ascii_lowercase();
+    let tmp = crate::io::atomic::partial_path(path).with_extension(format!("partial.{ext}"));
+    let size = (900, 560);
+    let result = match ext.as_str() {
+        "svg" => render(SVGBackend::new(&tmp, size).into_drawing_area(), h),
+        "png" => render(BitMapBackend::new(&tmp, size).into_drawing_area(), h),
+        _ => {
+            return Err(Error::parameter(
+                path.display().to_string(),
+                "unknown plot format; expected a .png or .svg file name",
+            ));
+        }
+    };
+    match result {
+        Ok(()) => std::fs::rename(&tmp, path).map_err(|e| Error::io(path, e)),
+        Err(msg) => {
+            let _ = std::fs::remove_file(&tmp);
+            Err(Error::data(
+                path,
+                None,
+                format!("cannot draw the heat map: {msg}"),
+            ))
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn edges_bracket_uneven_centres() {
+        assert_eq!(edges(&[1.0, 2.0, 4.0]), vec![0.5, 1.5, 3.0, 5.0]);
+    }
+
+    #[test]
+    fn draws_svg_and_refuses_ragged_grids() {
+        let dir = tempfile::tempdir().unwrap();
+        let mut h = HeatMap {
+            x: vec![1.0, 2.0],
+            y: vec![10.0, 20.0, 30.0],
+            z: vec![vec![0.0, 1.0], vec![2.0, 3.0], vec![4.0, 5.0]],
+            ..HeatMap::default()
+        };
+        let p = dir.path().join("h.svg");
+        draw(&h, &p, Overwrite::Refuse).unwrap();
+        assert!(std::fs::read_to_string(&p).unwrap().contains("<svg"));
+        h.z.pop();
+        assert!(draw(&h, &dir.path().join("g.svg"), Overwrite::Refuse).is_err());
+    }
+}
