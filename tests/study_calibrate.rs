@@ -121,11 +121,10 @@ fn surrogate_moves_towards_the_measured_peak() {
     assert!(fit.fitted.se < fit.original.se, "{fit:?}");
 }
 
-/// Paper 000's GA settings (200 × 300) on a 4-parameter fit; run with `--ignored` (the criterion
-/// bench `benches/calibrate.rs` measures the same in the release profile).
+/// Paper 000's GA settings (200 × 300) on a 4-parameter fit recover every parameter within 2 %
+/// (its time is measured by the criterion bench `benches/calibrate.rs`, not asserted here).
 #[test]
-#[ignore]
-fn paper_settings_ga_on_four_parameters_within_30_s() {
+fn paper_settings_ga_recovers_four_parameters() {
     let mut p = problem(0.0);
     for (name, lo, hi, start) in [
         ("link.k4.k", 30_000.0, 300_000.0, 60_000.0),
@@ -140,5 +139,13 @@ fn paper_settings_ga_on_four_parameters_within_30_s() {
         "GA 200x300, 4 parameters: {:.2} s, {} evaluations, values {:?}, R² {:.6}",
         fit.seconds, fit.evaluations, fit.values, fit.fitted.r2
     );
-    assert!(fit.seconds < 30.0);
+    let truth = catalog::resolve("reference").unwrap();
+    for (param, value) in p.params.iter().zip(&fit.values) {
+        let name = param.spec.clone();
+        let expect = params::get(&truth, &name).unwrap();
+        assert!(
+            (value / expect - 1.0).abs() < 0.02,
+            "{name}: {value} vs {expect}"
+        );
+    }
 }
