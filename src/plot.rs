@@ -140,35 +140,47 @@ fn draw_chart<DB: DrawingBackend>(
     Ok(())
 }
 
-fn render<DB: DrawingBackend>(
-    root: DrawingArea<DB, Shift>,
-    charts: &[Chart],
-) -> std::result::Result<(), String> {
-    root.fill(&WHITE).map_err(|e| e.to_string())?;
-    let panels = root.split_evenly((charts.len().div_ceil(2).max(1), charts.len().clamp(1, 2)));
-    for (area, chart) in panels.iter().zip(charts) {
-        draw_chart(area, chart)?;
-    }
-    root.present().map_err(|e| e.to_string())
+/// Something drawable on any plotters backend, written by [`write_figure`].
+pub trait Figure {
+    /// Draws the figure on `root` (and presents it).
+    fn render<DB: DrawingBackend>(
+        &self,
+        root: DrawingArea<DB, Shift>,
+    ) -> std::result::Result<(), String>;
 }
 
-/// Draws `charts` (two per row) to `path`: `.svg` for SVG, `.png` for PNG. Written atomically.
-pub fn draw(charts: &[Chart], path: &Path, overwrite: Overwrite) -> Result<()> {
-    register_font();
-    if overwrite == Overwrite::Refuse && path.exists() {
-        return Err(Error::parameter(
-            path.display().to_string(),
-            "already exists; refusing to overwrite it (pass --force to replace it)",
-        ));
+struct Charts<'a>(&'a [Chart]);
+
+impl Figure for Charts<'_> {
+    fn render<DB: DrawingBackend>(
+        &self,
+        root: DrawingArea<DB, Shift>,
+    ) -> std::result::Result<(), String> {
+        let charts = self.0;
+        root.fill(&WHITE).map_err(|e| e.to_string())?;
+        let panels = root.split_evenly((charts.len().div_ceil(2).max(1), charts.len().clamp(1, 2)));
+        for (area, chart) in panels.iter().zip(charts) {
+            draw_chart(area, chart)?;
+        }
+        root.present().map_err(|e| e.to_string())
     }
+}
+
+/// Writes `figure` at `size` pixels to `path` (`.svg` or `.png`, with the embedded font),
+/// atomically: it is drawn under a partial name and renamed when complete.
+pub fn write_figure(
+    figure: &impl Figure,
+    size: (u32, u32),
+    path: &Path,
+    overwrite: Overwrite,
+) -> Result<()> {
+    register_font();
+    crate::io::atomic::check_overwrite(path, overwrite)?;
     let ext = path
         .extension()
         .and_then(|e| e.to_str())
         .unwrap_or("")
         .to_ascii_lowercase();
-    let rows = charts.len().div_ceil(2).max(1) as u32;
-    let cols = charts.len().clamp(1, 2) as u32;
-    let size = (640 * cols, 420 * rows);
     if let Some(dir) = path.parent().filter(|d| !d.as_os_str().is_empty()) {
         std::fs::create_dir_all(dir).map_err(|e| Error::io(dir, e))?;
     }
@@ -177,8 +189,8 @@ pub fn draw(charts: &[Chart], path: &Path, overwrite: Overwrite) -> Result<()> {
         path.file_stem().unwrap_or_default().to_string_lossy()
     ));
     let result = match ext.as_str() {
-        "svg" => render(SVGBackend::new(&tmp, size).into_drawing_area(), charts),
-        "png" => render(BitMapBackend::new(&tmp, size).into_drawing_area(), charts),
+        "svg" => figure.render(SVGBackend::new(&tmp, size).into_drawing_area()),
+        "png" => figure.render(BitMapBackend::new(&tmp, size).into_drawing_area()),
         _ => {
             return Err(Error::parameter(
                 path.display().to_string(),
@@ -193,6 +205,13 @@ pub fn draw(charts: &[Chart], path: &Path, overwrite: Overwrite) -> Result<()> {
             Err(plot_err(path, e))
         }
     }
+}
+
+/// Draws `charts` (two per row) to `path`: `.svg` for SVG, `.png` for PNG. Written atomically.
+pub fn draw(charts: &[Chart], path: &Path, overwrite: Overwrite) -> Result<()> {
+    let rows = charts.len().div_ceil(2).max(1) as u32;
+    let cols = charts.len().clamp(1, 2) as u32;
+    write_figure(&Charts(charts), (640 * cols, 420 * rows), path, overwrite)
 }
 
 /// Plots the magnitudes of a model's frequency responses: transmissibilities in one panel,

@@ -96,42 +96,17 @@ pub fn draw(h: &HeatMap, path: &Path, overwrite: Overwrite) -> Result<()> {
     {
         return Err(Error::parameter("heat map", "empty or ragged grid"));
     }
-    if overwrite == Overwrite::Refuse && path.exists() {
-        return Err(Error::parameter(
-            path.display().to_string(),
-            "already exists; refusing to overwrite it (pass --force to replace it)",
-        ));
-    }
-    // Registers the embedded font (idempotent; same bytes as crate::plot).
-    let _ =
-        plotters::style::register_font("sans-serif", FontStyle::Normal, dejavu::sans::regular());
-    let ext = path
-        .extension()
-        .and_then(|e| e.to_str())
-        .unwrap_or("")
-        .to_ascii_lowercase();
-    let tmp = crate::io::atomic::partial_path(path).with_extension(format!("partial.{ext}"));
-    let size = (900, 560);
-    let result = match ext.as_str() {
-        "svg" => render(SVGBackend::new(&tmp, size).into_drawing_area(), h),
-        "png" => render(BitMapBackend::new(&tmp, size).into_drawing_area(), h),
-        _ => {
-            return Err(Error::parameter(
-                path.display().to_string(),
-                "unknown plot format; expected a .png or .svg file name",
-            ));
-        }
-    };
-    match result {
-        Ok(()) => std::fs::rename(&tmp, path).map_err(|e| Error::io(path, e)),
-        Err(msg) => {
-            let _ = std::fs::remove_file(&tmp);
-            Err(Error::data(
-                path,
-                None,
-                format!("cannot draw the heat map: {msg}"),
-            ))
-        }
+    crate::plot::write_figure(&Drawing(h), (900, 560), path, overwrite)
+}
+
+struct Drawing<'a>(&'a HeatMap);
+
+impl crate::plot::Figure for Drawing<'_> {
+    fn render<DB: DrawingBackend>(
+        &self,
+        root: DrawingArea<DB, plotters::coord::Shift>,
+    ) -> std::result::Result<(), String> {
+        render(root, self.0)
     }
 }
 
