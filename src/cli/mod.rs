@@ -4,6 +4,8 @@
 mod analyze;
 mod excitations;
 mod frf;
+mod gap;
+mod gap_bench;
 mod inspect;
 mod models;
 mod modes;
@@ -41,6 +43,10 @@ enum Command {
     ExcitationExport(excitations::ExportArgs),
     /// Channels, message counts, duration and provenance of a recorded run (MCAP).
     Inspect(inspect::Args),
+    /// Sim-to-real gap diagnosis: where a model and measured runs differ and which effect explains it.
+    Gap(gap::Args),
+    /// Blind benchmark of `wbv gap` on simulated cases with a hidden planted effect.
+    GapBench(gap_bench::Args),
 }
 
 /// Runs the command line; prints errors as one line on stderr.
@@ -56,6 +62,8 @@ pub fn main() -> ExitCode {
         Command::Excitations(a) => excitations::list(a),
         Command::ExcitationExport(a) => excitations::export(a),
         Command::Inspect(a) => inspect::run(a),
+        Command::Gap(a) => gap::run(a),
+        Command::GapBench(a) => gap_bench::run(a),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
