@@ -106,13 +106,11 @@ fn link_rms(model: &Model, link: usize, rms: f64) -> Result<f64> {
     Ok(var.sqrt())
 }
 
+/// A planted truth: model, optional (channel, delay in s), description.
+type Truth = (Model, Option<(&'static str, f64)>, String);
+
 /// The truth model and output delay of one case.
-fn plant(
-    effect: &str,
-    u: f64,
-    rng: &mut ChaCha8Rng,
-    hi_rms: f64,
-) -> Result<(Model, Option<(&'static str, f64)>, String)> {
+fn plant(effect: &str, u: f64, rng: &mut ChaCha8Rng, hi_rms: f64) -> Result<Truth> {
     let mut m = catalog::resolve("reference")?;
     for (path, nominal) in base_params(&m) {
         let f = 1.0 + 0.1 * (2.0 * rng.random::<f64>() - 1.0);
