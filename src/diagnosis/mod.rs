@@ -35,6 +35,9 @@ pub const ACCEPT_DELTA_BIC: f64 = -10.0;
 pub const GAP_CHI2: f64 = 2.0;
 /// Fraction of the structural gap an effect must close to count as an explanation.
 pub const MIN_CLOSED: f64 = 0.5;
+/// Band-gap RMS (dB) and phase-gap RMS (degrees) below which a remaining gap is of no practical
+/// size, whatever its χ² (noise-free data, e.g. a simulated stand-in, make χ² arbitrarily large).
+pub const PRACTICAL_GAP: (f64, f64) = (0.2, 2.0);
 /// BIC margin below which the two best candidates are not distinguishable (a likelihood ratio of
 /// e³ ≈ 20).
 pub const IDENTIFIABLE_MARGIN: f64 = 6.0;
@@ -61,6 +64,8 @@ pub struct Stage {
     pub chi2_red: f64,
     /// RMS of the trusted band gaps, all paths, dB.
     pub gap_db_rms: f64,
+    /// RMS of the trusted band phase gaps, all paths, degrees.
+    pub phase_deg_rms: f64,
     /// Weighted r.m.s. and SEAT gap.
     pub weighted: Weighted,
     /// The per-band gap map.
@@ -167,20 +172,19 @@ fn check_inputs(
         ));
     }
     for r in train.iter().chain(std::iter::once(check)) {
-        let total: usize = r.paths.iter().map(|p| p.coherence.len()).sum();
-        let good: usize = r
-            .paths
-            .iter()
-            .map(|p| p.coherence.iter().filter(|&&g| score::trusted(g)).count())
-            .sum();
-        if good * 4 < total {
-            return Err(Error::data(
-                &r.source,
-                None,
-                format!(
-                    "only {good} of {total} spectral cells have coherence ≥ 0.8; the outputs are not driven by the base (wrong channels, or noise)"
-                ),
-            ));
+        for p in &r.paths {
+            let total = p.coherence.len();
+            let good = p.coherence.iter().filter(|&&g| score::trusted(g)).count();
+            if good * 4 < total {
+                return Err(Error::data(
+                    &r.source,
+                    None,
+                    format!(
+                        "path {}: only {good} of {total} bins have coherence ≥ 0.8; its output is not driven by its input (wrong channels, or noise)",
+                        p.path.name()
+                    ),
+                ));
+            }
         }
     }
     let (lo, hi) = train.iter().fold((f64::INFINITY, 0.0f64), |(a, b), r| {
@@ -212,6 +216,10 @@ pub fn stage(v: &Variant, check: &RunSpectra) -> Result<Stage> {
     Ok(Stage {
         chi2_red: chi2 / n as f64,
         gap_db_rms: gapmap::rms_gap_db(&cells, None).unwrap_or(0.0),
+        phase_deg_rms: Path::ALL
+            .iter()
+            .filter_map(|&p| gapmap::rms_phase_deg(&cells, p))
+            .fold(0.0, f64::max),
         weighted: gapmap::weighted(check, &pred[bs]),
         cells,
     })
@@ -528,13 +536,19 @@ fn decide(null: &Ranked, cands: &[Ranked]) -> (String, String, Option<String>) {
                 None,
             )
         }
-        None if d0 <= GAP_CHI2 => (
-            "none".into(),
-            format!(
-                "the re-fitted base parameters explain the held-out run within noise (reduced χ² {d0:.2})"
-            ),
-            None,
-        ),
+        None if d0 <= GAP_CHI2
+            || (null.check.gap_db_rms < PRACTICAL_GAP.0
+                && null.check.phase_deg_rms < PRACTICAL_GAP.1) =>
+        {
+            (
+                "none".into(),
+                format!(
+                    "the re-fitted base parameters explain the held-out run (reduced χ² {d0:.2}, band gap {:.2} dB RMS, phase {:.2}° RMS)",
+                    null.check.gap_db_rms, null.check.phase_deg_rms
+                ),
+                None,
+            )
+        }
         None => (
             "unexplained".into(),
             format!(
