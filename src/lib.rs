@@ -6,6 +6,7 @@
 
 pub mod analysis;
 pub mod cli;
+pub mod diagnosis;
 pub mod dynamics;
 pub mod error;
 pub mod excitation;

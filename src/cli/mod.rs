@@ -5,6 +5,8 @@ mod analyze;
 mod calibrate;
 mod excitations;
 mod frf;
+mod gap;
+mod gap_bench;
 mod inspect;
 mod models;
 mod modes;
@@ -58,6 +60,10 @@ enum Command {
     Sensitivity(sensitivity::Args),
     /// Fit parameters to a target response (GA, Levenberg–Marquardt, cubic surrogate).
     Calibrate(calibrate::Args),
+    /// Sim-to-real gap diagnosis: where a model and measured runs differ and which effect explains it.
+    Gap(gap::Args),
+    /// Blind benchmark of `wbv gap` on simulated cases with a hidden planted effect.
+    GapBench(gap_bench::Args),
 }
 
 /// Runs the command line; prints errors as one line on stderr.
@@ -79,6 +85,8 @@ pub fn main() -> ExitCode {
         Command::MergeShards(a) => sweep::merge(a),
         Command::Sensitivity(a) => sensitivity::run(a),
         Command::Calibrate(a) => calibrate::run(a),
+        Command::Gap(a) => gap::run(a),
+        Command::GapBench(a) => gap_bench::run(a),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

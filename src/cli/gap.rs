@@ -1,0 +1,56 @@
+use crate::diagnosis::{diagnose, plot, report};
+use crate::io::atomic::Overwrite;
+use crate::model::catalog;
+use std::path::PathBuf;
+
+/// Arguments of `wbv gap`.
+#[derive(Debug, clap::Args)]
+pub struct Args {
+    /// Model name or TOML file (e.g. `reference`).
+    #[arg(long)]
+    model: String,
+    /// Training run (measured-run CSV or MCAP); repeat for runs at different magnitudes.
+    #[arg(long = "run", required = true)]
+    runs: Vec<PathBuf>,
+    /// Held-out run used only to score the candidates.
+    #[arg(long)]
+    check: PathBuf,
+    /// Print the report as JSON (top-level `verdict`).
+    #[arg(long)]
+    json: bool,
+    /// Write the gap-map and before/after plots into this directory.
+    #[arg(long, value_name = "DIR")]
+    plot: Option<PathBuf>,
+    /// Replace existing plot files.
+    #[arg(long)]
+    force: bool,
+}
+
+pub fn run(args: Args) -> crate::Result<()> {
+    let model = catalog::resolve(&args.model)?;
+    let train = args
+        .runs
+        .iter()
+        .map(|p| crate::analysis::load_signals(p))
+        .collect::<crate::Result<Vec<_>>>()?;
+    let check = crate::analysis::load_signals(&args.check)?;
+    let d = diagnose(&model, &train, &check)?;
+    if let Some(dir) = &args.plot {
+        let ow = if args.force {
+            Overwrite::Allow
+        } else {
+            Overwrite::Refuse
+        };
+        plot::write(&d, dir, ow)?;
+        eprintln!("wrote {}", dir.display());
+    }
+    if args.json {
+        println!(
+            "{}",
+            serde_json::to_string_pretty(&report::json(&d)).expect("JSON value serializes")
+        );
+    } else {
+        print!("{}", report::text(&d));
+    }
+    Ok(())
+}

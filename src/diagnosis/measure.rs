@@ -1,0 +1,198 @@
+//! Spectral estimates of one run, shared by the measured and the simulated side: every path is
+//! estimated with the same Welch segmentation (Hann, 50 % overlap) so that a gap is never an
+//! estimator artefact (Bendat & Piersol, *Random Data*, 4th ed., §9.2).
+
+use crate::analysis::spectrum::{Segment, Welch, WelchOptions};
+use crate::error::{Error, Result};
+use crate::signals::Signals;
+use num_complex::Complex64;
+
+/// Frequency resolution of the diagnosis spectra in Hz: 4 s segments give ≥ 59 averages in 120 s
+/// (half-overlapped) and 2 bins in the 0.5 Hz one-third-octave band.
+pub const RESOLUTION_HZ: f64 = 0.25;
+/// Lowest and highest analysed frequency in Hz (one-third-octave bands 0.5–31.5 Hz, n = −3…15).
+pub const BAND_N: (i32, i32) = (-3, 15);
+/// Coherence below which a cell is untrustworthy and never scored (gap.md §3.2).
+pub const MIN_COHERENCE: f64 = 0.8;
+
+/// A transfer path between two measured channels.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Path {
+    /// Base-to-seat transmissibility a_seat/a_base (1).
+    BaseSeat,
+    /// Seat-to-head transmissibility a_head/a_seat (1).
+    SeatHead,
+    /// Base-to-head transmissibility a_head/a_base (1).
+    BaseHead,
+    /// Apparent mass f_seat/a_seat in kg.
+    ApparentMass,
+}
+
+impl Path {
+    /// Every path, in report order.
+    pub const ALL: [Path; 4] = [
+        Path::BaseSeat,
+        Path::SeatHead,
+        Path::BaseHead,
+        Path::ApparentMass,
+    ];
+    /// Short name used in reports and JSON.
+    pub fn name(self) -> &'static str {
+        match self {
+            Path::BaseSeat => "base-seat",
+            Path::SeatHead => "seat-head",
+            Path::BaseHead => "base-head",
+            Path::ApparentMass => "apparent-mass",
+        }
+    }
+    /// Input and output channel names.
+    pub fn channels(self) -> (&'static str, &'static str) {
+        match self {
+            Path::BaseSeat => ("a_base_z", "a_seat_z"),
+            Path::SeatHead => ("a_seat_z", "a_head_z"),
+            Path::BaseHead => ("a_base_z", "a_head_z"),
+            Path::ApparentMass => ("a_seat_z", "f_seat_z"),
+        }
+    }
+    /// Whether the path is used in fitting (base→head is the product of the first two).
+    pub fn fitted(self) -> bool {
+        self != Path::BaseHead
+    }
+}
+
+/// H1 and coherence of one path on the analysis bins.
+#[derive(Debug, Clone)]
+pub struct PathEstimate {
+    /// Which path.
+    pub path: Path,
+    /// H1 = G_xy/G_xx per bin.
+    pub h1: Vec<Complex64>,
+    /// Ordinary coherence γ² per bin.
+    pub coherence: Vec<f64>,
+}
+
+/// The spectral summary of one run.
+#[derive(Debug, Clone)]
+pub struct RunSpectra {
+    /// Where the run came from.
+    pub source: String,
+    /// Sample rate in Hz.
+    pub fs: f64,
+    /// Analysis bin frequencies in Hz (inside the analysed bands).
+    pub freq_hz: Vec<f64>,
+    /// Bin spacing in Hz.
+    pub df_hz: f64,
+    /// Number of Welch segments L.
+    pub segments: usize,
+    /// Base acceleration PSD on all bins up to Nyquist, with their frequencies ((m/s²)²/Hz).
+    pub base_psd: (Vec<f64>, Vec<f64>),
+    /// Seat acceleration PSD on the analysis bins ((m/s²)²/Hz).
+    pub seat_psd: Vec<f64>,
+    /// Head acceleration PSD on the analysis bins, when measured.
+    pub head_psd: Option<Vec<f64>>,
+    /// Unweighted r.m.s. of the base acceleration in m/s².
+    pub base_rms: f64,
+    /// The path estimates available in this run.
+    pub paths: Vec<PathEstimate>,
+}
+
+impl RunSpectra {
+    /// The estimate of `path`, if the run has its channels.
+    pub fn path(&self, path: Path) -> Option<&PathEstimate> {
+        self.paths.iter().find(|p| p.path == path)
+    }
+}
+
+/// Lower and upper edge in Hz of the analysed frequency range.
+pub fn analysed_range() -> (f64, f64) {
+    let c = |n: i32| 10f64.powf(n as f64 / 10.0);
+    (
+        c(BAND_N.0) * 10f64.powf(-0.05),
+        c(BAND_N.1) * 10f64.powf(0.05),
+    )
+}
+
+/// Welch options of the diagnosis.
+pub fn welch(fs: f64) -> Result<Welch> {
+    Welch::new(
+        fs,
+        &WelchOptions {
+            segment: Segment::ResolutionHz(RESOLUTION_HZ),
+            ..WelchOptions::default()
+        },
+    )
+}
+
+/// Estimates every path the run has channels for.
+pub fn estimate(signals: &Signals) -> Result<RunSpectra> {
+    let fs = signals.sample_rate_hz;
+    if signals.duration_s() < 60.0 {
+        return Err(Error::data(
+            &signals.source,
+            None,
+            format!(
+                "run is {:.1} s long; the diagnosis needs at least 60 s (≥ 30 averages of 4 s segments)",
+                signals.duration_s()
+            ),
+        ));
+    }
+    if fs < 2.5 * analysed_range().1 {
+        return Err(Error::data(
+            &signals.source,
+            None,
+            format!(
+                "sampled at {fs} Hz; the diagnosis analyses up to {:.1} Hz and needs fs ≥ {:.0} Hz",
+                analysed_range().1,
+                2.5 * analysed_range().1
+            ),
+        ));
+    }
+    let base = signals.require("a_base_z")?;
+    let seat = signals.require("a_seat_z")?;
+    let mut w = welch(fs)?;
+    let (lo, hi) = analysed_range();
+    let all = w.cross(base, seat)?;
+    let keep: Vec<usize> = (0..all.freq_hz.len())
+        .filter(|&i| all.freq_hz[i] >= lo && all.freq_hz[i] <= hi)
+        .collect();
+    let pick = |v: &[f64]| keep.iter().map(|&i| v[i]).collect::<Vec<f64>>();
+    let mut paths = Vec::new();
+    let mut head_psd = None;
+    for path in Path::ALL {
+        let (x, y) = path.channels();
+        let (Some(xs), Some(ys)) = (signals.get(x), signals.get(y)) else {
+            continue;
+        };
+        let cs = w.cross(xs, ys)?;
+        if path == Path::SeatHead {
+            head_psd = Some(pick(&cs.gyy));
+        }
+        let h1 = cs.h1();
+        let coh = cs.coherence();
+        paths.push(PathEstimate {
+            path,
+            h1: keep.iter().map(|&i| h1[i]).collect(),
+            coherence: pick(&coh),
+        });
+    }
+    let base_rms = crate::analysis::figures::rms(base);
+    Ok(RunSpectra {
+        source: signals.source.clone(),
+        fs,
+        freq_hz: pick(&all.freq_hz),
+        df_hz: w.df_hz(),
+        segments: all.segments,
+        base_psd: (all.freq_hz.clone(), all.gxx.clone()),
+        seat_psd: pick(&all.gyy),
+        head_psd,
+        base_rms,
+        paths,
+    })
+}
+
+/// Relative standard error of an H1 modulus (and the phase error in rad) from L averages:
+/// σ/|H| ≈ √((1−γ²)/(2γ²L)) (Bendat & Piersol, *Random Data*, 4th ed., Table 9.6).
+pub fn h1_sigma(coherence: f64, segments: usize) -> f64 {
+    let g = coherence.clamp(1e-6, 1.0);
+    ((1.0 - g) / (2.0 * g * segments.max(1) as f64)).sqrt()
+}

@@ -1,0 +1,565 @@
+//! Sim-to-real gap diagnosis (`wbv gap`): where a model and measured runs disagree, which small
+//! unmodelled effect explains it, and how far that effect shrinks the gap on a held-out run.
+//!
+//! Method (design notes: shared/research/gap.md §3): identical Welch estimates of every path for
+//! measured and replayed runs; a null re-fit of the base model's stiffness and damping (±30 %, Gaussian
+//! prior) so that only the structural gap remains; candidate extensions of 1–2 parameters fitted
+//! jointly on the training runs (frequency domain, nonlinear links statistically linearised per run)
+//! and scored on the held-out run by BIC on the independent spectral cells.
+
+pub mod bench;
+pub mod candidate;
+pub mod fit;
+pub mod gapmap;
+pub mod measure;
+pub mod plot;
+pub mod predict;
+pub mod replay;
+pub mod report;
+pub mod score;
+
+use crate::error::{Error, Result};
+use crate::model::Model;
+use crate::signals::Signals;
+use candidate::{BASE_BOUND, Candidate, Param, base_params, scaled};
+use gapmap::{BandCell, Weighted};
+use measure::{Path, RunSpectra};
+use predict::Variant;
+use score::PRIOR_SIGMA;
+use serde::Serialize;
+
+/// ΔBIC (held-out) an effect must reach against the null re-fit to be accepted (gap.md §3.6:
+/// "strong evidence", Kass & Raftery, JASA 90 (1995) 773–795).
+pub const ACCEPT_DELTA_BIC: f64 = -10.0;
+/// Reduced χ² of the null re-fit on the held-out run above which a structural gap is declared.
+pub const GAP_CHI2: f64 = 2.0;
+/// Fraction of the structural gap an effect must close to count as an explanation.
+pub const MIN_CLOSED: f64 = 0.5;
+/// Band-gap RMS (dB) and phase-gap RMS (degrees) below which a remaining gap is of no practical
+/// size, whatever its χ² (noise-free data, e.g. a simulated stand-in, make χ² arbitrarily large).
+pub const PRACTICAL_GAP: (f64, f64) = (0.2, 2.0);
+/// BIC margin below which the two best candidates are not distinguishable (a likelihood ratio of
+/// e³ ≈ 20).
+pub const IDENTIFIABLE_MARGIN: f64 = 6.0;
+
+/// A fitted parameter.
+#[derive(Debug, Clone, Serialize)]
+pub struct Estimate {
+    /// Name (with unit suffix).
+    pub name: String,
+    /// Fitted value.
+    pub value: f64,
+    /// 1-σ uncertainty from the curvature of the objective (delta method for log parameters).
+    pub sigma: f64,
+    /// Relative change from nominal, for base parameters.
+    pub change_percent: Option<f64>,
+    /// The fit ended on a bound (structure being absorbed, or the effect absent).
+    pub at_bound: bool,
+}
+
+/// A model evaluated on the held-out run.
+#[derive(Debug, Clone, Serialize)]
+pub struct Stage {
+    /// Reduced χ² on the held-out run.
+    pub chi2_red: f64,
+    /// RMS of the trusted band gaps, all paths, dB.
+    pub gap_db_rms: f64,
+    /// RMS of the trusted band phase gaps, all paths, degrees.
+    pub phase_deg_rms: f64,
+    /// Weighted r.m.s. and SEAT gap.
+    pub weighted: Weighted,
+    /// The per-band gap map.
+    pub cells: Vec<BandCell>,
+}
+
+/// One fitted candidate.
+#[derive(Debug, Clone, Serialize)]
+pub struct Ranked {
+    /// Candidate id (`null` for the re-fit base model).
+    pub id: String,
+    /// Effect parameters (for `null`: the base parameters).
+    pub params: Vec<Estimate>,
+    /// Reduced χ² on the training runs.
+    pub train_chi2_red: f64,
+    /// BIC on the held-out run minus that of the null re-fit.
+    pub delta_bic: f64,
+    /// BIC weight among the null and all candidates.
+    pub probability: f64,
+    /// Fraction of the structural gap closed on the held-out run.
+    pub fraction_closed: f64,
+    /// The held-out evaluation.
+    pub check: Stage,
+}
+
+/// One run's summary for the homogeneity view.
+#[derive(Debug, Clone, Serialize)]
+pub struct RunSummary {
+    /// File or source name.
+    pub source: String,
+    /// Role: `train` or `check`.
+    pub role: &'static str,
+    /// Unweighted base r.m.s., m/s².
+    pub base_rms: f64,
+    /// Measured body-mode peak of base→head (or base→seat), Hz.
+    pub peak_hz: Option<f64>,
+    /// Nominal-model gap (replay) RMS per path, dB.
+    pub gap_db_rms: Vec<(&'static str, f64)>,
+}
+
+/// The whole diagnosis.
+#[derive(Debug, Clone, Serialize)]
+pub struct Diagnosis {
+    /// Winning candidate id, `none`, `unexplained` or `not-identifiable`.
+    pub verdict: String,
+    /// One-sentence explanation of the verdict.
+    pub verdict_text: String,
+    /// Input problems that did not stop the diagnosis.
+    pub warnings: Vec<String>,
+    /// Per-run summaries (training runs, then the check run).
+    pub runs: Vec<RunSummary>,
+    /// Change of the body-mode peak per doubling of magnitude, % (measured).
+    pub peak_shift_percent_per_doubling: Option<f64>,
+    /// Gap map of the nominal model replayed with the check run's measured base.
+    pub gap_map: Vec<BandCell>,
+    /// Verbal classification of the nominal gap.
+    pub classification: Vec<String>,
+    /// The nominal model on the held-out run (analytic FRFs).
+    pub nominal: Stage,
+    /// The null re-fit.
+    pub null: Ranked,
+    /// Candidates, best first.
+    pub candidates: Vec<Ranked>,
+    /// For `not-identifiable`: the measurement that would separate the two best.
+    pub separating_measurement: Option<String>,
+}
+
+fn paths_of(r: &RunSpectra) -> Vec<Path> {
+    r.paths.iter().map(|p| p.path).collect()
+}
+
+fn check_inputs(
+    train: &[RunSpectra],
+    check: &RunSpectra,
+    warnings: &mut Vec<String>,
+) -> Result<()> {
+    if train.is_empty() {
+        return Err(Error::parameter(
+            "--run",
+            "at least one training run is needed",
+        ));
+    }
+    let want = paths_of(check);
+    for r in train {
+        if paths_of(r) != want {
+            let names = |p: &[Path]| p.iter().map(|p| p.name()).collect::<Vec<_>>().join(", ");
+            return Err(Error::data(
+                &r.source,
+                None,
+                format!(
+                    "has paths [{}] but the check run {} has [{}]; all runs need the same channels",
+                    names(&paths_of(r)),
+                    check.source,
+                    names(&want)
+                ),
+            ));
+        }
+    }
+    if !want.contains(&Path::BaseSeat) {
+        return Err(Error::data(
+            &check.source,
+            None,
+            "needs a_base_z and a_seat_z",
+        ));
+    }
+    for r in train.iter().chain(std::iter::once(check)) {
+        for p in &r.paths {
+            let total = p.coherence.len();
+            let good = p.coherence.iter().filter(|&&g| score::trusted(g)).count();
+            if good * 4 < total {
+                return Err(Error::data(
+                    &r.source,
+                    None,
+                    format!(
+                        "path {}: only {good} of {total} bins have coherence ≥ 0.8; its output is not driven by its input (wrong channels, or noise)",
+                        p.path.name()
+                    ),
+                ));
+            }
+        }
+    }
+    let (lo, hi) = train.iter().fold((f64::INFINITY, 0.0f64), |(a, b), r| {
+        (a.min(r.base_rms), b.max(r.base_rms))
+    });
+    if check.base_rms < 0.95 * lo || check.base_rms > 1.05 * hi {
+        warnings.push(format!(
+            "the check run's base r.m.s. {:.3} m/s² lies outside the training range {:.3}–{:.3} m/s²: the held-out score extrapolates in magnitude",
+            check.base_rms, lo, hi
+        ));
+    }
+    if train.len() < 2 {
+        warnings.push("one training run: magnitude-dependent effects cannot be trained".into());
+    }
+    Ok(())
+}
+
+/// A model variant's evaluation on the held-out run.
+pub fn stage(v: &Variant, check: &RunSpectra) -> Result<Stage> {
+    let pred = predict::predict(v, check)?;
+    let n = score::residual_count(std::slice::from_ref(check)).max(1);
+    let chi2 = score::chi2(v, std::slice::from_ref(check))?;
+    let cells = gapmap::band_cells(check, &pred);
+    let bs = check
+        .paths
+        .iter()
+        .position(|p| p.path == Path::BaseSeat)
+        .expect("checked in check_inputs");
+    Ok(Stage {
+        chi2_red: chi2 / n as f64,
+        gap_db_rms: gapmap::rms_gap_db(&cells, None).unwrap_or(0.0),
+        phase_deg_rms: Path::ALL
+            .iter()
+            .filter_map(|&p| gapmap::rms_phase_deg(&cells, p))
+            .fold(0.0, f64::max),
+        weighted: gapmap::weighted(check, &pred[bs]),
+        cells,
+    })
+}
+
+struct Fitted {
+    variant: Variant,
+    fit: fit::Fit,
+}
+
+/// Fits `cand` (None = null) jointly with the base parameters on `train`.
+fn fit_candidate(
+    model: &Model,
+    cand: Option<Candidate>,
+    train: &[RunSpectra],
+    warm: &[f64],
+) -> Result<Fitted> {
+    let base = base_params(model);
+    let nb = base.len();
+    let eff: Vec<Param> = cand.map(|c| c.params()).unwrap_or_default();
+    let build = |u: &[f64]| -> Result<Variant> {
+        let m = scaled(model, &base, &u[..nb])?;
+        match cand {
+            None => Ok(Variant::plain(m)),
+            Some(c) => {
+                let p: Vec<f64> = eff.iter().zip(&u[nb..]).map(|(p, u)| p.value(*u)).collect();
+                c.apply(&m, &p)
+            }
+        }
+    };
+    let f = |u: &[f64]| -> Result<Vec<f64>> {
+        let mut r: Vec<f64> = u[..nb].iter().map(|x| x / PRIOR_SIGMA).collect();
+        score::residuals(&build(u)?, train, &mut r)?;
+        Ok(r)
+    };
+    let b = BASE_BOUND.ln();
+    let mut lo = vec![-b; nb];
+    let mut hi = vec![b; nb];
+    for p in &eff {
+        lo.push(p.u(p.bounds.0));
+        hi.push(p.u(p.bounds.1));
+    }
+    // Multistart over the effect parameters' starting values (their Cartesian product).
+    let mut starts: Vec<Vec<f64>> = vec![warm.to_vec()];
+    for p in &eff {
+        starts = starts
+            .into_iter()
+            .flat_map(|s| {
+                p.starts.iter().map(move |v| {
+                    let mut t = s.clone();
+                    t.push(p.u(*v));
+                    t
+                })
+            })
+            .collect();
+    }
+    let mut best: Option<fit::Fit> = None;
+    for s in starts {
+        let ft = fit::levenberg_marquardt(&f, &s, &lo, &hi, 40)?;
+        if best.as_ref().is_none_or(|b| ft.cost < b.cost) {
+            best = Some(ft);
+        }
+    }
+    let fit = best.expect("at least one start");
+    Ok(Fitted {
+        variant: build(&fit.u)?,
+        fit,
+    })
+}
+
+fn estimates(
+    model: &Model,
+    cand: Option<Candidate>,
+    ft: &fit::Fit,
+    lo: &[f64],
+    hi: &[f64],
+) -> Vec<Estimate> {
+    let base = base_params(model);
+    let nb = base.len();
+    let near = |i: usize| {
+        let r = (hi[i] - lo[i]).max(1e-12);
+        (ft.u[i] - lo[i]) < 1e-3 * r || (hi[i] - ft.u[i]) < 1e-3 * r
+    };
+    match cand {
+        None => base
+            .iter()
+            .enumerate()
+            .map(|(i, (name, nominal))| {
+                let v = nominal * ft.u[i].exp();
+                Estimate {
+                    name: name.clone(),
+                    value: v,
+                    sigma: v * ft.sigma_u[i],
+                    change_percent: Some(100.0 * (ft.u[i].exp() - 1.0)),
+                    at_bound: near(i),
+                }
+            })
+            .collect(),
+        Some(c) => c
+            .params()
+            .iter()
+            .enumerate()
+            .map(|(j, p)| {
+                let i = nb + j;
+                let v = p.value(ft.u[i]);
+                Estimate {
+                    name: p.name.clone(),
+                    value: v,
+                    sigma: if p.log {
+                        v * ft.sigma_u[i]
+                    } else {
+                        ft.sigma_u[i]
+                    },
+                    change_percent: None,
+                    at_bound: near(i),
+                }
+            })
+            .collect(),
+    }
+}
+
+fn bounds(model: &Model, cand: Option<Candidate>) -> (Vec<f64>, Vec<f64>) {
+    let nb = base_params(model).len();
+    let b = BASE_BOUND.ln();
+    let (mut lo, mut hi) = (vec![-b; nb], vec![b; nb]);
+    for p in cand.map(|c| c.params()).unwrap_or_default() {
+        lo.push(p.u(p.bounds.0));
+        hi.push(p.u(p.bounds.1));
+    }
+    (lo, hi)
+}
+
+/// Runs the diagnosis of `model` against training runs and one held-out check run.
+pub fn diagnose(model: &Model, train: &[Signals], check: &Signals) -> Result<Diagnosis> {
+    let tr: Vec<RunSpectra> = train.iter().map(measure::estimate).collect::<Result<_>>()?;
+    let ck = measure::estimate(check)?;
+    let mut warnings = Vec::new();
+    check_inputs(&tr, &ck, &mut warnings)?;
+    let n_train = score::residual_count(&tr).max(1) as f64;
+    let n_check = score::residual_count(std::slice::from_ref(&ck)).max(1) as f64;
+
+    // Where: replay the nominal model with each run's measured base through identical Welch segments.
+    let mut runs = Vec::new();
+    let mut gap_map = Vec::new();
+    for (sig, spec, role) in train
+        .iter()
+        .zip(&tr)
+        .map(|(s, r)| (s, r, "train"))
+        .chain(std::iter::once((check, &ck, "check")))
+    {
+        let sim = replay::replay(
+            model,
+            sig.require("a_base_z")?,
+            sig.sample_rate_hz,
+            "replay",
+        )?;
+        let ss = measure::estimate(&sim)?;
+        let pred: Vec<_> = spec
+            .paths
+            .iter()
+            .map(|p| ss.path(p.path).map(|q| q.h1.clone()))
+            .collect::<Option<Vec<_>>>()
+            .ok_or_else(|| {
+                Error::parameter("model", "the model does not yield the run's channels")
+            })?;
+        let cells = gapmap::band_cells(spec, &pred);
+        let gap_db_rms = Path::ALL
+            .iter()
+            .filter_map(|&p| gapmap::rms_gap_db(&cells, Some(p)).map(|g| (p.name(), g)))
+            .collect();
+        runs.push(RunSummary {
+            source: spec.source.clone(),
+            role,
+            base_rms: spec.base_rms,
+            peak_hz: gapmap::peak_hz(spec, Path::BaseHead)
+                .or(gapmap::peak_hz(spec, Path::BaseSeat)),
+            gap_db_rms,
+        });
+        if role == "check" {
+            gap_map = cells;
+        }
+    }
+    let peak_shift = magnitude_trend(&runs);
+    let classification = gapmap::classify(&gap_map);
+
+    let nominal = stage(&Variant::plain(model.clone()), &ck)?;
+    let nb = base_params(model).len();
+    let null_fit = fit_candidate(model, None, &tr, &vec![0.0; nb])?;
+    let null_stage = stage(&null_fit.variant, &ck)?;
+    let bic = |s: &Stage, p: usize| s.chi2_red * n_check + p as f64 * n_check.ln();
+    let null_bic = bic(&null_stage, nb);
+    let (lo, hi) = bounds(model, None);
+    let mut null = Ranked {
+        id: "null".into(),
+        params: estimates(model, None, &null_fit.fit, &lo, &hi),
+        train_chi2_red: null_fit.fit.cost / n_train,
+        delta_bic: 0.0,
+        probability: 0.0,
+        fraction_closed: score::fraction_closed(nominal.chi2_red, null_stage.chi2_red),
+        check: null_stage,
+    };
+    let mut cands = Vec::new();
+    for c in Candidate::ALL.into_iter().filter(|c| c.applies_to(model)) {
+        let ft = fit_candidate(model, Some(c), &tr, &null_fit.fit.u)?;
+        let st = stage(&ft.variant, &ck)?;
+        let p = nb + c.params().len();
+        let (lo, hi) = bounds(model, Some(c));
+        cands.push(Ranked {
+            id: c.id().into(),
+            params: estimates(model, Some(c), &ft.fit, &lo, &hi),
+            train_chi2_red: ft.fit.cost / n_train,
+            delta_bic: bic(&st, p) - null_bic,
+            probability: 0.0,
+            fraction_closed: score::fraction_closed(null.check.chi2_red, st.chi2_red),
+            check: st,
+        });
+    }
+    cands.sort_by(|a, b| a.delta_bic.total_cmp(&b.delta_bic));
+    let zmin = cands.iter().map(|c| c.delta_bic).fold(0.0f64, f64::min);
+    let wsum: f64 = std::iter::once(0.0)
+        .chain(cands.iter().map(|c| c.delta_bic))
+        .map(|d| (-(d - zmin) / 2.0).exp())
+        .sum();
+    null.probability = (zmin / 2.0).exp() / wsum;
+    for c in &mut cands {
+        c.probability = (-(c.delta_bic - zmin) / 2.0).exp() / wsum;
+    }
+    let (verdict, verdict_text, separating) = decide(&null, &cands);
+    Ok(Diagnosis {
+        verdict,
+        verdict_text,
+        warnings,
+        runs,
+        peak_shift_percent_per_doubling: peak_shift,
+        gap_map,
+        classification,
+        nominal,
+        null,
+        candidates: cands,
+        separating_measurement: separating,
+    })
+}
+
+/// Least-squares slope of ln(peak frequency) on log2(magnitude), as % per doubling.
+fn magnitude_trend(runs: &[RunSummary]) -> Option<f64> {
+    let pts: Vec<(f64, f64)> = runs
+        .iter()
+        .filter_map(|r| r.peak_hz.map(|f| (r.base_rms.log2(), f.ln())))
+        .collect();
+    if pts.len() < 2 {
+        return None;
+    }
+    let n = pts.len() as f64;
+    let (mx, my) = pts
+        .iter()
+        .fold((0.0, 0.0), |(a, b), p| (a + p.0 / n, b + p.1 / n));
+    let sxx: f64 = pts.iter().map(|p| (p.0 - mx).powi(2)).sum();
+    if sxx < 1e-6 {
+        return None;
+    }
+    let sxy: f64 = pts.iter().map(|p| (p.0 - mx) * (p.1 - my)).sum();
+    Some(100.0 * ((sxy / sxx).exp() - 1.0))
+}
+
+/// Which measurement separates two look-alike candidates (gap.md §3.8).
+pub fn separating_measurement(a: &str, b: &str) -> String {
+    let pair = |x: &str, y: &str| (a == x && b == y) || (a == y && b == x);
+    if pair("cushion-stiffening", "cushion-viscoelastic") {
+        "a run at a clearly different magnitude (stiffening grows with amplitude, viscoelasticity does not)".into()
+    } else if pair("body-softening", "cushion-stiffening")
+        || pair("body-softening", "cushion-viscoelastic")
+    {
+        "the seat-head path or the seat force (body effects move apparent mass and seat-head, cushion effects only base-seat)".into()
+    } else if pair("cushion-viscoelastic", "missing-dof")
+        || pair("cushion-stiffening", "missing-dof")
+    {
+        "a base-seat measurement above 20 Hz or a frame accelerometer (a frame mode shows as a narrow peak)".into()
+    } else if a == "sensor-delay" || b == "sensor-delay" {
+        "a phase reference: the sensors' group delay from a calibration shaker run".into()
+    } else {
+        "a repeat run and a run at a third magnitude".into()
+    }
+}
+
+fn decide(null: &Ranked, cands: &[Ranked]) -> (String, String, Option<String>) {
+    let d0 = null.check.chi2_red;
+    let best = cands.first();
+    let accepted =
+        best.filter(|b| b.delta_bic <= ACCEPT_DELTA_BIC && b.fraction_closed >= MIN_CLOSED);
+    match accepted {
+        Some(b) => {
+            if let Some(s) = cands.get(1).filter(|s| {
+                s.delta_bic - b.delta_bic < IDENTIFIABLE_MARGIN && s.fraction_closed >= MIN_CLOSED
+            }) {
+                let m = separating_measurement(&b.id, &s.id);
+                return (
+                    "not-identifiable".into(),
+                    format!(
+                        "{} and {} explain the held-out run equally well (ΔBIC {:.1} vs {:.1}); to separate them, measure {m}",
+                        b.id, s.id, b.delta_bic, s.delta_bic
+                    ),
+                    Some(m),
+                );
+            }
+            (
+                b.id.clone(),
+                format!(
+                    "{} closes {:.0} % of the structural gap on the held-out run (ΔBIC {:.1}, probability {:.2})",
+                    b.id,
+                    100.0 * b.fraction_closed,
+                    b.delta_bic,
+                    b.probability
+                ),
+                None,
+            )
+        }
+        None if d0 <= GAP_CHI2
+            || (null.check.gap_db_rms < PRACTICAL_GAP.0
+                && null.check.phase_deg_rms < PRACTICAL_GAP.1) =>
+        {
+            (
+                "none".into(),
+                format!(
+                    "the re-fitted base parameters explain the held-out run (reduced χ² {d0:.2}, band gap {:.2} dB RMS, phase {:.2}° RMS)",
+                    null.check.gap_db_rms, null.check.phase_deg_rms
+                ),
+                None,
+            )
+        }
+        None => (
+            "unexplained".into(),
+            format!(
+                "a structural gap remains (reduced χ² {d0:.2} after the re-fit) that no candidate closes{}",
+                best.map_or(String::new(), |b| format!(
+                    "; best {} closes {:.0} %",
+                    b.id,
+                    100.0 * b.fraction_closed
+                ))
+            ),
+            None,
+        ),
+    }
+}

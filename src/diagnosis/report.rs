@@ -1,0 +1,156 @@
+//! Readable and JSON output of a [`Diagnosis`].
+
+use super::{Diagnosis, Ranked, Stage};
+use std::fmt::Write;
+
+fn stage_line(label: &str, s: &Stage) -> String {
+    format!(
+        "  {label:<22} reduced χ² {:>8.2}   band gap {:>5.2} dB RMS   a_w gap {:>+6.1} %   SEAT {:>5.1} % (measured {:.1} %)",
+        s.chi2_red,
+        s.gap_db_rms,
+        s.weighted.aw_gap_percent,
+        s.weighted.seat_model,
+        s.weighted.seat_meas
+    )
+}
+
+fn candidate_block(out: &mut String, r: &Ranked) {
+    let _ = writeln!(
+        out,
+        "  {} — ΔBIC {:.1}, probability {:.2}, closes {:.0} % of the structural gap",
+        r.id,
+        r.delta_bic,
+        r.probability,
+        100.0 * r.fraction_closed
+    );
+    for p in &r.params {
+        let _ = writeln!(
+            out,
+            "      {} = {:.4e} ± {:.2e}{}",
+            p.name,
+            p.value,
+            p.sigma,
+            if p.at_bound { "  (at bound)" } else { "" }
+        );
+    }
+}
+
+/// The human-readable report.
+pub fn text(d: &Diagnosis) -> String {
+    let mut out = String::new();
+    let _ = writeln!(out, "verdict: {}\n  {}", d.verdict, d.verdict_text);
+    for w in &d.warnings {
+        let _ = writeln!(out, "warning: {w}");
+    }
+    let _ = writeln!(
+        out,
+        "\n1. Where the gap lies (nominal model replayed with the measured base)"
+    );
+    for r in &d.runs {
+        let gaps: Vec<String> = r
+            .gap_db_rms
+            .iter()
+            .map(|(p, g)| format!("{p} {g:.2} dB"))
+            .collect();
+        let _ = writeln!(
+            out,
+            "  {:<5} {:<30} base {:.3} m/s² r.m.s.  body peak {}  gap RMS: {}",
+            r.role,
+            r.source,
+            r.base_rms,
+            r.peak_hz.map_or("-".into(), |f| format!("{f:.2} Hz")),
+            gaps.join(", ")
+        );
+    }
+    if let Some(s) = d.peak_shift_percent_per_doubling {
+        let _ = writeln!(out, "  body peak moves {s:+.1} % per doubling of magnitude");
+    }
+    for c in &d.classification {
+        let _ = writeln!(out, "  - {c}");
+    }
+    let _ = writeln!(
+        out,
+        "  gap map of the check run (dB, measured vs model; '·' = coherence < 0.8):"
+    );
+    let mut paths: Vec<&str> = d.gap_map.iter().map(|c| c.path).collect();
+    paths.dedup();
+    let bands: Vec<f64> = d
+        .gap_map
+        .iter()
+        .filter(|c| c.path == paths[0])
+        .map(|c| c.band_hz)
+        .collect();
+    let head: Vec<String> = bands.iter().map(|b| format!("{b:>6}")).collect();
+    let _ = writeln!(out, "    {:<14}{}", "band Hz", head.join(""));
+    for p in &paths {
+        let row: Vec<String> = d
+            .gap_map
+            .iter()
+            .filter(|c| c.path == *p)
+            .map(|c| {
+                if c.trusted {
+                    format!("{:>+6.1}", c.gap_db)
+                } else {
+                    format!("{:>6}", "·")
+                }
+            })
+            .collect();
+        let _ = writeln!(out, "    {:<14}{}", p, row.join(""));
+    }
+    let bands: Vec<String> = d
+        .nominal
+        .weighted
+        .driving_bands
+        .iter()
+        .map(|(b, s)| format!("{b} Hz ({s:.0} %)"))
+        .collect();
+    let _ = writeln!(out, "  bands driving the a_w gap: {}", bands.join(", "));
+
+    let _ = writeln!(
+        out,
+        "\n2. Which unmodelled effect (fitted on training runs, scored on the check run)"
+    );
+    let _ = writeln!(out, "  null re-fit of the base parameters:");
+    for p in &d.null.params {
+        let _ = writeln!(
+            out,
+            "      {:<22} {:>+6.1} %{}",
+            p.name,
+            p.change_percent.unwrap_or(0.0),
+            if p.at_bound {
+                "  (at ±30 % bound: structure absorbed?)"
+            } else {
+                ""
+            }
+        );
+    }
+    for r in d.candidates.iter().take(2) {
+        candidate_block(&mut out, r);
+    }
+    let rest: Vec<String> = d
+        .candidates
+        .iter()
+        .skip(2)
+        .map(|r| format!("{} (ΔBIC {:.1})", r.id, r.delta_bic))
+        .collect();
+    if !rest.is_empty() {
+        let _ = writeln!(out, "  others: {}", rest.join(", "));
+    }
+    if let Some(m) = &d.separating_measurement {
+        let _ = writeln!(out, "  to separate the two best: {m}");
+    }
+
+    let _ = writeln!(out, "\n3. How far the gap shrinks on the check run");
+    let _ = writeln!(out, "{}", stage_line("nominal", &d.nominal));
+    let _ = writeln!(out, "{}", stage_line("re-fitted (null)", &d.null.check));
+    for r in d.candidates.iter().take(2) {
+        let _ = writeln!(out, "{}", stage_line(&format!("+ {}", r.id), &r.check));
+    }
+    out
+}
+
+/// The JSON report: top-level `verdict` plus every figure of the text report.
+pub fn json(d: &Diagnosis) -> serde_json::Value {
+    serde_json::to_value(d)
+        .unwrap_or_else(|e| serde_json::json!({"verdict": d.verdict, "error": e.to_string()}))
+}
