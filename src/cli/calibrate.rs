@@ -1,5 +1,4 @@
 use crate::error::Error;
-use crate::model::catalog;
 use crate::study::calibrate::{self, Fit, Method, Problem, Target, ga};
 use crate::study::param::{Param, parse_bounds};
 use std::path::PathBuf;
@@ -7,9 +6,8 @@ use std::path::PathBuf;
 /// Arguments of `wbv calibrate`.
 #[derive(Debug, clap::Args)]
 pub struct Args {
-    /// Model: a built-in name, a TOML file, or components joined by `+`.
-    #[arg(long, default_value = catalog::DEFAULT)]
-    model: String,
+    #[command(flatten)]
+    model: super::ModelArg,
     /// Parameter to fit (repeat).
     #[arg(long = "param", required = true)]
     params: Vec<String>,
@@ -61,7 +59,7 @@ fn report(problem: &Problem, fit: &Fit) {
 }
 
 pub fn run(args: Args) -> crate::Result<()> {
-    let model = catalog::resolve(&args.model)?;
+    let model = args.model.resolve()?;
     if args.params.len() != args.bounds.len() {
         return Err(Error::parameter(
             "--bounds",

@@ -1,6 +1,5 @@
 use crate::error::Error;
 use crate::io::atomic::{Overwrite, write_atomic};
-use crate::model::catalog;
 use crate::response::frf;
 use std::io::Write;
 use std::path::PathBuf;
@@ -8,9 +7,8 @@ use std::path::PathBuf;
 /// Arguments of `wbv frf`.
 #[derive(Debug, clap::Args)]
 pub struct Args {
-    /// Model: a built-in name, a TOML file, or components joined by `+`.
-    #[arg(long, default_value = catalog::DEFAULT)]
-    model: String,
+    #[command(flatten)]
+    model: super::ModelArg,
     /// Lowest frequency in Hz.
     #[arg(long, default_value_t = 0.1)]
     from: f64,
@@ -53,7 +51,7 @@ fn write_csv(set: &frf::FrfSet, out: &mut dyn Write) -> std::io::Result<()> {
 }
 
 pub fn run(args: Args) -> crate::Result<()> {
-    let model = catalog::resolve(&args.model)?;
+    let model = args.model.resolve()?;
     let freqs = frf::grid(args.from, args.to, args.points, args.log)?;
     let set = frf::compute(&model, &freqs)?;
     let overwrite = if args.force {

@@ -66,6 +66,21 @@ enum Command {
     GapBench(gap_bench::Args),
 }
 
+/// The `--model` option shared by the commands that take a model.
+#[derive(Debug, Clone, clap::Args)]
+pub struct ModelArg {
+    /// Model: a built-in name, a TOML file, or components joined by `+`.
+    #[arg(long = "model", default_value = crate::model::catalog::DEFAULT)]
+    pub name: String,
+}
+
+impl ModelArg {
+    /// The validated model it names.
+    pub fn resolve(&self) -> crate::Result<crate::model::Model> {
+        crate::model::catalog::resolve(&self.name)
+    }
+}
+
 /// Runs the command line; prints errors as one line on stderr.
 pub fn main() -> ExitCode {
     let cli = Cli::parse();

@@ -1,19 +1,17 @@
-use crate::model::catalog;
 use crate::response::modes;
 
 /// Arguments of `wbv modes`.
 #[derive(Debug, clap::Args)]
 pub struct Args {
-    /// Model: a built-in name, a TOML file, or components joined by `+`.
-    #[arg(long, default_value = catalog::DEFAULT)]
-    model: String,
+    #[command(flatten)]
+    model: super::ModelArg,
     /// Print JSON instead of tables.
     #[arg(long)]
     json: bool,
 }
 
 pub fn run(args: Args) -> crate::Result<()> {
-    let model = catalog::resolve(&args.model)?;
+    let model = args.model.resolve()?;
     let und = modes::undamped(&model)?;
     let dam = modes::damped(&model)?;
     let names: Vec<&str> = model.masses.iter().map(|m| m.name.as_str()).collect();

@@ -1,7 +1,6 @@
 use super::sweep::{progress, sibling};
 use crate::error::Error;
 use crate::io::atomic::{Overwrite, write_atomic};
-use crate::model::catalog;
 use crate::response::frf;
 use crate::study::param::{Param, parse_values};
 use crate::study::sensitivity;
@@ -11,9 +10,8 @@ use std::path::PathBuf;
 /// Arguments of `wbv sensitivity`.
 #[derive(Debug, clap::Args)]
 pub struct Args {
-    /// Model: a built-in name, a TOML file, or components joined by `+`.
-    #[arg(long, default_value = catalog::DEFAULT)]
-    model: String,
+    #[command(flatten)]
+    model: super::ModelArg,
     /// Parameter to perturb (repeat).
     #[arg(long = "param", required = true)]
     params: Vec<String>,
@@ -45,7 +43,7 @@ pub struct Args {
 }
 
 pub fn run(args: Args) -> crate::Result<()> {
-    let model = catalog::resolve(&args.model)?;
+    let model = args.model.resolve()?;
     let params = args
         .params
         .iter()

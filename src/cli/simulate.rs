@@ -1,7 +1,6 @@
 use crate::excitation::{ExcitationArgs, args::resolve};
 use crate::integrator::Method;
 use crate::io::atomic::Overwrite;
-use crate::model::catalog;
 use crate::record::{Compression, RUN_FILE, RecordOptions};
 use crate::scenario::{Outcome, Outputs, Scenario};
 use crate::simulate::Settings;
@@ -11,9 +10,8 @@ use std::path::{Path, PathBuf};
 #[derive(Debug, clap::Args)]
 #[command(allow_negative_numbers = true)]
 pub struct Args {
-    /// Model: a built-in name, a TOML file, or components joined by `+`.
-    #[arg(long, default_value = catalog::DEFAULT)]
-    pub model: String,
+    #[command(flatten)]
+    pub model: super::ModelArg,
     #[command(flatten)]
     pub excitation: ExcitationArgs,
     /// Simulated duration in s.
@@ -52,7 +50,7 @@ impl Args {
     /// The scenario these arguments describe.
     pub fn scenario(&self) -> crate::Result<Scenario> {
         Ok(Scenario {
-            model: catalog::resolve(&self.model)?,
+            model: self.model.resolve()?,
             excitation: resolve(&self.excitation)?,
             settings: Settings {
                 dt: self.dt,

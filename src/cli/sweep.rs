@@ -1,6 +1,5 @@
 use crate::error::Error;
 use crate::io::atomic::{Overwrite, write_atomic};
-use crate::model::catalog;
 use crate::plot::{Chart, Series};
 use crate::response::frf;
 use crate::study::heatmap::{self, HeatMap};
@@ -12,9 +11,8 @@ use std::path::{Path, PathBuf};
 /// Arguments of `wbv sweep`.
 #[derive(Debug, clap::Args)]
 pub struct Args {
-    /// Model: a built-in name, a TOML file, or components joined by `+`.
-    #[arg(long, default_value = catalog::DEFAULT)]
-    model: String,
+    #[command(flatten)]
+    model: super::ModelArg,
     /// Swept parameter (repeat for a 2-D grid): `link.cushion.k`, or `link.cushion.zeta@60` for a
     /// damping ratio referred to 60 kg (`c = 2ζ√(k·60)`).
     #[arg(long = "param", required = true)]
@@ -162,7 +160,7 @@ fn plots(spec: &Spec, pts: &[Point], title: &str, path: &Path, ow: Overwrite) ->
 }
 
 pub fn run(args: Args) -> crate::Result<()> {
-    let model = catalog::resolve(&args.model)?;
+    let model = args.model.resolve()?;
     if args.params.len() != args.values.len() {
         return Err(Error::parameter(
             "--values",
