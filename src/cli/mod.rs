@@ -81,6 +81,34 @@ impl ModelArg {
     }
 }
 
+/// The time-domain run options shared by the commands that simulate (`simulate`, `sweep`, `foam`).
+#[derive(Debug, Clone, clap::Args)]
+pub struct TimeArgs {
+    /// Simulated duration in s.
+    #[arg(long, default_value_t = 60.0)]
+    pub duration: f64,
+    /// Time step in s.
+    #[arg(long, default_value_t = 1e-3)]
+    pub dt: f64,
+    /// Seed of the random excitation.
+    #[arg(long, default_value_t = 1)]
+    pub seed: u64,
+    /// Integrator: newmark (average acceleration), newmark-linear or rk4.
+    #[arg(long, default_value = "newmark")]
+    pub integrator: String,
+}
+
+impl TimeArgs {
+    /// Step, duration and integrator.
+    pub fn settings(&self) -> crate::Result<crate::simulate::Settings> {
+        Ok(crate::simulate::Settings {
+            dt: self.dt,
+            duration_s: self.duration,
+            method: crate::integrator::Method::parse(&self.integrator)?,
+        })
+    }
+}
+
 /// Runs the command line; prints errors as one line on stderr.
 pub fn main() -> ExitCode {
     let cli = Cli::parse();
