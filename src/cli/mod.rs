@@ -4,6 +4,7 @@
 mod analyze;
 mod calibrate;
 mod excitations;
+mod foam;
 mod frf;
 mod gap;
 mod gap_bench;
@@ -58,6 +59,8 @@ enum Command {
     MergeShards(sweep::MergeArgs),
     /// Single-factor sensitivity of the response peak (paper 000 §5.1) with influence weights.
     Sensitivity(sensitivity::Args),
+    /// Foam-thickness study (paper 000 Table 4): cushion from the hyperfoam, peak, SEAT, a_v, comfort.
+    Foam(foam::Args),
     /// Fit parameters to a target response (GA, Levenberg–Marquardt, cubic surrogate).
     Calibrate(calibrate::Args),
     /// Sim-to-real gap diagnosis: where a model and measured runs differ and which effect explains it.
@@ -127,6 +130,7 @@ pub fn main() -> ExitCode {
         Command::Sweep(a) => sweep::run(a),
         Command::MergeShards(a) => sweep::merge(a),
         Command::Sensitivity(a) => sensitivity::run(a),
+        Command::Foam(a) => foam::run(a),
         Command::Calibrate(a) => calibrate::run(a),
         Command::Gap(a) => gap::run(a),
         Command::GapBench(a) => gap_bench::run(a),

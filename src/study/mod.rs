@@ -13,6 +13,7 @@ pub mod foam;
 pub mod heatmap;
 pub mod iso;
 pub mod param;
+pub mod reproduce;
 pub mod sensitivity;
 pub mod shard;
 pub mod sweep;
