@@ -5,6 +5,7 @@ use crate::study::iso::IsoRun;
 
 /// Arguments of `wbv foam`.
 #[derive(Debug, clap::Args)]
+#[command(allow_negative_numbers = true)]
 pub struct Args {
     #[command(flatten)]
     model: super::ModelArg,
@@ -28,7 +29,7 @@ pub struct Args {
     #[command(flatten, next_help_heading = "Time-domain run")]
     excitation: Option<ExcitationArgs>,
     #[command(flatten, next_help_heading = "Time-domain run")]
-    time: super::TimeArgs,
+    time: Option<super::TimeArgs>,
 }
 
 fn positive(v: Option<f64>, default: f64, flag: &str) -> crate::Result<f64> {
@@ -93,13 +94,19 @@ pub fn run(args: Args) -> crate::Result<()> {
     let iso = if args.no_time_domain {
         None
     } else {
+        // Defaults: the documented Table 4 run.
+        let paper = paper_run()?;
+        let (settings, seed) = match &args.time {
+            Some(t) => (t.settings()?, t.seed),
+            None => (paper.settings, paper.seed),
+        };
         Some(IsoRun {
             excitation: match &args.excitation {
                 Some(e) => crate::excitation::resolve(e)?,
-                None => paper_run()?.excitation,
+                None => paper.excitation,
             },
-            settings: args.time.settings()?,
-            seed: args.time.seed,
+            settings,
+            seed,
         })
     };
     let points = thickness_study(&model, &foam, &thicknesses, iso.as_ref())?;

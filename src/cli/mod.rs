@@ -88,17 +88,29 @@ impl ModelArg {
 #[derive(Debug, Clone, clap::Args)]
 pub struct TimeArgs {
     /// Simulated duration in s.
-    #[arg(long, default_value_t = 60.0)]
+    #[arg(long, default_value_t = TimeArgs::default().duration)]
     pub duration: f64,
     /// Time step in s.
-    #[arg(long, default_value_t = 1e-3)]
+    #[arg(long, default_value_t = TimeArgs::default().dt)]
     pub dt: f64,
     /// Seed of the random excitation.
-    #[arg(long, default_value_t = 1)]
+    #[arg(long, default_value_t = TimeArgs::default().seed)]
     pub seed: u64,
     /// Integrator: newmark (average acceleration), newmark-linear or rk4.
-    #[arg(long, default_value = "newmark")]
+    #[arg(long, default_value_t = TimeArgs::default().integrator)]
     pub integrator: String,
+}
+
+impl Default for TimeArgs {
+    /// 60 s at 1 kHz, seed 1, Newmark average acceleration.
+    fn default() -> Self {
+        TimeArgs {
+            duration: 60.0,
+            dt: 1e-3,
+            seed: 1,
+            integrator: "newmark".into(),
+        }
+    }
 }
 
 impl TimeArgs {

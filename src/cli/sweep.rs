@@ -59,7 +59,7 @@ pub struct Args {
         flatten,
         next_help_heading = "Time-domain ISO 2631-1 figures (given an excitation)"
     )]
-    time: super::TimeArgs,
+    time: Option<super::TimeArgs>,
 }
 
 /// Arguments of `wbv merge-shards`.
@@ -204,13 +204,23 @@ pub fn run(args: Args) -> crate::Result<()> {
         .map(Shard::parse)
         .transpose()?
         .unwrap_or_default();
-    let iso = match &args.excitation {
-        Some(e) => Some(IsoRun {
-            excitation: crate::excitation::resolve(e)?,
-            settings: args.time.settings()?,
-            seed: args.time.seed,
-        }),
-        None => None,
+    let iso = match (&args.excitation, &args.time) {
+        (Some(e), time) => {
+            let time = time.clone().unwrap_or_default();
+            Some(IsoRun {
+                excitation: crate::excitation::resolve(e)?,
+                settings: time.settings()?,
+                seed: time.seed,
+            })
+        }
+        (None, Some(_)) => {
+            return Err(Error::parameter(
+                "--excitation",
+                "--duration, --dt, --seed and --integrator set the time-domain run; give an \
+                 excitation too",
+            ));
+        }
+        (None, None) => None,
     };
     let hooks: Vec<&dyn PointFigures> = iso.iter().map(|h| h as &dyn PointFigures).collect();
     let bar = progress(shard.points(spec.grid().len()).len());
