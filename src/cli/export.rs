@@ -112,5 +112,9 @@ pub fn weighting(args: WeightingArgs) -> crate::Result<()> {
         .map(|s| [s.b[0], s.b[1], s.b[2], 1.0, s.a[0], s.a[1]])
         .collect();
     let text = json!({"weighting": w.name(), "fs_hz": args.fs, "sos": sos});
-    emit(serde_json::to_string_pretty(&text).expect("JSON"), &None, false)
+    emit(
+        serde_json::to_string_pretty(&text).expect("JSON"),
+        &None,
+        false,
+    )
 }
