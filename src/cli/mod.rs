@@ -5,6 +5,7 @@ mod analyze;
 mod calibrate;
 mod excitations;
 mod export;
+mod foam;
 mod frf;
 mod gap;
 mod gap_bench;
@@ -63,6 +64,8 @@ enum Command {
     MergeShards(sweep::MergeArgs),
     /// Single-factor sensitivity of the response peak (paper 000 §5.1) with influence weights.
     Sensitivity(sensitivity::Args),
+    /// Foam-thickness study (paper 000 Table 4): cushion from the hyperfoam, peak, SEAT, a_v, comfort.
+    Foam(foam::Args),
     /// Fit parameters to a target response (GA, Levenberg–Marquardt, cubic surrogate).
     Calibrate(calibrate::Args),
     /// Sim-to-real gap diagnosis: where a model and measured runs differ and which effect explains it.
@@ -86,6 +89,34 @@ impl ModelArg {
     }
 }
 
+/// The time-domain run options shared by the commands that simulate (`simulate`, `sweep`, `foam`).
+#[derive(Debug, Clone, clap::Args)]
+pub struct TimeArgs {
+    /// Simulated duration in s.
+    #[arg(long, default_value_t = 60.0)]
+    pub duration: f64,
+    /// Time step in s.
+    #[arg(long, default_value_t = 1e-3)]
+    pub dt: f64,
+    /// Seed of the random excitation.
+    #[arg(long, default_value_t = 1)]
+    pub seed: u64,
+    /// Integrator: newmark (average acceleration), newmark-linear or rk4.
+    #[arg(long, default_value = "newmark")]
+    pub integrator: String,
+}
+
+impl TimeArgs {
+    /// Step, duration and integrator.
+    pub fn settings(&self) -> crate::Result<crate::simulate::Settings> {
+        Ok(crate::simulate::Settings {
+            dt: self.dt,
+            duration_s: self.duration,
+            method: crate::integrator::Method::parse(&self.integrator)?,
+        })
+    }
+}
+
 /// Runs the command line; prints errors as one line on stderr.
 pub fn main() -> ExitCode {
     let cli = Cli::parse();
@@ -106,6 +137,7 @@ pub fn main() -> ExitCode {
         Command::Sweep(a) => sweep::run(a),
         Command::MergeShards(a) => sweep::merge(a),
         Command::Sensitivity(a) => sensitivity::run(a),
+        Command::Foam(a) => foam::run(a),
         Command::Calibrate(a) => calibrate::run(a),
         Command::Gap(a) => gap::run(a),
         Command::GapBench(a) => gap_bench::run(a),
