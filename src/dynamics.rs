@@ -4,8 +4,13 @@
 //! link forces on each mass (N) and `q` the forces in the relaxing arms of Maxwell/Zener links, with
 //! `q̇ = k_m·(ḋ − q/c_m)`. A link with tension `t` adds `+t` to `f` of its upper mass and `−t` to its
 //! lower mass (it pulls them together), matching [`crate::model::assembly`].
+//!
+//! A planar model has no links: its equations are a [`General`] linear part
+//! `M·ẍ + C·ẋ + K·x = −M·r·a_base` with full matrices, so `f = K·x + C·ẋ` and the integrators use
+//! `M` and `r` where a link model has its diagonal masses and `r = 1`.
 
 use crate::model::{Law, Model, Node};
+use nalgebra::DMatrix;
 
 /// One link, flattened for fast evaluation.
 #[derive(Debug, Clone)]
@@ -24,15 +29,32 @@ pub struct LinkDyn {
     pub arm: Option<(f64, f64, usize)>,
 }
 
+/// A general linear system `M·ẍ + C·ẋ + K·x = −M·r·a_base` (full matrices), for planar models.
+#[derive(Debug, Clone)]
+pub struct General {
+    /// Mass matrix.
+    pub m: DMatrix<f64>,
+    /// Damping matrix.
+    pub c: DMatrix<f64>,
+    /// Stiffness matrix.
+    pub k: DMatrix<f64>,
+    /// `M⁻¹`, for the explicit first-order form.
+    pub m_inv: DMatrix<f64>,
+    /// Base influence vector (1 for a coordinate that moves with a vertical base, 0 otherwise).
+    pub r: Vec<f64>,
+}
+
 /// The model's equations of motion.
 #[derive(Debug, Clone)]
 pub struct Dynamics {
-    /// Masses in kg.
+    /// Masses in kg (for a general system, the diagonal of `M`).
     pub mass: Vec<f64>,
-    /// Links in model order.
+    /// Links in model order (none for a general system).
     pub links: Vec<LinkDyn>,
     /// Number of arm states.
     pub arms: usize,
+    /// The general linear part replacing masses and links (planar models).
+    pub general: Option<Box<General>>,
 }
 
 fn node(n: Node) -> Option<usize> {
@@ -45,6 +67,23 @@ fn node(n: Node) -> Option<usize> {
 impl Dynamics {
     /// Flattens `model`.
     pub fn new(model: &Model) -> Self {
+        if let Some(p) = &model.planar {
+            let l = &p.linear;
+            // M is symmetric positive definite (kinetic energy), so the inverse exists.
+            let m_inv = l.m.clone().try_inverse().unwrap_or_else(|| l.m.clone());
+            return Dynamics {
+                mass: l.m.diagonal().iter().copied().collect(),
+                links: Vec::new(),
+                arms: 0,
+                general: Some(Box::new(General {
+                    m: l.m.clone(),
+                    c: l.c.clone(),
+                    k: l.k.clone(),
+                    m_inv,
+                    r: l.r_z.iter().copied().collect(),
+                })),
+            };
+        }
         let mut arms = 0;
         let links = model
             .links
@@ -68,6 +107,35 @@ impl Dynamics {
             mass: model.masses.iter().map(|m| m.m).collect(),
             links,
             arms,
+            general: None,
+        }
+    }
+
+    /// Base influence of coordinate `i`: the relative acceleration of a coordinate at rest when
+    /// the base accelerates by 1 is `−r_i`.
+    #[inline]
+    pub fn influence(&self, i: usize) -> f64 {
+        self.general.as_ref().map_or(1.0, |g| g.r[i])
+    }
+
+    /// Newton residual `−(M·(a + r·a_base) + f)` into `out` (N).
+    #[inline]
+    pub fn residual(&self, a: &[f64], a_base: f64, f: &[f64], out: &mut [f64]) {
+        match &self.general {
+            None => {
+                for (i, ai) in a.iter().enumerate() {
+                    out[i] = -(self.mass[i] * (ai + a_base) + f[i]);
+                }
+            }
+            Some(g) => {
+                for (i, o) in out.iter_mut().enumerate() {
+                    let mut s = f[i];
+                    for (j, aj) in a.iter().enumerate() {
+                        s += g.m[(i, j)] * (aj + g.r[j] * a_base);
+                    }
+                    *o = -s;
+                }
+            }
         }
     }
 
@@ -108,6 +176,14 @@ impl Dynamics {
         mut link_deflection: Option<&mut [f64]>,
     ) {
         f.iter_mut().for_each(|v| *v = 0.0);
+        if let Some(g) = &self.general {
+            for (i, fi) in f.iter_mut().enumerate() {
+                for j in 0..x.len() {
+                    *fi += g.k[(i, j)] * x[j] + g.c[(i, j)] * v[j];
+                }
+            }
+            return;
+        }
         for (li, l) in self.links.iter().enumerate() {
             let d = Self::relative(l, x);
             let dv = Self::relative(l, v);
@@ -139,8 +215,19 @@ impl Dynamics {
         }
     }
 
-    /// Accelerations of the first-order form: `ẍ = −f/m − a_base`.
+    /// Accelerations of the first-order form: `ẍ = −f/m − a_base` (general: `−M⁻¹f − r·a_base`).
     pub fn accelerations(&self, f: &[f64], a_base: f64, acc: &mut [f64]) {
+        if let Some(g) = &self.general {
+            for (i, a) in acc.iter_mut().enumerate() {
+                let s: f64 = f
+                    .iter()
+                    .enumerate()
+                    .map(|(j, fj)| g.m_inv[(i, j)] * fj)
+                    .sum();
+                *a = -s - g.r[i] * a_base;
+            }
+            return;
+        }
         for ((a, fi), m) in acc.iter_mut().zip(f).zip(&self.mass) {
             *a = -fi / m - a_base;
         }

@@ -13,6 +13,7 @@ pub mod excitation;
 pub mod integrator;
 pub mod io;
 pub mod model;
+pub mod planar;
 pub mod plot;
 pub mod record;
 pub mod reproduce;

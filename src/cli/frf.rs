@@ -30,6 +30,9 @@ pub struct Args {
     /// Replace existing output files.
     #[arg(long)]
     force: bool,
+    /// Planar models: foam thickness of the cushion in m (paper 000: 0.06, 0.08, 0.10).
+    #[arg(long)]
+    foam_thickness: Option<f64>,
 }
 
 fn write_csv(set: &frf::FrfSet, out: &mut dyn Write) -> std::io::Result<()> {
@@ -51,7 +54,10 @@ fn write_csv(set: &frf::FrfSet, out: &mut dyn Write) -> std::io::Result<()> {
 }
 
 pub fn run(args: Args) -> crate::Result<()> {
-    let model = args.model.resolve()?;
+    let mut model = args.model.resolve()?;
+    if let Some(t) = args.foam_thickness {
+        crate::planar::params::set_foam_thickness(&mut model, t)?;
+    }
     let freqs = frf::grid(args.from, args.to, args.points, args.log)?;
     let set = frf::compute(&model, &freqs)?;
     let overwrite = if args.force {

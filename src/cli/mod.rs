@@ -4,6 +4,7 @@
 mod analyze;
 mod calibrate;
 mod excitations;
+mod export;
 mod foam;
 mod frf;
 mod gap;
@@ -47,6 +48,10 @@ enum Command {
     Simulate(simulate::Args),
     /// Regenerate the reproduction table of the source papers (docs/reproduction.md).
     Reproduce(reproduce::Args),
+    /// The model's linear state-space matrices (A, B, C) as JSON, for other tools.
+    StateSpace(export::StateSpaceArgs),
+    /// A weighting's digital filter as second-order sections (scipy `sos` layout) as JSON.
+    Weighting(export::WeightingArgs),
     /// List the built-in base excitations.
     Excitations(excitations::ListArgs),
     /// Write a base excitation as a measured-run CSV (t_s, a_base_z) to inspect it.
@@ -137,6 +142,8 @@ pub fn main() -> ExitCode {
         Command::Run(a) => run::run(a),
         Command::Replay(a) => replay::run(a),
         Command::Excitations(a) => excitations::list(a),
+        Command::StateSpace(a) => export::state_space(a),
+        Command::Weighting(a) => export::weighting(a),
         Command::ExcitationExport(a) => excitations::export(a),
         Command::Inspect(a) => inspect::run(a),
         Command::Sweep(a) => sweep::run(a),

@@ -18,6 +18,10 @@ pub fn run(args: Args) -> crate::Result<()> {
             "Seat components (stack below an occupant with +):",
             Kind::Seat,
         ),
+        (
+            "Planar occupant–seat systems (x, z, pitch; DOF = generalized coordinates):",
+            Kind::Planar,
+        ),
     ] {
         println!("{title}");
         for m in models.iter().filter(|m| m.kind == kind) {

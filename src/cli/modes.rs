@@ -8,10 +8,65 @@ pub struct Args {
     /// Print JSON instead of tables.
     #[arg(long)]
     json: bool,
+    /// Planar models: foam thickness of the cushion in m (paper 000: 0.06, 0.08, 0.10).
+    #[arg(long)]
+    foam_thickness: Option<f64>,
+}
+
+/// Static equilibrium and worded mode shapes of a planar model.
+fn print_planar(name: &str, p: &crate::planar::Planar) -> crate::Result<()> {
+    let eq = &p.equilibrium;
+    println!(
+        "Model {name}: static seated equilibrium ({} Newton iterations)",
+        eq.iterations
+    );
+    println!(
+        "  {:>10} {:>9} {:>9} {:>10} {:>10} {:>9} {:>9}",
+        "contact", "role", "N [N]", "T [N]", "Fx [N]", "Fz [N]", "x, z [m]"
+    );
+    for l in &eq.loads {
+        println!(
+            "  {:>10} {:>9} {:>9.1} {:>10.1} {:>10.1} {:>9.1}   {:.3}, {:.3}",
+            l.name, l.role, l.normal, l.tangential, l.force[0], l.force[1], l.point[0], l.point[1]
+        );
+    }
+    let f = eq.total_force();
+    println!(
+        "  sum of support forces: Fx = {:.3e} N, Fz = {:.2} N; body weight {:.2} N",
+        f[0], f[1], eq.weight
+    );
+    println!(
+        "  pitch moments about the seat origin: supports {:.3} N·m, gravity {:.3} N·m (sum {:.2e})",
+        eq.contact_moment(),
+        eq.gravity_moment,
+        eq.contact_moment() + eq.gravity_moment
+    );
+    println!(
+        "\nUndamped modes described (dominant motions; effective vertical / fore-and-aft mass %)"
+    );
+    for d in crate::planar::modes::describe(p)? {
+        println!(
+            "  {:7.3} Hz  {:5.1} % {:5.1} %  {}",
+            d.mode.freq_hz,
+            100.0 * d.vertical_mass_fraction,
+            100.0 * d.fore_aft_mass_fraction,
+            d.words()
+        );
+    }
+    println!();
+    Ok(())
 }
 
 pub fn run(args: Args) -> crate::Result<()> {
-    let model = args.model.resolve()?;
+    let mut model = args.model.resolve()?;
+    if let Some(t) = args.foam_thickness {
+        crate::planar::params::set_foam_thickness(&mut model, t)?;
+    }
+    if let Some(p) = &model.planar
+        && !args.json
+    {
+        print_planar(&model.name, p)?;
+    }
     let und = modes::undamped(&model)?;
     let dam = modes::damped(&model)?;
     let names: Vec<&str> = model.masses.iter().map(|m| m.name.as_str()).collect();

@@ -79,8 +79,11 @@ pub fn execute(
     let bar = progress(scenario.settings.steps());
     let outcome = scenario.execute(&outputs, Some(&bar))?;
     bar.finish_and_clear();
+    let memory = crate::io::memory::peak_resident_bytes().map_or(String::new(), |b| {
+        format!(", peak memory {:.0} MB", b as f64 / 1e6)
+    });
     println!(
-        "simulated {} s of `{}` under {} with {} in {:.2} s",
+        "simulated {} s of `{}` under {} with {} in {:.2} s{memory}",
         scenario.settings.duration_s,
         scenario.model.name,
         scenario.excitation.summary(),

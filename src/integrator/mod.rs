@@ -87,13 +87,13 @@ pub struct State {
 
 impl State {
     /// The model at rest in its static equilibrium with base acceleration `a_base0`:
-    /// relative acceleration `−a_base0` (the masses have not started to move).
+    /// relative acceleration `−r·a_base0` (the masses have not started to move).
     pub fn at_rest(dynamics: &Dynamics, a_base0: f64) -> State {
         let n = dynamics.dof();
         State {
             x: vec![0.0; n],
             v: vec![0.0; n],
-            a: vec![-a_base0; n],
+            a: (0..n).map(|i| -dynamics.influence(i) * a_base0).collect(),
             q: vec![0.0; dynamics.arms],
             qdot: vec![0.0; dynamics.arms],
         }

@@ -91,6 +91,9 @@ impl Newmark {
     fn jacobian(&self, x: &[f64], v: &[f64]) -> DMatrix<f64> {
         let n = self.dynamics.dof();
         let (g, b, dt) = (self.gamma, self.beta, self.dt);
+        if let Some(lin) = &self.dynamics.general {
+            return &lin.m + &lin.c * (g * dt) + &lin.k * (b * dt * dt);
+        }
         let mut jac = DMatrix::from_diagonal(&DVector::from_column_slice(&self.dynamics.mass));
         for l in &self.dynamics.links {
             let (_, kd, cv) =
@@ -142,9 +145,8 @@ impl Integrator for Newmark {
             self.trial(&a);
             self.dynamics
                 .forces(&self.x, &self.v, &self.q, &mut self.f, None, None);
-            for (i, ai) in a.iter().enumerate() {
-                self.rhs[i] = -(self.dynamics.mass[i] * (ai + ab) + self.f[i]);
-            }
+            self.dynamics
+                .residual(&a, ab, &self.f, self.rhs.as_mut_slice());
             let solved = match &self.linear {
                 Some(lu) => lu.solve_mut(&mut self.rhs),
                 None => self

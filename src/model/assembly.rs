@@ -27,8 +27,11 @@ where
     }
 }
 
-/// Diagonal mass matrix in kg.
+/// Diagonal mass matrix in kg (a planar model's full `M`).
 pub fn mass_matrix(model: &Model) -> DMatrix<f64> {
+    if let Some(p) = &model.planar {
+        return p.linear.m.clone();
+    }
     DMatrix::from_diagonal(&DVector::from_iterator(
         model.dof(),
         model.masses.iter().map(|m| m.m),
@@ -38,6 +41,9 @@ pub fn mass_matrix(model: &Model) -> DMatrix<f64> {
 /// Stiffness matrix in N/m with every dashpot locked (see [`crate::model::Element::locked_stiffness`]);
 /// nonlinear laws enter with their tangent at rest.
 pub fn stiffness_matrix(model: &Model) -> DMatrix<f64> {
+    if let Some(p) = &model.planar {
+        return p.linear.k.clone();
+    }
     let n = model.dof();
     let mut k = DMatrix::zeros(n, n);
     for l in &model.links {
@@ -56,6 +62,9 @@ pub fn stiffness_matrix(model: &Model) -> DMatrix<f64> {
 
 /// Damping matrix in N·s/m of the parallel (Kelvin–Voigt) dashpots, with nonlinear laws at rest.
 pub fn damping_matrix(model: &Model) -> DMatrix<f64> {
+    if let Some(p) = &model.planar {
+        return p.linear.c.clone();
+    }
     let n = model.dof();
     let mut c = DMatrix::zeros(n, n);
     for l in &model.links {
@@ -72,6 +81,15 @@ pub fn damping_matrix(model: &Model) -> DMatrix<f64> {
 /// small-amplitude linearisation about the seated equilibrium.
 pub fn dynamic_matrix(model: &Model, omega: f64) -> DMatrix<Complex64> {
     let n = model.dof();
+    if let Some(p) = &model.planar {
+        let l = &p.linear;
+        return DMatrix::from_fn(n, n, |i, j| {
+            Complex64::new(
+                l.k[(i, j)] - omega * omega * l.m[(i, j)],
+                omega * l.c[(i, j)],
+            )
+        });
+    }
     let mut d = DMatrix::from_element(n, n, Complex64::new(0.0, 0.0));
     for (i, m) in model.masses.iter().enumerate() {
         d[(i, i)] -= omega * omega * m.m;
@@ -113,6 +131,9 @@ pub struct StateSpace {
 /// Builds the state-space form of the model linearised at rest.
 pub fn state_space(model: &Model) -> StateSpace {
     let n = model.dof();
+    if let Some(p) = &model.planar {
+        return general_state_space(&p.linear);
+    }
     let arms: Vec<usize> = (0..model.links.len())
         .filter(|&l| model.links[l].element.relaxing_arm().is_some())
         .collect();
@@ -158,4 +179,33 @@ pub fn state_space(model: &Model) -> StateSpace {
         b[n + i] = -1.0;
     }
     StateSpace { a, b, n, arms }
+}
+
+/// State-space form of a planar model: `A = [0 I; −M⁻¹K −M⁻¹C]`, `b = [0; −r_z]`.
+fn general_state_space(l: &crate::planar::linearise::Linear) -> StateSpace {
+    let n = l.m.nrows();
+    let m_inv =
+        l.m.clone()
+            .try_inverse()
+            .unwrap_or_else(|| DMatrix::identity(n, n));
+    let mk = -(&m_inv * &l.k);
+    let mc = -(&m_inv * &l.c);
+    let mut a = DMatrix::zeros(2 * n, 2 * n);
+    for i in 0..n {
+        a[(i, n + i)] = 1.0;
+        for j in 0..n {
+            a[(n + i, j)] = mk[(i, j)];
+            a[(n + i, n + j)] = mc[(i, j)];
+        }
+    }
+    let mut b = DVector::zeros(2 * n);
+    for i in 0..n {
+        b[n + i] = -l.r_z[i];
+    }
+    StateSpace {
+        a,
+        b,
+        n,
+        arms: Vec::new(),
+    }
 }

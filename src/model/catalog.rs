@@ -38,6 +38,10 @@ pub const BUILTIN: &[(&str, &str)] = &[
         "cushion-zener",
         include_str!("../../models/cushion-zener.toml"),
     ),
+    (
+        "planar-occupant",
+        include_str!("../../models/planar-occupant.toml"),
+    ),
     ("reference", include_str!("../../models/reference.toml")),
     (
         "seed001-bare",

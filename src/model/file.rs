@@ -112,6 +112,9 @@ pub fn parse(text: &str, file: &str) -> Result<Model> {
         key,
         message,
     };
+    if is_planar(text) {
+        return crate::planar::file::parse(text, file);
+    }
     let spec: FileSpec = toml::from_str(text).map_err(|e| {
         let line = e
             .span()
@@ -150,7 +153,7 @@ pub fn parse(text: &str, file: &str) -> Result<Model> {
         Some(other) => {
             return Err(err(
                 "kind".into(),
-                format!("unknown kind `{other}`; expected system, occupant or seat"),
+                format!("unknown kind `{other}`; expected system, occupant, seat or planar"),
             ));
         }
     };
@@ -428,6 +431,7 @@ pub fn parse(text: &str, file: &str) -> Result<Model> {
                 kind,
                 top,
                 text: text.to_string(),
+                planar: None,
             });
         }
         (None, None) => {
@@ -489,7 +493,19 @@ pub fn parse(text: &str, file: &str) -> Result<Model> {
         kind,
         top,
         text: text.to_string(),
+        planar: None,
     })
+}
+
+/// True when the file says `kind = "planar"` (its own format, [`crate::planar::file`]).
+fn is_planar(text: &str) -> bool {
+    toml::from_str::<toml::Table>(text)
+        .ok()
+        .and_then(|t| {
+            t.get("kind")
+                .and_then(|k| k.as_str().map(|k| k == "planar"))
+        })
+        .unwrap_or(false)
 }
 
 #[cfg(test)]

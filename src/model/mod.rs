@@ -96,6 +96,9 @@ pub enum Kind {
     Occupant,
     /// A seat component (cushion, suspension, frame) with a `top` mass the occupant sits on.
     Seat,
+    /// A planar (x, z, pitch) occupant–seat system given by its linearised matrices
+    /// ([`crate::planar`]); it has no links and cannot be stacked.
+    Planar,
 }
 
 /// A validated occupant–seat model.
@@ -119,6 +122,9 @@ pub struct Model {
     pub top: Option<usize>,
     /// The TOML text the model was read from (kept for run provenance).
     pub text: String,
+    /// For `kind = "planar"`: the planar system; its "masses" are then the generalized
+    /// coordinates and `M`, `C`, `K` come from here instead of the links.
+    pub planar: Option<Box<crate::planar::Planar>>,
 }
 
 impl Model {

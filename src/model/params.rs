@@ -6,6 +6,9 @@ use crate::error::{Error, Result};
 
 /// Every parameter path of `model`, in model order.
 pub fn list(model: &Model) -> Vec<String> {
+    if let Some(p) = &model.planar {
+        return crate::planar::params::list(&p.spec);
+    }
     let mut out: Vec<String> = model
         .masses
         .iter()
@@ -76,6 +79,9 @@ fn slot<'a>(model: &'a mut Model, path: &str) -> Result<&'a mut f64> {
 
 /// The value of parameter `path`.
 pub fn get(model: &Model, path: &str) -> Result<f64> {
+    if model.planar.is_some() {
+        return crate::planar::params::get(model, path);
+    }
     let mut m = model.clone();
     slot(&mut m, path).map(|v| *v)
 }
@@ -83,6 +89,9 @@ pub fn get(model: &Model, path: &str) -> Result<f64> {
 /// Sets parameter `path` to `value`, refusing values that make the model unphysical (masses and
 /// Maxwell/Zener arms must stay positive, everything else non-negative).
 pub fn set(model: &mut Model, path: &str, value: f64) -> Result<()> {
+    if model.planar.is_some() {
+        return crate::planar::params::set(model, path, value);
+    }
     let must_be_positive = path.starts_with("mass.")
         || path.ends_with(".k_m")
         || path.ends_with(".c_m")

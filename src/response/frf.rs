@@ -9,6 +9,9 @@
 //! - `apms` = `F / A_seat` in kg, where `F` is the upward force the interface links put on the body;
 //! - `dpmi` = `F / V_seat = iω·apms` in N·s/m;
 //! - `t_<mass>` = `A_mass`, base-to-mass transmissibility.
+//!
+//! Planar models have their own set (v-v and v-h seat transmissibility, apparent masses in both
+//! axes): [`crate::planar::response`].
 
 use crate::error::{Error, Result};
 use crate::model::assembly::{dynamic_matrix, link_dynamic_stiffness};
@@ -87,6 +90,15 @@ pub fn grid(from: f64, to: f64, points: usize, log: bool) -> Result<Vec<f64>> {
 /// Solves for the absolute mass accelerations per unit base acceleration at `f` Hz, and the seat
 /// interface force on the body per unit base acceleration (N per m/s²).
 pub fn solve_point(model: &Model, f: f64) -> Result<(Vec<Complex64>, Complex64)> {
+    if model.planar.is_some() {
+        return Err(Error::parameter(
+            "model",
+            format!(
+                "`{}` is planar; use frf::compute for its responses",
+                model.name
+            ),
+        ));
+    }
     let omega = 2.0 * PI * f;
     let d = dynamic_matrix(model, omega);
     let rhs = DVector::from_iterator(
@@ -121,6 +133,10 @@ pub fn solve_point(model: &Model, f: f64) -> Result<(Vec<Complex64>, Complex64)>
 
 /// Computes every standard response of `model` at the frequencies `freq_hz`.
 pub fn compute(model: &Model, freq_hz: &[f64]) -> Result<FrfSet> {
+    if let Some(p) = &model.planar {
+        let names: Vec<String> = model.masses.iter().map(|m| m.name.clone()).collect();
+        return crate::planar::response::compute(p, &names, freq_hz);
+    }
     let n = model.dof();
     let has_head = model.measure.head.is_some();
     let has_force = !model.measure.interface.is_empty();

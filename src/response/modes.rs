@@ -44,6 +44,9 @@ pub struct DampedMode {
 pub fn undamped(model: &Model) -> Result<Vec<UndampedMode>> {
     let m = mass_matrix(model);
     let k = stiffness_matrix(model);
+    if model.planar.is_some() {
+        return generalized(&m, &k);
+    }
     let n = model.dof();
     let s: Vec<f64> = (0..n).map(|i| 1.0 / m[(i, i)].sqrt()).collect();
     let a = DMatrix::from_fn(n, n, |i, j| s[i] * k[(i, j)] * s[j]);
@@ -60,6 +63,45 @@ pub fn undamped(model: &Model) -> Result<Vec<UndampedMode>> {
             shape.iter_mut().for_each(|v| *v /= big);
             UndampedMode {
                 freq_hz: lambda.sqrt() / (2.0 * PI),
+                shape,
+            }
+        })
+        .collect();
+    modes.sort_by(|a, b| a.freq_hz.total_cmp(&b.freq_hz));
+    Ok(modes)
+}
+
+/// Undamped modes of a full (symmetric positive definite) mass matrix: with `M = L·Lᵀ`
+/// (Cholesky), `K·φ = ω²·M·φ` becomes the symmetric `L⁻¹·K·L⁻ᵀ·y = ω²·y`, `φ = L⁻ᵀ·y`.
+pub fn generalized(m: &DMatrix<f64>, k: &DMatrix<f64>) -> Result<Vec<UndampedMode>> {
+    let n = m.nrows();
+    let chol = m
+        .clone()
+        .cholesky()
+        .ok_or_else(|| Error::parameter("model", "the mass matrix is not positive definite"))?;
+    let l = chol.l();
+    let l_inv = l
+        .clone()
+        .try_inverse()
+        .ok_or_else(|| Error::parameter("model", "singular mass matrix"))?;
+    let a = &l_inv * k * l_inv.transpose();
+    let a = (&a + a.transpose()) * 0.5;
+    let eig = a.symmetric_eigen();
+    let mut modes: Vec<UndampedMode> = (0..n)
+        .map(|c| {
+            let lambda = eig.eigenvalues[c];
+            let y = eig.eigenvectors.column(c).into_owned();
+            let phi = l_inv.transpose() * y;
+            let mut shape: Vec<f64> = phi.iter().copied().collect();
+            let big = shape
+                .iter()
+                .copied()
+                .max_by(|a, b| a.abs().total_cmp(&b.abs()))
+                .unwrap_or(1.0);
+            shape.iter_mut().for_each(|v| *v /= big);
+            UndampedMode {
+                // A statically unstable coordinate (λ < 0) is reported with a negative frequency.
+                freq_hz: lambda.signum() * lambda.abs().sqrt() / (2.0 * PI),
                 shape,
             }
         })
