@@ -1,5 +1,6 @@
 //! Time-domain ISO 2631-1 figures of a study point: the point's model is simulated under one
-//! excitation (no recording) and its measured channels analysed by [`crate::analysis::Report`].
+//! excitation (no recording) and its measured channels analysed while it runs
+//! ([`crate::analysis::AnalysisObserver`], the same analysis as `wbv simulate`).
 //!
 //! Every point uses the same excitation, settings **and seed** (common random numbers): the base
 //! input is the same sample sequence at every point, so differences between points are the
@@ -7,7 +8,7 @@
 
 use super::sweep::PointFigures;
 use crate::analysis::comfort::{self, Comfort};
-use crate::analysis::{Options, Report};
+use crate::analysis::{AnalysisObserver, Options};
 use crate::error::{Error, Result};
 use crate::excitation::ExcitationSpec;
 use crate::model::Model;
@@ -50,7 +51,11 @@ impl IsoRun {
             settings: self.settings,
             seed: self.seed,
         };
-        let report = Report::from_signals(&scenario.signals()?, &Options::default())?;
+        // Analysed while it runs: memory does not grow with the duration.
+        let mut analysis =
+            AnalysisObserver::new(&format!("simulated {}", model.name), Options::default());
+        scenario.simulate(&mut [&mut analysis], None)?;
+        let report = analysis.into_report()?;
         let a_w_seat = report.channel("a_seat_z").map(|c| c.a_w).ok_or_else(|| {
             Error::parameter(
                 &model.name,
