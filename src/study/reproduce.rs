@@ -97,33 +97,41 @@ fn trends(rows: &mut Vec<Row>, study: &[FoamPoint]) {
     let (p, q) = (&PAPER_TABLE_4[0], &PAPER_TABLE_4[2]);
     let (a, b) = (&study[0], &study[2]);
     let (ia, ib) = (a.iso.expect("run given"), b.iso.expect("run given"));
-    let trend = |what: &str| format!("foam 60→100 mm: change of the {what}");
-    rows.push(row(
-        trend("v-v peak frequency"),
-        pct(p.peak_freq_hz, q.peak_freq_hz),
-        pct(a.peak.freq_hz, b.peak.freq_hz),
-        "%",
-        "trend: thicker foam, softer layer (k ∝ 1/t), lower resonance".into(),
-    ));
-    rows.push(row(
-        trend("v-v peak transmissibility"),
-        pct(p.peak, q.peak),
-        pct(a.peak.value, b.peak.value),
-        "%",
-        "trend: the layer's damping ratio falls as 1/√t, so the peak rises".into(),
-    ));
-    rows.push(row(
-        trend("v-v SEAT"),
-        pct(p.seat_pct, q.seat_pct),
-        pct(ia.seat_percent, ib.seat_percent),
-        "%",
-        "same seed at every thickness: the change is the foam's, not the random input's".into(),
-    ));
-    rows.push(row(
-        trend("total WRMSA"),
-        pct(p.wrmsa_m_s2, q.wrmsa_m_s2),
-        pct(ia.total_value, ib.total_value),
-        "%",
-        "same seed at every thickness".into(),
-    ));
+    let same_seed =
+        "same seed at every thickness: the change is the foam's, not the random input's";
+    let table: [(&str, [f64; 2], [f64; 2], &str); 4] = [
+        (
+            "v-v peak frequency",
+            [p.peak_freq_hz, q.peak_freq_hz],
+            [a.peak.freq_hz, b.peak.freq_hz],
+            "trend: thicker foam, softer layer (k ∝ 1/t), lower resonance",
+        ),
+        (
+            "v-v peak transmissibility",
+            [p.peak, q.peak],
+            [a.peak.value, b.peak.value],
+            "trend: the layer's damping ratio falls as 1/√t, so the peak rises",
+        ),
+        (
+            "v-v SEAT",
+            [p.seat_pct, q.seat_pct],
+            [ia.seat_percent, ib.seat_percent],
+            same_seed,
+        ),
+        (
+            "total WRMSA",
+            [p.wrmsa_m_s2, q.wrmsa_m_s2],
+            [ia.total_value, ib.total_value],
+            same_seed,
+        ),
+    ];
+    for (what, [p0, p1], [w0, w1], note) in table {
+        rows.push(row(
+            format!("foam 60→100 mm: change of the {what}"),
+            pct(p0, p1),
+            pct(w0, w1),
+            "%",
+            note.into(),
+        ));
+    }
 }
