@@ -54,21 +54,25 @@ pub fn undamped(model: &Model) -> Result<Vec<UndampedMode>> {
     let mut modes: Vec<UndampedMode> = (0..n)
         .map(|c| {
             let lambda = eig.eigenvalues[c].max(0.0);
-            let mut shape: Vec<f64> = (0..n).map(|i| s[i] * eig.eigenvectors[(i, c)]).collect();
-            let big = shape
-                .iter()
-                .copied()
-                .max_by(|a, b| a.abs().total_cmp(&b.abs()))
-                .unwrap_or(1.0);
-            shape.iter_mut().for_each(|v| *v /= big);
-            UndampedMode {
-                freq_hz: lambda.sqrt() / (2.0 * PI),
-                shape,
-            }
+            let shape = (0..n).map(|i| s[i] * eig.eigenvectors[(i, c)]).collect();
+            UndampedMode::normalised(lambda.sqrt() / (2.0 * PI), shape)
         })
         .collect();
     modes.sort_by(|a, b| a.freq_hz.total_cmp(&b.freq_hz));
     Ok(modes)
+}
+
+impl UndampedMode {
+    /// The mode at `freq_hz` with `shape` divided by its largest-magnitude component (which becomes 1).
+    fn normalised(freq_hz: f64, mut shape: Vec<f64>) -> Self {
+        let big = shape
+            .iter()
+            .copied()
+            .max_by(|a, b| a.abs().total_cmp(&b.abs()))
+            .unwrap_or(1.0);
+        shape.iter_mut().for_each(|v| *v /= big);
+        UndampedMode { freq_hz, shape }
+    }
 }
 
 /// Undamped modes of a full (symmetric positive definite) mass matrix: with `M = L·Lᵀ`
@@ -92,18 +96,9 @@ pub fn generalized(m: &DMatrix<f64>, k: &DMatrix<f64>) -> Result<Vec<UndampedMod
             let lambda = eig.eigenvalues[c];
             let y = eig.eigenvectors.column(c).into_owned();
             let phi = l_inv.transpose() * y;
-            let mut shape: Vec<f64> = phi.iter().copied().collect();
-            let big = shape
-                .iter()
-                .copied()
-                .max_by(|a, b| a.abs().total_cmp(&b.abs()))
-                .unwrap_or(1.0);
-            shape.iter_mut().for_each(|v| *v /= big);
-            UndampedMode {
-                // A statically unstable coordinate (λ < 0) is reported with a negative frequency.
-                freq_hz: lambda.signum() * lambda.abs().sqrt() / (2.0 * PI),
-                shape,
-            }
+            // A statically unstable coordinate (λ < 0) is reported with a negative frequency.
+            let freq_hz = lambda.signum() * lambda.abs().sqrt() / (2.0 * PI);
+            UndampedMode::normalised(freq_hz, phi.iter().copied().collect())
         })
         .collect();
     modes.sort_by(|a, b| a.freq_hz.total_cmp(&b.freq_hz));
