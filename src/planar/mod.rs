@@ -17,6 +17,7 @@ pub mod linearise;
 pub mod modes;
 pub mod params;
 pub mod posture;
+pub mod replay;
 pub mod reproduce;
 pub mod response;
 pub mod segment;
