@@ -445,7 +445,7 @@ const NOTES: &str = "
   peak frequencies, but pulls modes 2 and 3 down to 3.6 and 4.4 Hz: in this model the vertical
   mode on a rigid pan (paper 6.01 Hz) and the v-v peak on foam (3.93 Hz) cannot both match, and the
   peaks barely move with foam thickness. With the paper's own hyperfoam constants (small-strain
-  modulus 2Σaᵢ = 330 kPa) an 80 mm layer is about ten times stiffer than the tissue on it, so the
+  modulus 2Σaᵢ = 330 kPa) an 80 mm layer is five to ten times stiffer than the tissue on it, so the
   tissue sets the resonance; the paper's FE trend (−30 % v-h peak frequency from 60 to 100 mm)
   needs a much softer foam than its §2 constants describe.
 
