@@ -134,9 +134,12 @@ impl Scenario {
             Some(p) => Some(crate::io::csv_run::CsvWriter::create(p, overwrite)?),
             None => None,
         };
-        let mut collector = Collector::new();
+        let mut analysis = crate::analysis::AnalysisObserver::new(
+            &format!("simulated {}", self.model.name),
+            Default::default(),
+        );
         {
-            let mut observers: Vec<&mut dyn Observer> = vec![&mut collector];
+            let mut observers: Vec<&mut dyn Observer> = vec![&mut analysis];
             if let Some(r) = recorder.as_mut() {
                 observers.push(r);
             }
@@ -145,12 +148,10 @@ impl Scenario {
             }
             self.simulate(&mut observers, progress)?;
         }
-        let signals = collector.into_signals(&format!("simulated {}", self.model.name))?;
-        let (report, report_skipped) =
-            match crate::analysis::Report::from_signals(&signals, &Default::default()) {
-                Ok(r) => (Some(r), None),
-                Err(e) => (None, Some(e.to_string())),
-            };
+        let (report, report_skipped) = match analysis.into_report() {
+            Ok(r) => (Some(r), None),
+            Err(e) => (None, Some(e.to_string())),
+        };
         if let Some(mut r) = recorder {
             if let Some(rep) = &report {
                 let json = serde_json::to_value(rep).expect("report serializes");

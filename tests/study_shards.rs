@@ -15,6 +15,8 @@ fn wbv(args: &[&str]) {
     );
 }
 
+/// The sweep of the shard test: a 5 × 3 grid, with time-domain ISO figures per point (a short
+/// random run) so that those columns travel through the shards too.
 fn sweep(out: &Path, shard: Option<&str>) {
     let mut args = vec![
         "sweep",
@@ -36,6 +38,12 @@ fn sweep(out: &Path, shard: Option<&str>) {
         "10",
         "--points",
         "40",
+        "--excitation",
+        "random",
+        "--rms",
+        "0.4",
+        "--duration",
+        "4",
         "--out",
         out.to_str().unwrap(),
     ];
@@ -74,6 +82,16 @@ fn three_shards_merge_to_the_unsharded_output() {
         let a = std::fs::read(d.join(format!("all{suffix}.csv"))).unwrap();
         assert_eq!(std::fs::read(&merged).unwrap(), a, "{suffix}");
     }
+    let peaks = std::fs::read_to_string(d.join("all-peaks.csv")).unwrap();
+    assert!(
+        peaks.starts_with(
+            "point,link.cushion.k,link.cushion.zeta@60,peak_freq_hz,peak_mag,\
+             a_w_seat_m_s2,a_v_m_s2,seat_pct,comfort\n"
+        ),
+        "{peaks}"
+    );
+    assert_eq!(peaks.lines().count(), 16);
+    assert!(peaks.contains("uncomfortable"));
     // A missing shard is an error, not a silently short table.
     let out = Command::new(env!("CARGO_BIN_EXE_wbv"))
         .args([
@@ -89,7 +107,7 @@ fn three_shards_merge_to_the_unsharded_output() {
 }
 
 #[test]
-fn sweep_is_deterministic_and_plots() {
+fn sweep_is_deterministic_and_plots_curves_heat_map_and_iso_figures() {
     let dir = tempfile::tempdir().unwrap();
     let (a, b) = (dir.path().join("a.csv"), dir.path().join("b.csv"));
     sweep(&a, None);
@@ -110,6 +128,12 @@ fn sweep_is_deterministic_and_plots() {
         "50",
         "--plot",
         plot.to_str().unwrap(),
+        "--excitation",
+        "sine-4hz",
+        "--duration",
+        "4",
     ]);
-    assert!(plot.exists() && dir.path().join("p-heatmap.svg").exists());
+    for name in ["p.svg", "p-heatmap.svg", "p-iso.svg"] {
+        assert!(dir.path().join(name).exists(), "{name}");
+    }
 }

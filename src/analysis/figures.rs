@@ -15,70 +15,175 @@ pub enum Averaging {
     Exponential,
 }
 
+/// Sums of a signal fed in blocks: count, Σa², Σa⁴ and max |a|, from which r.m.s., VDV, MSDV, peak
+/// and crest factor follow. Accumulated in sample order, so any split of the signal gives the same
+/// figures bit for bit.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct Moments {
+    pub count: usize,
+    pub sum_sq: f64,
+    pub sum_4: f64,
+    pub peak: f64,
+}
+
+impl Moments {
+    /// Adds the samples of `x`.
+    pub fn push(&mut self, x: &[f64]) {
+        for &v in x {
+            let sq = v * v;
+            self.sum_sq += sq;
+            self.sum_4 += sq * sq;
+            self.peak = self.peak.max(v.abs());
+        }
+        self.count += x.len();
+    }
+
+    /// The moments of `x`.
+    pub fn of(x: &[f64]) -> Self {
+        let mut m = Moments::default();
+        m.push(x);
+        m
+    }
+
+    /// R.m.s. [ (1/T) ∫ a² dt ]^½ (ISO 2631-1 eq. 1), in the unit of the signal; 0 when empty.
+    pub fn rms(&self) -> f64 {
+        if self.count == 0 {
+            0.0
+        } else {
+            (self.sum_sq / self.count as f64).sqrt()
+        }
+    }
+
+    /// Vibration dose value [ ∫ a⁴ dt ]^¼ (ISO 2631-1 eq. 5), m/s^1.75 for a in m/s².
+    pub fn vdv(&self, fs: f64) -> f64 {
+        (self.sum_4 / fs).powf(0.25)
+    }
+
+    /// [ ∫ a² dt ]^½: the motion sickness dose value (ISO 2631-1 clause 9) of a Wf-weighted signal,
+    /// m/s^1.5 for a in m/s².
+    pub fn msdv(&self, fs: f64) -> f64 {
+        (self.sum_sq / fs).sqrt()
+    }
+
+    /// |peak| / r.m.s. (ISO 2631-1 6.2.1); 0 for a zero signal.
+    pub fn crest_factor(&self) -> f64 {
+        let r = self.rms();
+        if r > 0.0 { self.peak / r } else { 0.0 }
+    }
+}
+
+/// The running r.m.s. of ISO 2631-1 6.3.1 fed in blocks, tracking its maximum (the MTVV). The
+/// linear window keeps the last τ·fs samples, so memory does not grow with the duration.
+#[derive(Debug, Clone)]
+pub struct RunningRms {
+    averaging: Averaging,
+    /// Linear: window length in samples; the window's samples (ring) and their running Σa².
+    n: usize,
+    window: Vec<f64>,
+    seen: usize,
+    sum: f64,
+    /// Exponential: decay per sample and the running mean square.
+    decay: f64,
+    mean_square: f64,
+    max: f64,
+}
+
+impl RunningRms {
+    /// Integration time `tau_s` (1 s recommended) at sample rate `fs` Hz.
+    pub fn new(fs: f64, tau_s: f64, averaging: Averaging) -> Self {
+        let n = match averaging {
+            Averaging::Linear => ((tau_s * fs).round() as usize).max(1),
+            Averaging::Exponential => 0,
+        };
+        RunningRms {
+            averaging,
+            n,
+            window: vec![0.0; n],
+            seen: 0,
+            sum: 0.0,
+            decay: (-1.0 / (tau_s * fs)).exp(),
+            mean_square: 0.0,
+            max: 0.0,
+        }
+    }
+
+    /// The running r.m.s. after sample `v`.
+    pub fn next(&mut self, v: f64) -> f64 {
+        let r = match self.averaging {
+            // Eq. (2): the window ramps up from zero at t = 0.
+            Averaging::Linear => {
+                let slot = self.seen % self.n;
+                self.sum += v * v;
+                if self.seen >= self.n {
+                    let old = self.window[slot];
+                    self.sum -= old * old;
+                }
+                self.window[slot] = v;
+                self.seen += 1;
+                // Clamp tiny negative round-off of the sliding sum.
+                (self.sum.max(0.0) / self.n as f64).sqrt()
+            }
+            // Eq. (3), ISO 8041 exponential averaging.
+            Averaging::Exponential => {
+                self.mean_square = self.decay * self.mean_square + (1.0 - self.decay) * v * v;
+                self.mean_square.sqrt()
+            }
+        };
+        self.max = self.max.max(r);
+        r
+    }
+
+    /// Feeds a block.
+    pub fn push(&mut self, x: &[f64]) {
+        for &v in x {
+            self.next(v);
+        }
+    }
+
+    /// The largest running r.m.s. so far: the MTVV (ISO 2631-1 eq. 4).
+    pub fn max(&self) -> f64 {
+        self.max
+    }
+}
+
 /// R.m.s. [ (1/T) ∫ a² dt ]^½ (ISO 2631-1 eq. 1), in the unit of `x`.
 pub fn rms(x: &[f64]) -> f64 {
-    if x.is_empty() {
-        return 0.0;
-    }
-    (x.iter().map(|v| v * v).sum::<f64>() / x.len() as f64).sqrt()
+    Moments::of(x).rms()
 }
 
 /// Running r.m.s. with integration time `tau_s` (ISO 2631-1 eqs. 2 and 3; τ = 1 s recommended).
 pub fn running_rms(x: &[f64], fs: f64, tau_s: f64, averaging: Averaging) -> Vec<f64> {
-    let mut out = Vec::with_capacity(x.len());
-    match averaging {
-        Averaging::Linear => {
-            let n = ((tau_s * fs).round() as usize).max(1);
-            let mut sum = 0.0;
-            for (i, v) in x.iter().enumerate() {
-                sum += v * v;
-                if i >= n {
-                    sum -= x[i - n] * x[i - n];
-                }
-                // Clamp tiny negative round-off of the sliding sum.
-                out.push((sum.max(0.0) / n as f64).sqrt());
-            }
-        }
-        Averaging::Exponential => {
-            let decay = (-1.0 / (tau_s * fs)).exp();
-            let mut m = 0.0;
-            for v in x {
-                m = decay * m + (1.0 - decay) * v * v;
-                out.push(m.sqrt());
-            }
-        }
-    }
-    out
+    let mut r = RunningRms::new(fs, tau_s, averaging);
+    x.iter().map(|&v| r.next(v)).collect()
 }
 
 /// Maximum transient vibration value: the largest running r.m.s. (ISO 2631-1 eq. 4), unit of `x`.
 pub fn mtvv(x: &[f64], fs: f64, tau_s: f64, averaging: Averaging) -> f64 {
-    running_rms(x, fs, tau_s, averaging)
-        .into_iter()
-        .fold(0.0, f64::max)
+    let mut r = RunningRms::new(fs, tau_s, averaging);
+    r.push(x);
+    r.max()
 }
 
 /// Vibration dose value [ ∫ a⁴ dt ]^¼ (ISO 2631-1 eq. 5), in m/s^1.75 for a in m/s². Not divided
 /// by the duration.
 pub fn vdv(x: &[f64], fs: f64) -> f64 {
-    (x.iter().map(|v| (v * v) * (v * v)).sum::<f64>() / fs).powf(0.25)
+    Moments::of(x).vdv(fs)
 }
 
 /// Motion sickness dose value [ ∫ a_w² dt ]^½ (ISO 2631-1 clause 9, eq. D.1 form), in m/s^1.5
 /// for a Wf-weighted acceleration in m/s².
 pub fn msdv(x: &[f64], fs: f64) -> f64 {
-    (x.iter().map(|v| v * v).sum::<f64>() / fs).sqrt()
+    Moments::of(x).msdv(fs)
 }
 
 /// Largest |a(t)|, in the unit of `x`.
 pub fn peak(x: &[f64]) -> f64 {
-    x.iter().fold(0.0, |m, v| m.max(v.abs()))
+    Moments::of(x).peak
 }
 
 /// Crest factor |peak| / r.m.s. of the weighted signal (ISO 2631-1 6.2.1); dimensionless.
 pub fn crest_factor(x: &[f64]) -> f64 {
-    let r = rms(x);
-    if r > 0.0 { peak(x) / r } else { 0.0 }
+    Moments::of(x).crest_factor()
 }
 
 /// Above this crest factor the basic r.m.s. method may underestimate the effect of shocks

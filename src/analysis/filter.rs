@@ -209,13 +209,35 @@ impl WeightingFilter {
         y
     }
 
-    /// Weights `x` in place, starting from rest. All sections advance together sample by sample,
-    /// so their independent recursions overlap in the CPU pipeline.
+    /// Weights `x` in place, starting from rest.
     pub fn apply_in_place(&self, x: &mut [f64]) {
-        let mut state = vec![[0.0f64; 2]; self.sections.len()];
+        self.stream().process(x);
+    }
+
+    /// The filter with its state at rest, to weight a signal block by block.
+    pub fn stream(&self) -> FilterStream {
+        FilterStream {
+            sections: self.sections.clone(),
+            state: vec![[0.0; 2]; self.sections.len()],
+        }
+    }
+}
+
+/// A [`WeightingFilter`] that keeps its state between blocks: weighting a signal in any split
+/// gives the same samples, bit for bit, as weighting it whole.
+#[derive(Debug, Clone)]
+pub struct FilterStream {
+    sections: Vec<Biquad>,
+    state: Vec<[f64; 2]>,
+}
+
+impl FilterStream {
+    /// Weights the next block in place. All sections advance together sample by sample, so their
+    /// independent recursions overlap in the CPU pipeline.
+    pub fn process(&mut self, x: &mut [f64]) {
         for v in x.iter_mut() {
             let mut u = *v;
-            for (s, st) in self.sections.iter().zip(state.iter_mut()) {
+            for (s, st) in self.sections.iter().zip(self.state.iter_mut()) {
                 u = s.step(u, st);
             }
             *v = u;

@@ -10,6 +10,7 @@ pub mod plots;
 pub mod report;
 pub mod seat;
 pub mod spectrum;
+pub mod stream;
 pub mod weighting;
 
 pub use comfort::Comfort;
@@ -17,6 +18,7 @@ pub use figures::Averaging;
 pub use filter::WeightingFilter;
 pub use report::{ChannelReport, Options, Report};
 pub use spectrum::{CrossSpectra, Segment, Spectrum, Welch, WelchOptions, Window};
+pub use stream::{AnalysisObserver, ReportBuilder};
 pub use weighting::Weighting;
 
 use crate::error::Result;

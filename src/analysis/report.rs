@@ -3,14 +3,14 @@
 //! reproduce it byte for byte (all computations are deterministic).
 
 use super::comfort::{self, Comfort};
-use super::figures::{self as fig, Averaging};
-use super::filter::WeightingFilter;
+use super::figures as fig;
 use super::health::{self, Health};
-use super::octave::{self, Band};
+use super::octave::Band;
 use super::seat;
-use super::spectrum::{Segment, Welch, WelchOptions};
+use super::spectrum::WelchOptions;
+pub use super::stream::ReportBuilder;
 use super::weighting::Weighting;
-use crate::error::{Error, Result};
+use crate::error::Result;
 use crate::signals::Signals;
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
@@ -114,79 +114,7 @@ fn units() -> BTreeMap<String, String> {
     .collect()
 }
 
-/// Splits `a_<place>_<axis>` into (place, axis) for translational axes x, y, z.
-fn parse_name(name: &str) -> Option<(&str, &str)> {
-    let rest = name.strip_prefix("a_")?;
-    let (place, axis) = rest.rsplit_once('_')?;
-    (!place.is_empty() && matches!(axis, "x" | "y" | "z")).then_some((place, axis))
-}
-
-/// Weighting and comfort k of a channel (ISO 2631-1 Tables 1–2, 8.2.2).
-fn weighting_for(place: &str, axis: &str) -> (Weighting, f64) {
-    match (place, axis) {
-        ("back", "x") => (Weighting::Wc, 0.8),
-        ("back", "y") => (Weighting::Wd, 0.5),
-        ("back", "z") => (Weighting::Wd, 0.4),
-        ("feet", "z") => (Weighting::Wk, 0.4),
-        ("feet", _) => (Weighting::Wk, 0.25),
-        (_, "z") => (Weighting::Wk, 1.0),
-        _ => (Weighting::Wd, 1.0),
-    }
-}
-
-fn check_samples(signals: &Signals, name: &str, x: &[f64]) -> Result<()> {
-    match x.iter().position(|v| !v.is_finite()) {
-        Some(i) => Err(Error::data(
-            &signals.source,
-            None,
-            format!(
-                "channel `{name}` sample {i} is {}; expected a finite acceleration",
-                x[i]
-            ),
-        )),
-        None => Ok(()),
-    }
-}
-
 impl ChannelReport {
-    fn compute(name: &str, x: &[f64], fs: f64, opts: &Options) -> Result<Self> {
-        let (place, axis) = parse_name(name).expect("caller filtered names");
-        let (weighting, k) = weighting_for(place, axis);
-        let aw = WeightingFilter::new(weighting, fs)?.apply(x);
-        let a_w = fig::rms(&aw);
-        let msdv = if axis == "z" {
-            Some(fig::msdv(
-                &WeightingFilter::new(Weighting::Wf, fs)?.apply(x),
-                fs,
-            ))
-        } else {
-            None
-        };
-        let mut welch_opts = opts.welch;
-        let mut welch = Welch::new(fs, &welch_opts)?;
-        if welch.segment_len() > x.len() {
-            welch_opts.segment = Segment::Samples(x.len());
-            welch = Welch::new(fs, &welch_opts)?;
-        }
-        let bands = octave::third_octave_bands(&welch.psd(x)?, -3, 19);
-        Ok(ChannelReport {
-            name: name.to_string(),
-            place: place.to_string(),
-            axis: axis.to_string(),
-            weighting,
-            k,
-            rms: fig::rms(x),
-            a_w,
-            vdv: fig::vdv(&aw, fs),
-            mtvv: fig::mtvv(&aw, fs, opts.tau_s, Averaging::Linear),
-            mtvv_exponential: fig::mtvv(&aw, fs, opts.tau_s, Averaging::Exponential),
-            peak: fig::peak(&aw),
-            crest_factor: fig::crest_factor(&aw),
-            msdv,
-            bands,
-        })
-    }
-
     fn notes(&self, duration_s: f64) -> Vec<String> {
         let mut notes = Vec::new();
         if self.crest_factor > fig::CREST_FACTOR_LIMIT {
@@ -212,42 +140,29 @@ impl ChannelReport {
 }
 
 impl Report {
-    /// Analyses every `a_<place>_<x|y|z>` channel of `signals`.
+    /// Analyses every `a_<place>_<x|y|z>` channel of `signals` (through [`ReportBuilder`], so a
+    /// run analysed while it is simulated gets the same report bit for bit).
     pub fn from_signals(signals: &Signals, opts: &Options) -> Result<Report> {
-        let fs = signals.sample_rate_hz;
-        if signals.is_empty() {
-            return Err(Error::data(&signals.source, None, "the run has no samples"));
-        }
-        if !(opts.tau_s.is_finite() && opts.tau_s > 0.0) {
-            return Err(Error::parameter(
-                "tau",
-                format!("{} s; expected > 0", opts.tau_s),
-            ));
-        }
-        if let Some(h) = opts.exposure_hours.filter(|h| !(h.is_finite() && *h > 0.0)) {
-            return Err(Error::parameter(
-                "exposure-hours",
-                format!("{h}; expected > 0"),
-            ));
-        }
-        let mut channels = Vec::new();
-        for (name, x) in signals.names.iter().zip(&signals.data) {
-            if parse_name(name).is_some() {
-                check_samples(signals, name, x)?;
-                channels.push(ChannelReport::compute(name, x, fs, opts)?);
-            }
-        }
-        if channels.is_empty() {
-            return Err(Error::data(
-                &signals.source,
-                None,
-                format!(
-                    "no acceleration channel `a_<place>_<x|y|z>` (present: {})",
-                    signals.names.join(", ")
-                ),
-            ));
-        }
-        let duration_s = signals.duration_s();
+        let mut builder = ReportBuilder::new(
+            &signals.source,
+            &signals.names,
+            signals.sample_rate_hz,
+            signals.len(),
+            opts,
+        )?;
+        builder.push(&signals.data.iter().map(Vec::as_slice).collect::<Vec<_>>())?;
+        builder.finish()
+    }
+
+    /// Combines the channel figures of a run into the report: comfort total value, SEAT, health
+    /// and notes.
+    pub(super) fn assemble(
+        source: &str,
+        fs: f64,
+        duration_s: f64,
+        channels: Vec<ChannelReport>,
+        opts: &Options,
+    ) -> Report {
         let comfort_place = if channels.iter().any(|c| c.place == "seat") {
             "seat".to_string()
         } else {
@@ -277,8 +192,8 @@ impl Report {
             health::assess(&axes, duration_s, h)
         });
         let notes = channels.iter().flat_map(|c| c.notes(duration_s)).collect();
-        Ok(Report {
-            source: signals.source.clone(),
+        Report {
+            source: source.to_string(),
             sample_rate_hz: fs,
             duration_s,
             comfort_place,
@@ -290,7 +205,7 @@ impl Report {
             notes,
             channels,
             units: units(),
-        })
+        }
     }
 
     /// Comfort class of the total value (ISO 2631-1 Annex C; rule in [`comfort`]).

@@ -257,9 +257,9 @@ impl Welch {
         Ok((len - self.n) / self.step + 1)
     }
 
-    /// Windows segment `seg` of `x` into the FFT input and transforms it into `out_x` or `out_y`.
-    fn transform(&mut self, x: &[f64], start: usize, into_y: bool) {
-        let seg = &x[start..start + self.n];
+    /// Windows one segment (`n` samples) into the FFT input and transforms it into `out_x` or
+    /// `out_y`.
+    fn transform(&mut self, seg: &[f64], into_y: bool) {
         let mean = if self.detrend {
             seg.iter().sum::<f64>() / self.n as f64
         } else {
@@ -290,23 +290,10 @@ impl Welch {
 
     /// One-sided auto-spectral density of `x` in (unit)²/Hz.
     pub fn psd(&mut self, x: &[f64]) -> Result<Spectrum> {
-        let count = self.segment_count(x.len())?;
-        let mut acc = vec![0.0; self.n / 2 + 1];
-        for s in 0..count {
-            self.transform(x, s * self.step, false);
-            for (a, c) in acc.iter_mut().zip(&self.out_x) {
-                *a += c.norm_sqr();
-            }
-        }
-        for (k, a) in acc.iter_mut().enumerate() {
-            *a *= self.one_sided_scale(k) / count as f64;
-        }
-        Ok(Spectrum {
-            freq_hz: self.frequencies(),
-            density: acc,
-            df_hz: self.df_hz(),
-            segments: count,
-        })
+        self.segment_count(x.len())?;
+        let mut acc = PsdAccumulator::new(self);
+        acc.push(self, x);
+        acc.finish(self)
     }
 
     /// Auto- and cross-spectral densities of the pair x → y (same length, same segments).
@@ -326,8 +313,9 @@ impl Welch {
         let (mut gxx, mut gyy, mut gxy) =
             (vec![0.0; m], vec![0.0; m], vec![Complex64::default(); m]);
         for s in 0..count {
-            self.transform(x, s * self.step, false);
-            self.transform(y, s * self.step, true);
+            let start = s * self.step;
+            self.transform(&x[start..start + self.n], false);
+            self.transform(&y[start..start + self.n], true);
             for k in 0..m {
                 let (a, b) = (self.out_x[k], self.out_y[k]);
                 gxx[k] += a.norm_sqr();
@@ -366,5 +354,73 @@ impl Spectrum {
             .map(|(&f, &g)| weight(f).powi(2) * g)
             .sum::<f64>()
             * self.df_hz
+    }
+}
+
+/// A Welch auto-spectrum fed in blocks of any size: segment `s` is transformed as soon as samples
+/// `s·step … s·step + N` have arrived, so memory is one segment whatever the duration, and the
+/// result equals [`Welch::psd`] of the concatenated blocks bit for bit.
+#[derive(Debug, Clone)]
+pub struct PsdAccumulator {
+    /// The last N samples received, oldest first once full.
+    ring: Vec<f64>,
+    /// Contiguous copy of the current segment.
+    segment: Vec<f64>,
+    /// Samples received.
+    received: usize,
+    /// Sample index at which the next segment starts.
+    next_start: usize,
+    acc: Vec<f64>,
+    count: usize,
+}
+
+impl PsdAccumulator {
+    /// An empty accumulator for the segmentation of `welch`.
+    pub fn new(welch: &Welch) -> Self {
+        PsdAccumulator {
+            ring: vec![0.0; welch.n],
+            segment: vec![0.0; welch.n],
+            received: 0,
+            next_start: 0,
+            acc: vec![0.0; welch.n / 2 + 1],
+            count: 0,
+        }
+    }
+
+    /// Appends `x` and transforms every segment it completes.
+    pub fn push(&mut self, welch: &mut Welch, x: &[f64]) {
+        let n = welch.n;
+        for &v in x {
+            self.ring[self.received % n] = v;
+            self.received += 1;
+            if self.received == self.next_start + n {
+                let head = self.received % n;
+                let (newer, older) = self.ring.split_at(head);
+                self.segment[..older.len()].copy_from_slice(older);
+                self.segment[older.len()..].copy_from_slice(newer);
+                welch.transform(&self.segment, false);
+                for (a, c) in self.acc.iter_mut().zip(&welch.out_x) {
+                    *a += c.norm_sqr();
+                }
+                self.count += 1;
+                self.next_start += welch.step;
+            }
+        }
+    }
+
+    /// The averaged density; an error when not even one segment was completed.
+    pub fn finish(mut self, welch: &Welch) -> Result<Spectrum> {
+        if self.count == 0 {
+            welch.segment_count(self.received)?;
+        }
+        for (k, a) in self.acc.iter_mut().enumerate() {
+            *a *= welch.one_sided_scale(k) / self.count as f64;
+        }
+        Ok(Spectrum {
+            freq_hz: welch.frequencies(),
+            density: self.acc,
+            df_hz: welch.df_hz(),
+            segments: self.count,
+        })
     }
 }

@@ -229,4 +229,11 @@ impl Weighting {
             Weighting::BandLimiting => "band-limiting",
         }
     }
+
+    /// The weighting named `name` ("Wk", "wk", "band-limiting", …), case-insensitive.
+    pub fn parse(name: &str) -> Option<Weighting> {
+        Weighting::ALL
+            .into_iter()
+            .find(|w| w.name().eq_ignore_ascii_case(name))
+    }
 }

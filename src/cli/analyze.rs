@@ -26,10 +26,15 @@ pub struct Args {
     /// Replace existing plot files.
     #[arg(long)]
     force: bool,
+    /// Print the time spent loading the run and analysing it to standard error.
+    #[arg(long)]
+    timing: bool,
 }
 
 pub fn run(args: Args) -> crate::Result<()> {
+    let start = std::time::Instant::now();
     let signals = analysis::load_signals(&args.path)?;
+    let loaded = start.elapsed().as_secs_f64();
     let welch = WelchOptions {
         window: Window::Hann,
         segment: Segment::ResolutionHz(args.resolution),
@@ -41,6 +46,14 @@ pub fn run(args: Args) -> crate::Result<()> {
         ..Options::default()
     };
     let report = Report::from_signals(&signals, &opts)?;
+    if args.timing {
+        eprintln!(
+            "timing: load {loaded:.4} s, analysis {:.4} s ({} samples × {} channels)",
+            start.elapsed().as_secs_f64() - loaded,
+            signals.len(),
+            signals.names.len()
+        );
+    }
     if let Some(dir) = &args.plot {
         let ow = if args.force {
             Overwrite::Allow

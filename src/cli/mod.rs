@@ -4,6 +4,8 @@
 mod analyze;
 mod calibrate;
 mod excitations;
+mod export;
+mod foam;
 mod frf;
 mod gap;
 mod gap_bench;
@@ -46,6 +48,10 @@ enum Command {
     Simulate(simulate::Args),
     /// Regenerate the reproduction table of the source papers (docs/reproduction.md).
     Reproduce(reproduce::Args),
+    /// The model's linear state-space matrices (A, B, C) as JSON, for other tools.
+    StateSpace(export::StateSpaceArgs),
+    /// A weighting's digital filter as second-order sections (scipy `sos` layout) as JSON.
+    Weighting(export::WeightingArgs),
     /// List the built-in base excitations.
     Excitations(excitations::ListArgs),
     /// Write a base excitation as a measured-run CSV (t_s, a_base_z) to inspect it.
@@ -58,6 +64,8 @@ enum Command {
     MergeShards(sweep::MergeArgs),
     /// Single-factor sensitivity of the response peak (paper 000 §5.1) with influence weights.
     Sensitivity(sensitivity::Args),
+    /// Foam-thickness study (paper 000 Table 4): cushion from the hyperfoam, peak, SEAT, a_v, comfort.
+    Foam(foam::Args),
     /// Fit parameters to a target response (GA, Levenberg–Marquardt, cubic surrogate).
     Calibrate(calibrate::Args),
     /// Sim-to-real gap diagnosis: where a model and measured runs differ and which effect explains it.
@@ -81,6 +89,46 @@ impl ModelArg {
     }
 }
 
+/// The time-domain run options shared by the commands that simulate (`simulate`, `sweep`, `foam`).
+#[derive(Debug, Clone, clap::Args)]
+pub struct TimeArgs {
+    /// Simulated duration in s.
+    #[arg(long, default_value_t = TimeArgs::default().duration)]
+    pub duration: f64,
+    /// Time step in s.
+    #[arg(long, default_value_t = TimeArgs::default().dt)]
+    pub dt: f64,
+    /// Seed of the random excitation.
+    #[arg(long, default_value_t = TimeArgs::default().seed)]
+    pub seed: u64,
+    /// Integrator: newmark (average acceleration), newmark-linear or rk4.
+    #[arg(long, default_value_t = TimeArgs::default().integrator)]
+    pub integrator: String,
+}
+
+impl Default for TimeArgs {
+    /// 60 s at 1 kHz, seed 1, Newmark average acceleration.
+    fn default() -> Self {
+        TimeArgs {
+            duration: 60.0,
+            dt: 1e-3,
+            seed: 1,
+            integrator: "newmark".into(),
+        }
+    }
+}
+
+impl TimeArgs {
+    /// Step, duration and integrator.
+    pub fn settings(&self) -> crate::Result<crate::simulate::Settings> {
+        Ok(crate::simulate::Settings {
+            dt: self.dt,
+            duration_s: self.duration,
+            method: crate::integrator::Method::parse(&self.integrator)?,
+        })
+    }
+}
+
 /// Runs the command line; prints errors as one line on stderr.
 pub fn main() -> ExitCode {
     let cli = Cli::parse();
@@ -94,11 +142,14 @@ pub fn main() -> ExitCode {
         Command::Run(a) => run::run(a),
         Command::Replay(a) => replay::run(a),
         Command::Excitations(a) => excitations::list(a),
+        Command::StateSpace(a) => export::state_space(a),
+        Command::Weighting(a) => export::weighting(a),
         Command::ExcitationExport(a) => excitations::export(a),
         Command::Inspect(a) => inspect::run(a),
         Command::Sweep(a) => sweep::run(a),
         Command::MergeShards(a) => sweep::merge(a),
         Command::Sensitivity(a) => sensitivity::run(a),
+        Command::Foam(a) => foam::run(a),
         Command::Calibrate(a) => calibrate::run(a),
         Command::Gap(a) => gap::run(a),
         Command::GapBench(a) => gap_bench::run(a),

@@ -1,9 +1,7 @@
 use crate::excitation::{ExcitationArgs, args::resolve};
-use crate::integrator::Method;
 use crate::io::atomic::Overwrite;
 use crate::record::{Compression, RUN_FILE, RecordOptions};
 use crate::scenario::{Outcome, Outputs, Scenario};
-use crate::simulate::Settings;
 use std::path::{Path, PathBuf};
 
 /// Arguments of `wbv simulate`.
@@ -14,18 +12,8 @@ pub struct Args {
     pub model: super::ModelArg,
     #[command(flatten)]
     pub excitation: ExcitationArgs,
-    /// Simulated duration in s.
-    #[arg(long, default_value_t = 60.0)]
-    pub duration: f64,
-    /// Time step in s.
-    #[arg(long, default_value_t = 1e-3)]
-    pub dt: f64,
-    /// Seed of the random excitation.
-    #[arg(long, default_value_t = 1)]
-    pub seed: u64,
-    /// Integrator: newmark (average acceleration), newmark-linear or rk4.
-    #[arg(long, default_value = "newmark")]
-    pub integrator: String,
+    #[command(flatten)]
+    pub time: super::TimeArgs,
     /// Run directory; the recording is `<DIR>/run.mcap` (default `runs/<model>-s<seed>`).
     #[arg(long)]
     pub out: Option<PathBuf>,
@@ -52,12 +40,8 @@ impl Args {
         Ok(Scenario {
             model: self.model.resolve()?,
             excitation: resolve(&self.excitation)?,
-            settings: Settings {
-                dt: self.dt,
-                duration_s: self.duration,
-                method: Method::parse(&self.integrator)?,
-            },
-            seed: self.seed,
+            settings: self.time.settings()?,
+            seed: self.time.seed,
         })
     }
 }
@@ -95,8 +79,11 @@ pub fn execute(
     let bar = progress(scenario.settings.steps());
     let outcome = scenario.execute(&outputs, Some(&bar))?;
     bar.finish_and_clear();
+    let memory = crate::io::memory::peak_resident_bytes().map_or(String::new(), |b| {
+        format!(", peak memory {:.0} MB", b as f64 / 1e6)
+    });
     println!(
-        "simulated {} s of `{}` under {} with {} in {:.2} s",
+        "simulated {} s of `{}` under {} with {} in {:.2} s{memory}",
         scenario.settings.duration_s,
         scenario.model.name,
         scenario.excitation.summary(),

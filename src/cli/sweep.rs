@@ -1,15 +1,18 @@
 use crate::error::Error;
+use crate::excitation::ExcitationArgs;
 use crate::io::atomic::{Overwrite, write_atomic};
 use crate::plot::{Chart, Series};
 use crate::response::frf;
 use crate::study::heatmap::{self, HeatMap};
+use crate::study::iso::IsoRun;
 use crate::study::param::{Param, parse_values};
 use crate::study::shard::{self, Shard};
-use crate::study::sweep::{self, Point, Spec};
+use crate::study::sweep::{self, Point, PointFigures, Spec};
 use std::path::{Path, PathBuf};
 
 /// Arguments of `wbv sweep`.
 #[derive(Debug, clap::Args)]
+#[command(allow_negative_numbers = true)]
 pub struct Args {
     #[command(flatten)]
     model: super::ModelArg,
@@ -45,6 +48,18 @@ pub struct Args {
     /// Replace existing output files.
     #[arg(long)]
     force: bool,
+    /// With any excitation option, every point is also simulated (same seed at every point) and
+    /// its ISO 2631-1 figures (a_w seat, a_v, SEAT, comfort) join the peaks table.
+    #[command(
+        flatten,
+        next_help_heading = "Time-domain ISO 2631-1 figures (given an excitation)"
+    )]
+    excitation: Option<ExcitationArgs>,
+    #[command(
+        flatten,
+        next_help_heading = "Time-domain ISO 2631-1 figures (given an excitation)"
+    )]
+    time: Option<super::TimeArgs>,
 }
 
 /// Arguments of `wbv merge-shards`.
@@ -189,8 +204,27 @@ pub fn run(args: Args) -> crate::Result<()> {
         .map(Shard::parse)
         .transpose()?
         .unwrap_or_default();
+    let iso = match (&args.excitation, &args.time) {
+        (Some(e), time) => {
+            let time = time.clone().unwrap_or_default();
+            Some(IsoRun {
+                excitation: crate::excitation::resolve(e)?,
+                settings: time.settings()?,
+                seed: time.seed,
+            })
+        }
+        (None, Some(_)) => {
+            return Err(Error::parameter(
+                "--excitation",
+                "--duration, --dt, --seed and --integrator set the time-domain run; give an \
+                 excitation too",
+            ));
+        }
+        (None, None) => None,
+    };
+    let hooks: Vec<&dyn PointFigures> = iso.iter().map(|h| h as &dyn PointFigures).collect();
     let bar = progress(shard.points(spec.grid().len()).len());
-    let pts = sweep::run(&model, &spec, shard, &[], &|| bar.inc(1))?;
+    let pts = sweep::run(&model, &spec, shard, &hooks, &|| bar.inc(1))?;
     bar.finish_and_clear();
     let ow = overwrite(args.force);
     match &args.out {
@@ -200,10 +234,10 @@ pub fn run(args: Args) -> crate::Result<()> {
             })?;
             let peaks = sibling(out, "-peaks");
             write_atomic(&peaks, ow, |w| {
-                sweep::write_peaks(&spec, &pts, &[], w).map_err(|e| Error::io(&peaks, e))
+                sweep::write_peaks(&spec, &pts, &hooks, w).map_err(|e| Error::io(&peaks, e))
             })?;
         }
-        None => sweep::write_peaks(&spec, &pts, &[], &mut std::io::stdout().lock())
+        None => sweep::write_peaks(&spec, &pts, &hooks, &mut std::io::stdout().lock())
             .map_err(|e| Error::io("stdout", e))?,
     }
     if let Some(path) = &args.plot {
@@ -214,8 +248,56 @@ pub fn run(args: Args) -> crate::Result<()> {
             ));
         }
         plots(&spec, &pts, &model.name, path, ow)?;
+        if let Some(iso) = &iso {
+            iso_plot(&spec, &pts, &model.name, iso, &sibling(path, "-iso"), ow)?;
+        }
     }
     Ok(())
+}
+
+/// The ISO figures over the swept parameter, when one parameter varies: weighted r.m.s. values in
+/// one panel, SEAT in the other.
+fn iso_plot(
+    spec: &Spec,
+    pts: &[Point],
+    title: &str,
+    iso: &IsoRun,
+    path: &Path,
+    ow: Overwrite,
+) -> crate::Result<()> {
+    let axes: Vec<usize> = (0..spec.values.len())
+        .filter(|&i| spec.values[i].len() > 1)
+        .collect();
+    let [a] = axes[..] else {
+        return Ok(());
+    };
+    let x: Vec<f64> = pts.iter().map(|p| p.values[a]).collect();
+    let series = |label: &str, col: usize| Series {
+        label: label.into(),
+        x: x.clone(),
+        y: pts.iter().map(|p| p.extra[col]).collect(),
+    };
+    let run = format!("{title}: ISO 2631-1 figures ({})", iso.excitation.origin);
+    let charts = [
+        Chart {
+            title: run.clone(),
+            x_label: spec.params[a].spec.clone(),
+            y_label: "weighted r.m.s. [m/s²]".into(),
+            series: vec![
+                series("a_w seat z (Wk)", 0),
+                series("a_v total (comfort, Annex C)", 1),
+            ],
+            ..Chart::default()
+        },
+        Chart {
+            title: "SEAT (seat z / base z, Wk)".into(),
+            x_label: spec.params[a].spec.clone(),
+            y_label: "SEAT [%]".into(),
+            series: vec![series("SEAT", 2)],
+            ..Chart::default()
+        },
+    ];
+    crate::plot::draw(&charts, path, ow)
 }
 
 pub fn merge(args: MergeArgs) -> crate::Result<()> {

@@ -1,4 +1,5 @@
-//! Parameter studies on the frequency-domain responses: sweeps (1-D and 2-D grids), single-factor
+//! Parameter studies on the frequency-domain responses (and, with an excitation, the time-domain
+//! ISO 2631-1 figures of every point, [`iso`]): sweeps (1-D and 2-D grids), single-factor
 //! sensitivity (paper 000 §5.1), calibration against a measured response (paper 000 §5.2: GA,
 //! cubic surrogate; plus Levenberg–Marquardt), the foam-thickness study (paper 000 Table 4) and
 //! sharding of every grid over processes (`--shard K/N`, merged by [`shard::merge`]).
@@ -10,7 +11,9 @@ pub mod calibrate;
 pub mod evaluate;
 pub mod foam;
 pub mod heatmap;
+pub mod iso;
 pub mod param;
+pub mod reproduce;
 pub mod sensitivity;
 pub mod shard;
 pub mod sweep;

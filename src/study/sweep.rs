@@ -3,8 +3,8 @@
 //!
 //! Output is long-format CSV (`point,<params…>,freq_hz,mag,phase_deg`) and a peaks table
 //! (`point,<params…>,peak_freq_hz,peak_mag[,extra…]`); both merge across shards
-//! ([`super::shard::merge`]). Extra figures per point (e.g. ISO 2631-1 SEAT from a time-domain run,
-//! supplied later by the analysis module) plug in through [`PointFigures`].
+//! ([`super::shard::merge`]). Extra figures per point (the ISO 2631-1 figures of a time-domain run,
+//! [`super::iso::IsoRun`]) plug in through [`PointFigures`].
 
 use super::evaluate::Evaluator;
 use super::param::{Param, apply};
@@ -23,6 +23,11 @@ pub trait PointFigures: Sync {
     fn names(&self) -> Vec<String>;
     /// The figures for one model, in the order of [`Self::names`].
     fn compute(&self, model: &Model) -> Result<Vec<f64>>;
+    /// How figure `column` (index into [`Self::names`]) is written to CSV.
+    fn format(&self, column: usize, value: f64) -> String {
+        let _ = column;
+        value.to_string()
+    }
 }
 
 /// What to sweep.
@@ -150,23 +155,28 @@ pub fn write_long(spec: &Spec, points: &[Point], w: &mut dyn Write) -> std::io::
     Ok(())
 }
 
-/// Writes the peaks table: one row per point, with the extra figures named `extra`.
+/// Writes the peaks table: one row per point, then the columns of each of `hooks` (the hooks
+/// [`run`] was given, in the same order).
 pub fn write_peaks(
     spec: &Spec,
     points: &[Point],
-    extra: &[String],
+    hooks: &[&dyn PointFigures],
     w: &mut dyn Write,
 ) -> std::io::Result<()> {
     let mut tail = String::from("peak_freq_hz,peak_mag");
-    for e in extra {
-        tail += ",";
-        tail += e;
+    let mut columns = Vec::new();
+    for h in hooks {
+        for (i, name) in h.names().into_iter().enumerate() {
+            tail += ",";
+            tail += &name;
+            columns.push((*h, i));
+        }
     }
     w.write_all(header(spec, &tail).as_bytes())?;
     for p in points {
         write!(w, "{},{},{}", prefix(p), p.peak.freq_hz, p.peak.value)?;
-        for e in &p.extra {
-            write!(w, ",{e}")?;
+        for ((h, i), v) in columns.iter().zip(&p.extra) {
+            write!(w, ",{}", h.format(*i, *v))?;
         }
         writeln!(w)?;
     }

@@ -1,0 +1,120 @@
+//! `wbv state-space` and `wbv weighting`: the linear operators wbv uses, as JSON, so that another
+//! tool (scipy, MATLAB, a DAQ) can run exactly the same model or filter — `tools/bench-peers` uses
+//! them to compare wbv with scipy on identical work.
+
+use crate::analysis::{Weighting, WeightingFilter};
+use crate::error::Error;
+use crate::io::atomic::{Overwrite, write_atomic};
+use crate::model::Node;
+use serde_json::json;
+use std::io::Write;
+use std::path::PathBuf;
+
+/// Arguments of `wbv state-space`.
+#[derive(Debug, clap::Args)]
+pub struct StateSpaceArgs {
+    #[command(flatten)]
+    model: super::ModelArg,
+    /// Write the JSON here instead of standard output.
+    #[arg(long, value_name = "FILE")]
+    out: Option<PathBuf>,
+    /// Replace an existing output file.
+    #[arg(long)]
+    force: bool,
+}
+
+/// Arguments of `wbv weighting`.
+#[derive(Debug, clap::Args)]
+pub struct WeightingArgs {
+    /// ISO 2631-1 / ISO 8041 weighting: Wk, Wd, Wf, Wc, We, Wj, Wb, Wm or band-limiting.
+    #[arg(long, default_value = "wk")]
+    weighting: String,
+    /// Sample rate in Hz.
+    #[arg(long, default_value_t = 1000.0)]
+    fs: f64,
+}
+
+fn emit(text: String, out: &Option<PathBuf>, force: bool) -> crate::Result<()> {
+    match out {
+        Some(p) => {
+            write_atomic(p, Overwrite::from_force(force), |w| {
+                w.write_all(text.as_bytes()).map_err(|e| Error::io(p, e))
+            })?;
+            eprintln!("wrote {}", p.display());
+        }
+        None => println!("{text}"),
+    }
+    Ok(())
+}
+
+/// Prints `ẏ = A·y + B·a_base`, `a_abs = C·y` (absolute mass accelerations; D = 0) of the model
+/// linearised at rest ([`crate::model::assembly::state_space`]).
+pub fn state_space(args: StateSpaceArgs) -> crate::Result<()> {
+    let model = args.model.resolve()?;
+    let ss = crate::model::assembly::state_space(&model);
+    let n = ss.n;
+    let rows = |m: &nalgebra::DMatrix<f64>, r: std::ops::Range<usize>| -> Vec<Vec<f64>> {
+        r.map(|i| m.row(i).iter().copied().collect()).collect()
+    };
+    // Absolute acceleration of mass i = ẍ_i + a_base = A[n+i,:]·y + (B[n+i] + 1)·a_base, and
+    // B[n+i] = −1, so the feed-through is zero.
+    let c = rows(&ss.a, n..2 * n);
+    let mut states: Vec<String> = Vec::new();
+    for prefix in ["x", "v"] {
+        states.extend(model.masses.iter().map(|m| format!("{prefix}_{}", m.name)));
+    }
+    states.extend(
+        ss.arms
+            .iter()
+            .map(|&l| format!("q_{}", model.links[l].name)),
+    );
+    let name_of = |node: Node| match node {
+        Node::Base => None,
+        Node::Mass(i) => Some(model.masses[i].name.clone()),
+    };
+    let text = json!({
+        "model": model.name,
+        "description": "xdot = A x + B u, y = C x (+ D u, D = 0); u = base acceleration (m/s^2); \
+                        states: displacements (m) and velocities (m/s) relative to the base, then \
+                        relaxing-arm forces (N); outputs: absolute accelerations of the masses (m/s^2)",
+        "states": states,
+        "outputs": model.masses.iter().map(|m| format!("a_{}", m.name)).collect::<Vec<_>>(),
+        "seat_mass": name_of(model.measure.seat),
+        "head_mass": model.measure.head.map(|h| model.masses[h].name.clone()),
+        "A": rows(&ss.a, 0..ss.a.nrows()),
+        "B": ss.b.iter().collect::<Vec<_>>(),
+        "C": c,
+    });
+    emit(
+        serde_json::to_string_pretty(&text).expect("JSON"),
+        &args.out,
+        args.force,
+    )
+}
+
+/// Prints the digital filter of a weighting as second-order sections in scipy's `sos` layout
+/// `[b0, b1, b2, 1, a1, a2]` ([`crate::analysis::filter`]).
+pub fn weighting(args: WeightingArgs) -> crate::Result<()> {
+    let w = Weighting::parse(&args.weighting).ok_or_else(|| {
+        Error::parameter(
+            "weighting",
+            format!(
+                "`{}`: expected one of {}",
+                args.weighting,
+                Weighting::ALL.map(Weighting::name).join(", ")
+            ),
+        )
+    })?;
+    let f = WeightingFilter::new(w, args.fs)?;
+    let sos: Vec<[f64; 6]> = f
+        .sections
+        .iter()
+        .map(|s| [s.b[0], s.b[1], s.b[2], 1.0, s.a[0], s.a[1]])
+        .collect();
+    let text = json!({"weighting": w.name(), "fs_hz": args.fs, "sos": sos});
+    emit(
+        serde_json::to_string_pretty(&text).expect("JSON"),
+        &None,
+        false,
+    )
+}
