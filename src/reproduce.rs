@@ -331,6 +331,7 @@ pub fn rows() -> Result<Vec<Row>> {
     paper_001(&mut rows)?;
     paper_002(&mut rows)?;
     crate::study::reproduce::rows(&mut rows)?;
+    crate::planar::reproduce::rows(&mut rows)?;
     Ok(rows)
 }
 
@@ -378,6 +379,21 @@ pub fn markdown(rows: &[Row]) -> String {
 
 const NOTES: &str = "
 ## Findings
+
+- **Planar model (paper 000, issue 8).** `planar-occupant` is a 7-coordinate sagittal model (paper
+  000's five segments, its Table 2 joints, de Leva 1996 segment inertia, hyperfoam cushion in series
+  with seated tissue, backrest, footrest). Paper 000's modes are those of its body model before it
+  is put on the seat (§3), so they are compared with the model on a rigid seat pan; its Table 4
+  peaks with the foam seat. As stated, the model's modes come within 1–5 % (modes 2, 3) and ~18 %
+  (modes 1, 4) and its v-h peak is 0.42–0.53 (paper 0.39–0.58), but its peaks sit near 5.2 Hz
+  instead of 3.3–4.7 Hz. The calibration (Levenberg–Marquardt on assumed quantities only: tissue
+  modulus and loss factors, backrest and footrest stiffness) matches modes 1 and 4 and the 80 mm
+  peak frequencies, but pulls modes 2 and 3 down to 3.6 and 4.4 Hz: in this model the vertical
+  mode on a rigid pan (paper 6.01 Hz) and the v-v peak on foam (3.93 Hz) cannot both match, and the
+  peaks barely move with foam thickness. With the paper's own hyperfoam constants (small-strain
+  modulus 2Σaᵢ = 330 kPa) an 80 mm layer is five to ten times stiffer than the tissue on it, so the
+  tissue sets the resonance; the paper's FE trend (−30 % v-h peak frequency from 60 to 100 mm)
+  needs a much softer foam than its §2 constants describe.
 
 - **Paper 001's configurations cannot differ in STHT at the seat surface.** The seat-to-head
   transmissibility and the apparent mass measured at the occupant–cushion interface are properties of

@@ -159,3 +159,49 @@ fn modes_are_the_eigenvalues_of_m_inverse_k() {
             .any(|d| d.words().contains("vertical whole-body"))
     );
 }
+
+#[test]
+fn bad_planar_files_name_the_key_and_expectation() {
+    let bad = |from: &str, to: &str| {
+        let text = TEXT.replacen(from, to, 1);
+        assert_ne!(text, TEXT, "replacement `{from}` not found");
+        wbv::model::file::parse(&text, "bad.toml")
+            .unwrap_err()
+            .to_string()
+    };
+    let e = bad("k = 2080.0", "k = -2080.0");
+    assert!(e.contains("joint[1] (waist).k") && e.contains("≥ 0"), "{e}");
+    let e = bad("segment = \"thighs\"", "segment = \"tail\"");
+    assert!(
+        e.contains("contact[1] (thigh).segment") && e.contains("unknown segment"),
+        "{e}"
+    );
+    let e = bad("anthropometry = \"thighs\"", "anthropometry = \"wings\"");
+    assert!(
+        e.contains("anthropometry") && e.contains("legs-feet"),
+        "{e}"
+    );
+    let e = bad("cushion_share = 0.4", "cushion_share = 0.6");
+    assert!(e.contains("shares add up to 1.2"), "{e}");
+    // A footrest pushing downwards would have to pull the feet: refused at equilibrium.
+    let e = bad(
+        "at = [0.72, -0.275]\nnormal_deg = 90.0",
+        "at = [0.72, -0.275]\nnormal_deg = -90.0",
+    );
+    assert!(e.contains("footrest") && e.contains("compression"), "{e}");
+    let e = bad("thickness = 0.08", "thickness = \"thick\"");
+    assert!(e.starts_with("bad.toml: line"), "{e}");
+    let mut model = catalog::resolve("planar-occupant").unwrap();
+    let e = wbv::model::params::set(&mut model, "joint.elbow.k", 1.0)
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains("joint.elbow.k") && e.contains("unknown planar parameter"),
+        "{e}"
+    );
+    let e = wbv::model::params::set(&mut model, "cushion.area", 0.0)
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("> 0"), "{e}");
+    assert!(catalog::resolve("planar-occupant+cushion-zener").is_err());
+}

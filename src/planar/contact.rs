@@ -71,7 +71,7 @@ impl Contact {
 pub struct Cushion {
     /// Foam (paper 000 §2 hyperfoam terms by default); its `area_m2` is the whole contact area.
     pub foam: Foam,
-    /// Foam thickness in m (paper 000: 0.06, 0.08, 0.10).
+    /// Foam thickness in m (paper 000: 0.06, 0.08, 0.10); 0 for a rigid seat pan (no foam).
     pub thickness: f64,
     /// Soft-tissue small-strain shear modulus in Pa (paper 000 §3: `2(X₁ + X₂)` = 10 kPa).
     pub tissue_mu: f64,
@@ -95,15 +95,22 @@ impl Cushion {
             area_m2: self.foam.area_m2 * area_fraction,
             ..self.foam.clone()
         };
-        let (k_f, c_f) = foam.cushion(self.thickness, load_n.max(0.0))?;
         let w = 2.0 * PI * foam.f_ref_hz;
-        let foam_n = Complex64::new(k_f, w * c_f);
         let area = foam.area_m2;
         let tissue = self.tissue_mu * area / tissue_thickness;
         let tissue_c = Complex64::new(1.0, self.tissue_loss_factor);
-        let series = |a: Complex64, b: Complex64| a * b / (a + b);
-        let n = series(foam_n, 3.0 * tissue * tissue_c);
-        let t = series(0.5 * foam_n, tissue * tissue_c);
+        let (n, t) = if self.thickness == 0.0 {
+            // No foam: the tissue rests on the rigid seat pan.
+            (3.0 * tissue * tissue_c, tissue * tissue_c)
+        } else {
+            let (k_f, c_f) = foam.cushion(self.thickness, load_n.max(0.0))?;
+            let foam_n = Complex64::new(k_f, w * c_f);
+            let series = |a: Complex64, b: Complex64| a * b / (a + b);
+            (
+                series(foam_n, 3.0 * tissue * tissue_c),
+                series(0.5 * foam_n, tissue * tissue_c),
+            )
+        };
         let out = (n.re, t.re, n.im / w, t.im / w);
         if [out.0, out.1, out.2, out.3]
             .iter()

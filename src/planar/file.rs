@@ -250,7 +250,11 @@ pub fn parse_spec(text: &str, file: &str) -> Result<(Spec, (String, String, Stri
     };
     let cushion = Cushion {
         foam,
-        thickness: positive("cushion.thickness".into(), cs.thickness, "m")?,
+        thickness: non_negative(
+            "cushion.thickness".into(),
+            cs.thickness,
+            "m (0: rigid seat pan)",
+        )?,
         tissue_mu: positive("cushion.tissue_mu".into(), cs.tissue_mu, "Pa")?,
         tissue_loss_factor: non_negative(
             "cushion.tissue_loss_factor".into(),

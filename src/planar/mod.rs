@@ -9,6 +9,7 @@
 //! the frequency-domain outputs; the time domain runs the same `M`, `C`, `K` through the shared
 //! integrators ([`crate::dynamics::General`]).
 
+pub mod calibrate;
 pub mod contact;
 pub mod equilibrium;
 pub mod file;
@@ -16,6 +17,8 @@ pub mod linearise;
 pub mod modes;
 pub mod params;
 pub mod posture;
+pub mod replay;
+pub mod reproduce;
 pub mod response;
 pub mod segment;
 

@@ -132,7 +132,7 @@ pub fn set(model: &mut Model, path: &str, value: f64) -> Result<()> {
     let strictly = [
         ".m",
         ".inertia",
-        "thickness",
+        "tissue_thickness",
         "area",
         "f_ref",
         "tissue_mu",

@@ -29,6 +29,7 @@ pub fn layout(fs: f64, steps: u64) -> Layout {
         interface: vec![3],
         dt: 1.0 / fs,
         steps,
+        planar: None,
     }
 }
 

@@ -8,7 +8,7 @@
 
 use super::json::write_f64;
 use super::topics::plot_key;
-use crate::simulate::observer::{Layout, Step};
+use crate::simulate::observer::{BodyPose, Layout, Step};
 use std::io::Write;
 
 /// `foxglove.SceneUpdate` JSON schema, verbatim from npm `@foxglove/schemas` 2.1.0.
@@ -32,6 +32,8 @@ pub struct Scene {
     /// Per link: upper and lower node as mass index (`None` = base), and colour.
     links: Vec<(Option<usize>, Option<usize>, [f64; 4])>,
     magnification: f64,
+    /// Planar models: rigid segments that translate and pitch ([`Self::planar_update`]).
+    planar: Option<Vec<BodyPose>>,
 }
 
 fn role_look(role: &str) -> ([f64; 3], [f64; 4]) {
@@ -84,6 +86,7 @@ impl Scene {
             bodies,
             links,
             magnification,
+            planar: layout.planar.as_ref().map(|p| p.bodies.clone()),
         }
     }
 
@@ -98,6 +101,9 @@ impl Scene {
 
     /// Appends the `foxglove.SceneUpdate` JSON of step `s` to `out`.
     pub fn scene_update(&self, s: &Step<'_>, out: &mut Vec<u8>) {
+        if let Some(bodies) = &self.planar {
+            return self.planar_update(bodies, s, out);
+        }
         let ts = stamp(s.t);
         let _ = write!(
             out,
@@ -141,6 +147,9 @@ impl Scene {
 
     /// Appends the `foxglove.FrameTransforms` JSON (`world → base`, `world → <mass>`) of step `s`.
     pub fn frame_transforms(&self, s: &Step<'_>, out: &mut Vec<u8>) {
+        if let Some(bodies) = &self.planar {
+            return self.planar_transforms(bodies, s, out);
+        }
         let ts = stamp(s.t);
         out.extend_from_slice(b"{\"transforms\":[");
         for k in 0..=self.bodies.len() {
@@ -160,6 +169,115 @@ impl Scene {
         }
         out.extend_from_slice(b"]}");
     }
+}
+
+impl Scene {
+    /// Display pose of a planar segment at step `s`: centre `(x, z)` and the rotation about y
+    /// (rad) that turns a box's x axis onto the segment axis; motion magnified like the stack's.
+    fn planar_pose(&self, b: &BodyPose, s: &Step<'_>) -> ([f64; 2], f64) {
+        let m = self.magnification;
+        let d = |row: &[f64]| row.iter().zip(s.x).map(|(j, x)| j * x).sum::<f64>();
+        let centre = [
+            b.rest[0] + m * d(&b.jacobian[0]),
+            b.rest[1] + m * (d(&b.jacobian[1]) + s.x_base),
+        ];
+        // Rotating by θ about y maps x̂ to (cos θ, −sin θ) in x–z, so θ = −(axis angle).
+        (centre, -(b.angle - m * d(&b.jacobian[2])))
+    }
+
+    /// `foxglove.SceneUpdate` of a planar model: a floor and seat pan moving with the base, and a
+    /// box per segment that translates and pitches.
+    fn planar_update(&self, bodies: &[BodyPose], s: &Step<'_>, out: &mut Vec<u8>) {
+        let ts = stamp(s.t);
+        let zb = self.magnification * s.x_base;
+        let _ = write!(
+            out,
+            r#"{{"deletions":[],"entities":[{{"timestamp":{ts},"frame_id":"world","id":"wbv","lifetime":{{"sec":0,"nsec":0}},"frame_locked":false,"metadata":[{{"key":"display_magnification","value":""#
+        );
+        write_num(out, self.magnification);
+        out.extend_from_slice(
+            br#""}],"arrows":[],"spheres":[],"cylinders":[],"triangles":[],"models":[],"cubes":["#,
+        );
+        let grey = [0.3, 0.3, 0.3, 1.0];
+        posed_cube(out, [0.4, zb - 0.30], 0.0, [1.2, 0.6, 0.02], grey);
+        out.push(b',');
+        posed_cube(
+            out,
+            [0.12, zb - 0.04],
+            0.0,
+            [0.5, 0.5, 0.06],
+            [0.2, 0.4, 0.8, 1.0],
+        );
+        for b in bodies {
+            let (c, theta) = self.planar_pose(b, s);
+            out.push(b',');
+            posed_cube(out, c, theta, [b.length, 0.3, 0.12], [0.9, 0.7, 0.5, 1.0]);
+        }
+        out.extend_from_slice(b"],\"lines\":[],\"texts\":[{\"pose\":");
+        pose(out, 1.2);
+        let _ = write!(
+            out,
+            r#","billboard":true,"font_size":0.05,"scale_invariant":false,"color":{{"r":1,"g":1,"b":1,"a":1}},"text":"displacements and pitch ×{} (t = {:.3} s)"}}]}}]}}"#,
+            self.magnification, s.t
+        );
+    }
+
+    /// `foxglove.FrameTransforms` of a planar model: `world → base`, `world → <segment>` with
+    /// the segment's pitch as a quaternion about y.
+    fn planar_transforms(&self, bodies: &[BodyPose], s: &Step<'_>, out: &mut Vec<u8>) {
+        let ts = stamp(s.t);
+        out.extend_from_slice(b"{\"transforms\":[");
+        let _ = write!(
+            out,
+            r#"{{"timestamp":{ts},"parent_frame_id":"world","child_frame_id":"base","translation":{{"x":0,"y":0,"z":"#
+        );
+        write_num(out, self.magnification * s.x_base);
+        out.extend_from_slice(br#"},"rotation":{"x":0,"y":0,"z":0,"w":1}}"#);
+        for b in bodies {
+            let (c, theta) = self.planar_pose(b, s);
+            let _ = write!(
+                out,
+                r#",{{"timestamp":{ts},"parent_frame_id":"world","child_frame_id":"{}","translation":"#,
+                plot_key(&b.name)
+            );
+            vec3(out, c);
+            out.extend_from_slice(br#","rotation":"#);
+            quat_y(out, theta);
+            out.push(b'}');
+        }
+        out.extend_from_slice(b"]}");
+    }
+}
+
+fn vec3(out: &mut Vec<u8>, c: [f64; 2]) {
+    out.extend_from_slice(br#"{"x":"#);
+    write_num(out, c[0]);
+    out.extend_from_slice(br#","y":0,"z":"#);
+    write_num(out, c[1]);
+    out.push(b'}');
+}
+
+/// Unit quaternion of a rotation by `theta` (rad) about y.
+fn quat_y(out: &mut Vec<u8>, theta: f64) {
+    out.extend_from_slice(br#"{"x":0,"y":"#);
+    write_num(out, (0.5 * theta).sin());
+    out.extend_from_slice(br#","z":0,"w":"#);
+    write_num(out, (0.5 * theta).cos());
+    out.push(b'}');
+}
+
+fn posed_cube(out: &mut Vec<u8>, c: [f64; 2], theta: f64, size: [f64; 3], color: [f64; 4]) {
+    out.extend_from_slice(br#"{"pose":{"position":"#);
+    vec3(out, c);
+    out.extend_from_slice(br#","orientation":"#);
+    quat_y(out, theta);
+    let _ = write!(
+        out,
+        r#"}},"size":{{"x":{},"y":{},"z":{}}},"color":"#,
+        size[0], size[1], size[2]
+    );
+    rgba(out, color);
+    out.push(b'}');
 }
 
 /// `{"sec":…,"nsec":…}` of a non-negative simulation time.
@@ -203,4 +321,63 @@ fn cube(out: &mut Vec<u8>, z: f64, size: [f64; 3], color: [f64; 4]) {
     );
     rgba(out, color);
     out.push(b'}');
+}
+
+#[cfg(test)]
+mod planar_tests {
+    use super::*;
+    use crate::model::catalog;
+    use crate::simulate::{Settings, layout};
+
+    #[test]
+    fn planar_scene_is_valid_json_and_pitches_the_segments() {
+        let model = catalog::resolve("planar-occupant").unwrap();
+        let settings = Settings {
+            dt: 1e-3,
+            duration_s: 1.0,
+            method: crate::integrator::Method::AVERAGE_ACCELERATION,
+        };
+        let lay = layout(&model, &settings);
+        let scene = Scene::new(&lay, 20.0);
+        let n = model.dof();
+        let render = |x: &[f64]| {
+            let zeros = vec![0.0; n];
+            let step = Step {
+                index: 0,
+                t: 0.0,
+                a_base: 0.0,
+                v_base: 0.0,
+                x_base: 0.0,
+                x,
+                v: &zeros,
+                a: &zeros,
+                link_deflection: &[],
+                link_force: &[],
+            };
+            let (mut su, mut tf) = (Vec::new(), Vec::new());
+            scene.scene_update(&step, &mut su);
+            scene.frame_transforms(&step, &mut tf);
+            let su: serde_json::Value = serde_json::from_slice(&su).unwrap();
+            let tf: serde_json::Value = serde_json::from_slice(&tf).unwrap();
+            (su, tf)
+        };
+        let rest = render(&vec![0.0; n]);
+        let mut pitched = vec![0.0; n];
+        pitched[3] = 0.01; // thorax pitch, rad
+        let moved = render(&pitched);
+        let q = |v: &serde_json::Value, i: usize| v["transforms"][i]["rotation"].clone();
+        // base + 5 segments; unit quaternions; only the thorax (index 2) turns.
+        assert_eq!(rest.1["transforms"].as_array().unwrap().len(), 6);
+        for i in 0..6 {
+            let r = q(&moved.1, i);
+            let norm: f64 = ["x", "y", "z", "w"]
+                .iter()
+                .map(|k| r[k].as_f64().unwrap().powi(2))
+                .sum();
+            assert!((norm - 1.0).abs() < 1e-12);
+            assert_eq!(q(&rest.1, i) == r, i != 2, "segment {i}");
+        }
+        let cubes = moved.0["entities"][0]["cubes"].as_array().unwrap();
+        assert_eq!(cubes.len(), 7);
+    }
 }

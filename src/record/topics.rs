@@ -136,6 +136,14 @@ pub fn topics(layout: &Layout) -> Result<Vec<Topic>> {
         "absolute acceleration at the occupant–cushion interface (the base for a rigid seat), m/s²"
             .into(),
     );
+    if let Some(p) = &layout.planar {
+        m.add(
+            &["a_seat_x"],
+            Quantity::A(p.seat_x),
+            "fore-and-aft acceleration at the occupant–cushion interface (the base moves vertically), m/s²"
+                .into(),
+        );
+    }
     if let Some(h) = layout.head {
         m.add(
             &["a_head_z"],
@@ -155,6 +163,16 @@ pub fn topics(layout: &Layout) -> Result<Vec<Topic>> {
     let mut s = Builder::new();
     for (i, k) in masses.iter().enumerate() {
         let name = &layout.masses[i];
+        // A planar coordinate that the vertical base does not move is absolute already.
+        let fixed = layout
+            .planar
+            .as_ref()
+            .is_some_and(|p| p.influence[i] == 0.0);
+        let (xa, va, aa) = if fixed {
+            (Quantity::X(i), Quantity::V(i), Quantity::A(i))
+        } else {
+            (Quantity::XAbs(i), Quantity::VAbs(i), Quantity::AAbs(i))
+        };
         for (field, q, what) in [
             ("x", Quantity::X(i), "displacement relative to the base, m"),
             ("v", Quantity::V(i), "velocity relative to the base, m/s"),
@@ -163,9 +181,9 @@ pub fn topics(layout: &Layout) -> Result<Vec<Topic>> {
                 Quantity::A(i),
                 "acceleration relative to the base, m/s²",
             ),
-            ("x_abs", Quantity::XAbs(i), "absolute displacement, m"),
-            ("v_abs", Quantity::VAbs(i), "absolute velocity, m/s"),
-            ("a_abs", Quantity::AAbs(i), "absolute acceleration, m/s²"),
+            ("x_abs", xa, "absolute displacement, m"),
+            ("v_abs", va, "absolute velocity, m/s"),
+            ("a_abs", aa, "absolute acceleration, m/s²"),
         ] {
             s.add(&[k, field], q, format!("{name}: {what}"));
         }

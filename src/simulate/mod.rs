@@ -82,6 +82,7 @@ pub fn layout(model: &Model, settings: &Settings) -> Layout {
         interface: model.measure.interface.clone(),
         dt: settings.dt,
         steps: settings.steps() + 1,
+        planar: model.planar.as_deref().map(crate::planar::replay::layout),
     }
 }
 

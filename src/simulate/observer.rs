@@ -27,6 +27,37 @@ pub struct Layout {
     pub dt: f64,
     /// Number of steps that will be delivered (including the initial state at t = 0).
     pub steps: u64,
+    /// For a planar model: which coordinates move with the base, the fore-and-aft seat
+    /// coordinate and the rigid bodies of the 3-D replay.
+    pub planar: Option<PlanarLayout>,
+}
+
+/// What a planar model adds to the [`Layout`]. Its coordinates (`Step::x`, …) are generalized:
+/// translations in m and pitches in rad, relative to the seated equilibrium.
+#[derive(Debug, Clone, PartialEq)]
+pub struct PlanarLayout {
+    /// Base influence of each coordinate: 1 if it moves with a vertical base, else 0 (absolute =
+    /// relative + influence × base).
+    pub influence: Vec<f64>,
+    /// Coordinate of the fore-and-aft motion of the seat point (`a_seat_x`).
+    pub seat_x: usize,
+    /// Rigid segments, for the 3-D replay.
+    pub bodies: Vec<BodyPose>,
+}
+
+/// A rigid segment of a planar model at rest and how the coordinates move it (linearised).
+#[derive(Debug, Clone, PartialEq)]
+pub struct BodyPose {
+    /// Segment name.
+    pub name: String,
+    /// Centre at rest `(x, z)` in the seat frame, m.
+    pub rest: [f64; 2],
+    /// Axis direction at rest, rad from +x towards +z.
+    pub angle: f64,
+    /// Length along the axis, m.
+    pub length: f64,
+    /// Rows `∂(x, z, pitch)/∂q` of the centre and the pitch (m or rad per coordinate).
+    pub jacobian: [Vec<f64>; 3],
 }
 
 /// The state at one time step. Displacements in m, velocities in m/s, accelerations in m/s²,
@@ -75,10 +106,14 @@ pub trait Observer {
 
 impl Layout {
     /// Names of the measured-run channels this model yields (`../shared/specs/measured-runs.md`):
-    /// `a_base_z`, `a_seat_z` (seat surface), `a_head_z` when a head is defined, and `f_seat_z` (the
+    /// `a_base_z`, `a_seat_z` (seat surface), `a_seat_x` (fore-and-aft, planar models),
+    /// `a_head_z` when a head is defined, and `f_seat_z` (the
     /// seat-surface force on the body, static weight removed) when interface links are defined.
     pub fn measured_channels(&self) -> Vec<&'static str> {
         let mut names = vec!["a_base_z", "a_seat_z"];
+        if self.planar.is_some() {
+            names.push("a_seat_x");
+        }
         if self.head.is_some() {
             names.push("a_head_z");
         }
@@ -93,6 +128,10 @@ impl Layout {
         out.clear();
         out.push(step.a_base);
         out.push(self.seat.map_or(step.a_base, |i| step.abs_acceleration(i)));
+        if let Some(p) = &self.planar {
+            // Fore-and-aft: the base moves vertically only, so relative = absolute.
+            out.push(step.a[p.seat_x]);
+        }
         if let Some(h) = self.head {
             out.push(step.abs_acceleration(h));
         }
