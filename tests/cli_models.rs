@@ -108,3 +108,37 @@ fn existing_output_is_not_overwritten_without_force() {
     ]);
     assert!(r.status.success());
 }
+
+/// `wbv modes --json` on the planar model reports the static equilibrium: the support loads carry
+/// the body weight (ΣF_z = m g, ΣF_x = 0) and balance its pitch moment, as the table does.
+#[test]
+fn planar_modes_json_reports_the_equilibrium() {
+    let r = wbv(&["modes", "--model", "planar-occupant", "--json"]);
+    assert!(r.status.success(), "{}", String::from_utf8_lossy(&r.stderr));
+    let v: serde_json::Value = serde_json::from_slice(&r.stdout).unwrap();
+    let eq = &v["equilibrium"];
+    let weight = eq["body_weight_n"].as_f64().unwrap();
+    let loads = eq["loads"].as_array().unwrap();
+    let fz: f64 = loads.iter().map(|l| l["fz_n"].as_f64().unwrap()).sum();
+    let fx: f64 = loads.iter().map(|l| l["fx_n"].as_f64().unwrap()).sum();
+    let moment: f64 = loads
+        .iter()
+        .map(|l| {
+            l["z_m"].as_f64().unwrap() * l["fx_n"].as_f64().unwrap()
+                - l["x_m"].as_f64().unwrap() * l["fz_n"].as_f64().unwrap()
+        })
+        .sum();
+    // 70 kg nominal occupant; the weight comes from the segment table, not from this test.
+    assert!(weight > 400.0 && weight < 1200.0, "weight {weight} N");
+    assert!((fz - weight).abs() < 1e-6 * weight, "ΣFz {fz} vs {weight}");
+    assert!(fx.abs() < 1e-6 * weight, "ΣFx {fx}");
+    let gravity = eq["gravity_moment_nm"].as_f64().unwrap();
+    assert!((moment + gravity).abs() < 1e-6 * weight, "{moment} + {gravity}");
+    let described = v["described"].as_array().unwrap();
+    assert_eq!(described.len(), v["undamped"].as_array().unwrap().len());
+    assert!(
+        described
+            .iter()
+            .any(|d| d["motions"].to_string().contains("fore-and-aft head"))
+    );
+}

@@ -57,6 +57,23 @@ fn print_planar(name: &str, p: &crate::planar::Planar) -> crate::Result<()> {
     Ok(())
 }
 
+/// The equilibrium of a planar model as JSON: loads in N, points in m, moments in N·m.
+fn planar_equilibrium_json(eq: &crate::planar::equilibrium::Equilibrium) -> serde_json::Value {
+    let f = eq.total_force();
+    serde_json::json!({
+        "newton_iterations": eq.iterations,
+        "body_weight_n": eq.weight,
+        "support_force_n": {"x": f[0], "z": f[1]},
+        "support_moment_nm": eq.contact_moment(),
+        "gravity_moment_nm": eq.gravity_moment,
+        "loads": eq.loads.iter().map(|l| serde_json::json!({
+            "contact": l.name, "role": l.role, "normal_n": l.normal,
+            "tangential_n": l.tangential, "fx_n": l.force[0], "fz_n": l.force[1],
+            "x_m": l.point[0], "z_m": l.point[1],
+        })).collect::<Vec<_>>(),
+    })
+}
+
 pub fn run(args: Args) -> crate::Result<()> {
     let mut model = args.model.resolve()?;
     if let Some(t) = args.foam_thickness {
@@ -71,7 +88,7 @@ pub fn run(args: Args) -> crate::Result<()> {
     let dam = modes::damped(&model)?;
     let names: Vec<&str> = model.masses.iter().map(|m| m.name.as_str()).collect();
     if args.json {
-        let json = serde_json::json!({
+        let mut json = serde_json::json!({
             "model": model.name,
             "masses": names,
             "undamped": und.iter().map(|m| serde_json::json!({
@@ -83,15 +100,30 @@ pub fn run(args: Args) -> crate::Result<()> {
                 "shape_phase_deg": m.shape_phase_deg,
             })).collect::<Vec<_>>(),
         });
+        if let Some(p) = &model.planar {
+            json["equilibrium"] = planar_equilibrium_json(&p.equilibrium);
+            json["described"] = crate::planar::modes::describe(p)?
+                .iter()
+                .map(|d| {
+                    serde_json::json!({
+                        "freq_hz": d.mode.freq_hz,
+                        "motions": d.components,
+                        "vertical_mass_fraction": d.vertical_mass_fraction,
+                        "fore_aft_mass_fraction": d.fore_aft_mass_fraction,
+                    })
+                })
+                .collect();
+        }
         println!("{}", serde_json::to_string_pretty(&json).expect("json"));
         return Ok(());
     }
     println!("Model {} ({} DOF)", model.name, model.dof());
     println!("\nUndamped modes (dashpots locked): frequency [Hz] and shape (largest = 1)");
+    let w = names.iter().map(|n| n.len() + 2).max().unwrap_or(0).max(12);
     println!(
         "  {:>9}  {}",
         "f [Hz]",
-        names.iter().map(|n| format!("{n:>12}")).collect::<String>()
+        names.iter().map(|n| format!("{n:>w$}")).collect::<String>()
     );
     for m in &und {
         println!(
@@ -99,7 +131,7 @@ pub fn run(args: Args) -> crate::Result<()> {
             m.freq_hz,
             m.shape
                 .iter()
-                .map(|v| format!("{v:12.4}"))
+                .map(|v| format!("{v:w$.4}"))
                 .collect::<String>()
         );
     }
