@@ -24,12 +24,12 @@ pub enum Quantity {
     AAbs(usize),
     LinkDeflection(usize),
     LinkForce(usize),
-    /// Seat-surface force on the body, `−Σ link_force[interface]` (compression positive), N.
-    SeatForce,
+    /// Measured-run channel `k` of [`Layout::measured_channels`], evaluated by [`Layout::measured`].
+    Measured(usize),
 }
 
 impl Quantity {
-    fn eval(self, s: &Step<'_>, interface: &[usize]) -> f64 {
+    fn eval(self, s: &Step<'_>, measured: &[f64]) -> f64 {
         match self {
             Quantity::Time => s.t,
             Quantity::BaseA => s.a_base,
@@ -43,7 +43,7 @@ impl Quantity {
             Quantity::AAbs(i) => s.a[i] + s.a_base,
             Quantity::LinkDeflection(l) => s.link_deflection[l],
             Quantity::LinkForce(l) => s.link_force[l],
-            Quantity::SeatForce => -interface.iter().map(|&l| s.link_force[l]).sum::<f64>(),
+            Quantity::Measured(k) => measured[k],
         }
     }
 }
@@ -118,45 +118,36 @@ fn keys(names: &[String], what: &str) -> Result<Vec<String>> {
     Ok(keys)
 }
 
+/// What a measured-run channel holds (`../shared/specs/measured-runs.md`).
+fn measured_description(name: &str) -> &'static str {
+    match name {
+        "a_base_z" => "seat-base (input) acceleration, m/s²",
+        "a_seat_z" => {
+            "absolute acceleration at the occupant–cushion interface (the base for a rigid seat), m/s²"
+        }
+        "a_seat_x" => {
+            "fore-and-aft acceleration at the occupant–cushion interface (the base moves vertically), m/s²"
+        }
+        "a_head_z" => "absolute vertical head acceleration, m/s²",
+        "a_head_x" => "absolute fore-and-aft head acceleration, m/s²",
+        "f_seat_z" => {
+            "dynamic seat-surface force on the body (compression positive, static weight removed), N"
+        }
+        _ => "measured-run channel",
+    }
+}
+
 /// The four time-series topics of a run of `layout`.
 pub fn topics(layout: &Layout) -> Result<Vec<Topic>> {
     let masses = keys(&layout.masses, "mass")?;
     let links = keys(&layout.links, "link")?;
 
     let mut m = Builder::new();
-    m.add(
-        &["a_base_z"],
-        Quantity::BaseA,
-        "seat-base (input) acceleration, m/s²".into(),
-    );
-    let seat = layout.seat.map_or(Quantity::BaseA, Quantity::AAbs);
-    m.add(
-        &["a_seat_z"],
-        seat,
-        "absolute acceleration at the occupant–cushion interface (the base for a rigid seat), m/s²"
-            .into(),
-    );
-    if let Some(p) = &layout.planar {
+    for (k, name) in layout.measured_channels().into_iter().enumerate() {
         m.add(
-            &["a_seat_x"],
-            Quantity::A(p.seat_x),
-            "fore-and-aft acceleration at the occupant–cushion interface (the base moves vertically), m/s²"
-                .into(),
-        );
-    }
-    if let Some(h) = layout.head {
-        m.add(
-            &["a_head_z"],
-            Quantity::AAbs(h),
-            "absolute head acceleration, m/s²".into(),
-        );
-    }
-    if !layout.interface.is_empty() {
-        m.add(
-            &["f_seat_z"],
-            Quantity::SeatForce,
-            "dynamic seat-surface force on the body (compression positive, static weight removed), N"
-                .into(),
+            &[name],
+            Quantity::Measured(k),
+            measured_description(name).into(),
         );
     }
 
@@ -226,10 +217,11 @@ pub fn topics(layout: &Layout) -> Result<Vec<Topic>> {
     ])
 }
 
-/// Evaluates `quantities` of step `s` into `out` (cleared first).
-pub fn eval(quantities: &[Quantity], s: &Step<'_>, interface: &[usize], out: &mut Vec<f64>) {
+/// Evaluates `quantities` of step `s` into `out` (cleared first); `measured` holds
+/// [`Layout::measured`] of the step.
+pub fn eval(quantities: &[Quantity], s: &Step<'_>, measured: &[f64], out: &mut Vec<f64>) {
     out.clear();
-    out.extend(quantities.iter().map(|q| q.eval(s, interface)));
+    out.extend(quantities.iter().map(|q| q.eval(s, measured)));
 }
 
 /// The [`Signals`](crate::signals::Signals) channel name of a field of `topic`: the measured-run
