@@ -1,34 +1,13 @@
 //! Nonlinear links: the Newton iterations of Newmark and the explicit RK4 must converge to the same
 //! trajectory, and the laws must behave as their physics says.
 
-use std::f64::consts::PI;
-use wbv::excitation::Excitation;
 use wbv::integrator::Method;
 use wbv::model::{Model, file};
 use wbv::simulate::observer::{Layout, Observer, Step};
 use wbv::simulate::{Settings, run};
 
-struct Sine {
-    amp: f64,
-    f: f64,
-    step: f64,
-    k: u64,
-}
-
-impl Excitation for Sine {
-    fn fill(&mut self, out: &mut [f64]) {
-        for o in out {
-            *o = self.amp * (2.0 * PI * self.f * self.k as f64 * self.step).sin();
-            self.k += 1;
-        }
-    }
-    fn step_s(&self) -> f64 {
-        self.step
-    }
-    fn describe(&self) -> String {
-        "sine".into()
-    }
-}
+mod common;
+use common::Sine;
 
 #[derive(Default)]
 struct Head(Vec<f64>, Option<usize>);
@@ -86,12 +65,7 @@ fn head_motion(model: &Model, method: Method, dt: f64, amp: f64, f: f64, dur: f6
         duration_s: dur,
         method,
     };
-    let mut exc = Sine {
-        amp,
-        f,
-        step: settings.excitation_step(),
-        k: 0,
-    };
+    let mut exc = Sine::new(amp, f, settings.excitation_step());
     let mut head = Head::default();
     run(model, &mut exc, &settings, &mut [&mut head], None).unwrap();
     head.0

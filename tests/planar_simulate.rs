@@ -4,34 +4,14 @@
 
 use num_complex::Complex64;
 use std::f64::consts::PI;
-use wbv::excitation::Excitation;
 use wbv::integrator::Method;
 use wbv::model::catalog;
 use wbv::response::frf;
 use wbv::simulate::collect::Collector;
 use wbv::simulate::{Settings, run};
 
-/// `A·sin(ωt)` sampled at the integrator's stage times.
-struct Sine {
-    f: f64,
-    step: f64,
-    k: u64,
-}
-
-impl Excitation for Sine {
-    fn fill(&mut self, out: &mut [f64]) {
-        for o in out {
-            *o = (2.0 * PI * self.f * self.k as f64 * self.step).sin();
-            self.k += 1;
-        }
-    }
-    fn step_s(&self) -> f64 {
-        self.step
-    }
-    fn describe(&self) -> String {
-        "test sine".into()
-    }
-}
+mod common;
+use common::Sine;
 
 fn amplitude(fs: f64, y: &[f64], f: f64, from: usize) -> Complex64 {
     let w = 2.0 * PI * f;
@@ -53,11 +33,7 @@ fn sine_steady_state_matches_the_planar_frf_for_both_integrators() {
                 duration_s: 16.0,
                 method,
             };
-            let mut exc = Sine {
-                f,
-                step: settings.excitation_step(),
-                k: 0,
-            };
+            let mut exc = Sine::new(1.0, f, settings.excitation_step());
             let mut c = Collector::new();
             run(&model, &mut exc, &settings, &mut [&mut c], None).unwrap();
             let sig = c.into_signals("test").unwrap();
@@ -135,11 +111,7 @@ fn contact_forces_balance_the_momentum_rate_at_every_step() {
         duration_s: 4.0,
         method: Method::AVERAGE_ACCELERATION,
     };
-    let mut exc = Sine {
-        f: 4.5,
-        step: settings.excitation_step(),
-        k: 0,
-    };
+    let mut exc = Sine::new(1.0, 4.5, settings.excitation_step());
     let mut b = Balance {
         vertical: links.iter().map(|c| c.vertical).collect(),
         m_r,

@@ -311,16 +311,9 @@ fn rgba(out: &mut Vec<u8>, c: [f64; 4]) {
     );
 }
 
+/// A box at height `z` on the vertical axis, upright.
 fn cube(out: &mut Vec<u8>, z: f64, size: [f64; 3], color: [f64; 4]) {
-    out.extend_from_slice(br#"{"pose":"#);
-    pose(out, z);
-    let _ = write!(
-        out,
-        r#","size":{{"x":{},"y":{},"z":{}}},"color":"#,
-        size[0], size[1], size[2]
-    );
-    rgba(out, color);
-    out.push(b'}');
+    posed_cube(out, [0.0, z], 0.0, size, color);
 }
 
 #[cfg(test)]
