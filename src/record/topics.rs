@@ -12,8 +12,6 @@ pub enum Quantity {
     /// Simulation time in s (never filtered).
     Time,
     BaseA,
-    BaseV,
-    BaseX,
     /// Relative displacement/velocity/acceleration of mass `i`.
     X(usize),
     V(usize),
@@ -33,8 +31,6 @@ impl Quantity {
         match self {
             Quantity::Time => s.t,
             Quantity::BaseA => s.a_base,
-            Quantity::BaseV => s.v_base,
-            Quantity::BaseX => s.x_base,
             Quantity::X(i) => s.x[i],
             Quantity::V(i) => s.v[i],
             Quantity::A(i) => s.a[i],
@@ -73,10 +69,18 @@ struct Builder {
 }
 
 impl Builder {
-    fn new() -> Self {
+    /// A topic whose messages start with the simulation time `t`.
+    fn timed() -> Self {
         Builder {
             leaves: vec![Leaf::new(&["t"], "simulation time, s")],
             quantities: vec![Quantity::Time],
+        }
+    }
+    /// A topic without `t`: its time is the message `log_time` (= `publish_time`).
+    fn untimed() -> Self {
+        Builder {
+            leaves: Vec::new(),
+            quantities: Vec::new(),
         }
     }
     fn add(&mut self, path: &[&str], q: Quantity, description: String) {
@@ -118,12 +122,20 @@ fn keys(names: &[String], what: &str) -> Result<Vec<String>> {
     Ok(keys)
 }
 
-/// The four time-series topics of a run of `layout`.
+/// Link roles whose deflection is recorded: cushion deflection and suspension travel. The
+/// deflection of any other link is `x_upper − x_lower` of two `/wbv/state` displacements.
+const DEFLECTION_ROLES: [&str; 2] = ["cushion", "suspension"];
+
+/// The time-series topics of a run of `layout`: `/wbv/measured`, `/wbv/state` and, for a model
+/// with links, `/wbv/links`. Every field is recorded once, except the measured-run channels
+/// `a_seat_z` and `a_head_z` (also `a_abs` of their masses) and `f_seat_z` (also the negated
+/// force of a single interface link), kept under model-independent names for the viewer layout
+/// and the measured-run readers. Only `/wbv/measured` carries `t`: it equals the log time.
 pub fn topics(layout: &Layout) -> Result<Vec<Topic>> {
     let masses = keys(&layout.masses, "mass")?;
     let links = keys(&layout.links, "link")?;
 
-    let mut m = Builder::new();
+    let mut m = Builder::timed();
     m.add(
         &["a_base_z"],
         Quantity::BaseA,
@@ -160,7 +172,7 @@ pub fn topics(layout: &Layout) -> Result<Vec<Topic>> {
         );
     }
 
-    let mut s = Builder::new();
+    let mut s = Builder::untimed();
     for (i, k) in masses.iter().enumerate() {
         let name = &layout.masses[i];
         // A planar coordinate that the vertical base does not move is absolute already.
@@ -189,15 +201,17 @@ pub fn topics(layout: &Layout) -> Result<Vec<Topic>> {
         }
     }
 
-    let mut l = Builder::new();
+    let mut l = Builder::untimed();
     for (i, k) in links.iter().enumerate() {
         let name = &layout.links[i];
         let role = layout.link_roles.get(i).map_or("", String::as_str);
-        l.add(
-            &[k, "deflection"],
-            Quantity::LinkDeflection(i),
-            format!("{name} ({role}): deflection x_upper − x_lower, m (extension positive)"),
-        );
+        if DEFLECTION_ROLES.contains(&role) {
+            l.add(
+                &[k, "deflection"],
+                Quantity::LinkDeflection(i),
+                format!("{name} ({role}): deflection x_upper − x_lower, m (extension positive)"),
+            );
+        }
         l.add(
             &[k, "force"],
             Quantity::LinkForce(i),
@@ -205,25 +219,22 @@ pub fn topics(layout: &Layout) -> Result<Vec<Topic>> {
         );
     }
 
-    let mut b = Builder::new();
-    b.add(&["a"], Quantity::BaseA, "base acceleration, m/s²".into());
-    b.add(&["v"], Quantity::BaseV, "base velocity, m/s".into());
-    b.add(&["x"], Quantity::BaseX, "base displacement, m".into());
-
-    Ok(vec![
+    let mut topics = vec![
         m.finish(
             "/wbv/measured",
             "wbv.Measured",
             "measured-run channels (shared/specs/measured-runs.md)",
         ),
         s.finish("/wbv/state", "wbv.State", "state of every mass"),
-        l.finish(
+    ];
+    if !l.leaves.is_empty() {
+        topics.push(l.finish(
             "/wbv/links",
             "wbv.Links",
-            "deflection and force of every link",
-        ),
-        b.finish("/wbv/base", "wbv.Base", "base (input) motion"),
-    ])
+            "force of every link; deflection of the cushion and suspension links",
+        ));
+    }
+    Ok(topics)
 }
 
 /// Evaluates `quantities` of step `s` into `out` (cleared first).
@@ -239,5 +250,66 @@ pub fn channel_name(topic: &str, path: &[String]) -> String {
     match topic.strip_prefix("/wbv/") {
         Some("measured") | None => joined,
         Some(rest) => format!("{rest}.{joined}"),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::record::demo;
+
+    fn all(layout: &Layout) -> Vec<(String, Quantity)> {
+        let topics = topics(layout).unwrap();
+        let mut out = Vec::new();
+        for t in &topics {
+            for (leaf, q) in t.leaves.iter().zip(&t.quantities) {
+                out.push((channel_name(t.topic, &leaf.path), *q));
+            }
+        }
+        out
+    }
+
+    #[test]
+    fn every_signal_the_issue_lists_is_recorded() {
+        let layout = demo::layout(1000.0, 10);
+        let fields = all(&layout);
+        let has = |q: Quantity| fields.iter().any(|(_, f)| *f == q);
+        assert!(has(Quantity::BaseA) && has(Quantity::SeatForce));
+        for i in 0..layout.masses.len() {
+            for q in [Quantity::X(i), Quantity::V(i), Quantity::A(i)] {
+                assert!(has(q), "{q:?}");
+            }
+            for q in [Quantity::XAbs(i), Quantity::VAbs(i), Quantity::AAbs(i)] {
+                assert!(has(q), "{q:?}");
+            }
+        }
+        for l in 0..layout.links.len() {
+            assert!(has(Quantity::LinkForce(l)));
+        }
+        // the cushion link (index 4): its deflection; the body links' are differences of `x`
+        assert!(has(Quantity::LinkDeflection(4)));
+        assert!(!has(Quantity::LinkDeflection(1)));
+    }
+
+    #[test]
+    fn only_the_measured_run_names_repeat_a_value() {
+        let layout = demo::layout(1000.0, 10);
+        let fields = all(&layout);
+        let seat = Quantity::AAbs(layout.seat.unwrap());
+        let head = Quantity::AAbs(layout.head.unwrap());
+        for (i, (name, q)) in fields.iter().enumerate() {
+            let twice = fields[..i].iter().find(|(_, p)| p == q);
+            if let Some((first, _)) = twice {
+                assert!(
+                    [seat, head].contains(q) && name.starts_with("state."),
+                    "{name} repeats {first}"
+                );
+            }
+        }
+        let times: Vec<&String> = (fields.iter())
+            .filter(|(_, q)| *q == Quantity::Time)
+            .map(|(n, _)| n)
+            .collect();
+        assert_eq!(times, ["t"], "only /wbv/measured carries t");
     }
 }
