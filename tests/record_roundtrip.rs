@@ -231,7 +231,11 @@ fn every_channel_schema_is_in_the_lichtblick_subset() {
     record(&path, RecordOptions::default(), 50).unwrap();
     let bytes = std::fs::read(&path).unwrap();
     let summary = mcap::Summary::read(&bytes).unwrap().unwrap();
-    assert_eq!(summary.channels.len(), 5, "measured, state, links, scene, tf");
+    assert_eq!(
+        summary.channels.len(),
+        5,
+        "measured, state, links, scene, tf"
+    );
     for c in summary.channels.values() {
         let schema = c.schema.as_ref().expect("every channel has a schema");
         assert_eq!(schema.encoding, "jsonschema");

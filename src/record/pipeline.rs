@@ -212,13 +212,25 @@ impl Pipeline {
         self.to_format[k].send(block).is_ok()
     }
 
-    /// Waits for every block sent to be written and returns the writer.
+    /// Waits for every block sent to be written and returns the writer. If a thread panicked,
+    /// the writer is abandoned without its summary (a file that cannot look complete).
     pub fn finish(self) -> std::thread::Result<WriterResult> {
         drop(self.to_format);
+        let mut panicked = None;
         for h in self.formatters {
-            h.join()?;
+            if let Err(e) = h.join() {
+                panicked.get_or_insert(e);
+            }
         }
-        self.writer.join()
+        let written = self.writer.join();
+        match (panicked, written) {
+            (None, written) => written,
+            (Some(e), Ok(Ok(w))) => {
+                drop(w.into_inner());
+                Err(e)
+            }
+            (Some(e), _) => Err(e),
+        }
     }
 }
 
