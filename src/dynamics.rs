@@ -5,9 +5,10 @@
 //! `q̇ = k_m·(ḋ − q/c_m)`. A link with tension `t` adds `+t` to `f` of its upper mass and `−t` to its
 //! lower mass (it pulls them together), matching [`crate::model::assembly`].
 //!
-//! A planar model has no links: its equations are a [`General`] linear part
+//! A planar model has no links in its equations: they are a [`General`] linear part
 //! `M·ẍ + C·ẋ + K·x = −M·r·a_base` with full matrices, so `f = K·x + C·ẋ` and the integrators use
-//! `M` and `r` where a link model has its diagonal masses and `r = 1`.
+//! `M` and `r` where a link model has its diagonal masses and `r = 1`. Its seat contacts are read
+//! out as [`RowLink`]s.
 
 use crate::model::{Law, Model, Node};
 use nalgebra::DMatrix;
@@ -42,6 +43,19 @@ pub struct General {
     pub m_inv: DMatrix<f64>,
     /// Base influence vector (1 for a coordinate that moves with a vertical base, 0 otherwise).
     pub r: Vec<f64>,
+    /// Output links: deflection `row·x`, tension `k·row·x + c·row·ẋ` (already part of `K`, `C`).
+    pub links: Vec<RowLink>,
+}
+
+/// A link of a general system, read out only (its forces are inside `K` and `C`).
+#[derive(Debug, Clone)]
+pub struct RowLink {
+    /// Deflection per unit coordinate.
+    pub row: Vec<f64>,
+    /// Stiffness (N/m).
+    pub k: f64,
+    /// Damping (N·s/m).
+    pub c: f64,
 }
 
 /// The model's equations of motion.
@@ -81,6 +95,14 @@ impl Dynamics {
                     k: l.k.clone(),
                     m_inv,
                     r: l.r_z.iter().copied().collect(),
+                    links: crate::planar::links::contact_links(p)
+                        .into_iter()
+                        .map(|c| RowLink {
+                            row: c.row,
+                            k: c.k,
+                            c: c.c,
+                        })
+                        .collect(),
                 })),
             };
         }
@@ -180,6 +202,16 @@ impl Dynamics {
             for (i, fi) in f.iter_mut().enumerate() {
                 for j in 0..x.len() {
                     *fi += g.k[(i, j)] * x[j] + g.c[(i, j)] * v[j];
+                }
+            }
+            for (li, l) in g.links.iter().enumerate() {
+                let dot = |y: &[f64]| l.row.iter().zip(y).map(|(r, y)| r * y).sum::<f64>();
+                let d = dot(x);
+                if let Some(out) = link_tension.as_deref_mut() {
+                    out[li] = l.k * d + l.c * dot(v);
+                }
+                if let Some(out) = link_deflection.as_deref_mut() {
+                    out[li] = d;
                 }
             }
             return;

@@ -133,7 +133,10 @@ fn planar_modes_json_reports_the_equilibrium() {
     assert!((fz - weight).abs() < 1e-6 * weight, "ΣFz {fz} vs {weight}");
     assert!(fx.abs() < 1e-6 * weight, "ΣFx {fx}");
     let gravity = eq["gravity_moment_nm"].as_f64().unwrap();
-    assert!((moment + gravity).abs() < 1e-6 * weight, "{moment} + {gravity}");
+    assert!(
+        (moment + gravity).abs() < 1e-6 * weight,
+        "{moment} + {gravity}"
+    );
     let described = v["described"].as_array().unwrap();
     assert_eq!(described.len(), v["undamped"].as_array().unwrap().len());
     assert!(

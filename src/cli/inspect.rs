@@ -4,7 +4,7 @@ use std::path::PathBuf;
 /// Arguments of `wbv inspect`.
 #[derive(Debug, clap::Args)]
 pub struct Args {
-    /// A run recorded by wbv (`.mcap`).
+    /// A run recorded by wbv: its directory under `runs/` or the `.mcap` file.
     run: PathBuf,
 }
 
@@ -25,7 +25,7 @@ const RUN_KEYS: [&str; 12] = [
 ];
 
 pub fn run(args: Args) -> crate::Result<()> {
-    let s = inspect(&args.run)?;
+    let s = inspect(&crate::record::run_file(&args.run))?;
     println!("{}  ({})", s.path.display(), s.library);
     let duration = s.end_ns.saturating_sub(s.start_ns) as f64 * 1e-9;
     println!(

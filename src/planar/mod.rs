@@ -14,6 +14,7 @@ pub mod contact;
 pub mod equilibrium;
 pub mod file;
 pub mod linearise;
+pub mod links;
 pub mod modes;
 pub mod params;
 pub mod posture;

@@ -37,6 +37,7 @@ pub fn layout(p: &Planar) -> PlanarLayout {
     PlanarLayout {
         influence: p.linear.r_z.iter().copied().collect(),
         seat_x: 0,
+        head: super::links::head_jacobian(p),
         bodies,
     }
 }

@@ -11,7 +11,6 @@ use serde_json::Value;
 pub enum Quantity {
     /// Simulation time in s (never filtered).
     Time,
-    BaseA,
     /// Relative displacement/velocity/acceleration of mass `i`.
     X(usize),
     V(usize),
@@ -22,15 +21,14 @@ pub enum Quantity {
     AAbs(usize),
     LinkDeflection(usize),
     LinkForce(usize),
-    /// Seat-surface force on the body, `−Σ link_force[interface]` (compression positive), N.
-    SeatForce,
+    /// Measured-run channel `k` of [`Layout::measured_channels`], evaluated by [`Layout::measured`].
+    Measured(usize),
 }
 
 impl Quantity {
-    fn eval(self, s: &Step<'_>, interface: &[usize]) -> f64 {
+    fn eval(self, s: &Step<'_>, measured: &[f64]) -> f64 {
         match self {
             Quantity::Time => s.t,
-            Quantity::BaseA => s.a_base,
             Quantity::X(i) => s.x[i],
             Quantity::V(i) => s.v[i],
             Quantity::A(i) => s.a[i],
@@ -39,7 +37,7 @@ impl Quantity {
             Quantity::AAbs(i) => s.a[i] + s.a_base,
             Quantity::LinkDeflection(l) => s.link_deflection[l],
             Quantity::LinkForce(l) => s.link_force[l],
-            Quantity::SeatForce => -interface.iter().map(|&l| s.link_force[l]).sum::<f64>(),
+            Quantity::Measured(k) => measured[k],
         }
     }
 }
@@ -122,53 +120,47 @@ fn keys(names: &[String], what: &str) -> Result<Vec<String>> {
     Ok(keys)
 }
 
-/// Link roles whose deflection is recorded: cushion deflection and suspension travel. The
-/// deflection of any other link is `x_upper − x_lower` of two `/wbv/state` displacements.
+/// What a measured-run channel holds (`../shared/specs/measured-runs.md`).
+fn measured_description(name: &str) -> &'static str {
+    match name {
+        "a_base_z" => "seat-base (input) acceleration, m/s²",
+        "a_seat_z" => {
+            "absolute acceleration at the occupant–cushion interface (the base for a rigid seat), m/s²"
+        }
+        "a_seat_x" => {
+            "fore-and-aft acceleration at the occupant–cushion interface (the base moves vertically), m/s²"
+        }
+        "a_head_z" => "absolute vertical head acceleration, m/s²",
+        "a_head_x" => "absolute fore-and-aft head acceleration, m/s²",
+        "f_seat_z" => {
+            "dynamic seat-surface force on the body (compression positive, static weight removed), N"
+        }
+        _ => "measured-run channel",
+    }
+}
+
+/// Link roles whose deflection is recorded in a lumped-mass model: cushion deflection and
+/// suspension travel, named as such even where they equal the upper mass's `x` (a link to the
+/// base). The deflection of any other of its links is `x_upper − x_lower` of two `/wbv/state`
+/// displacements. A planar model's contact links all have theirs: a contact's
+/// deflection is a Jacobian row times the coordinates, not a difference a viewer can plot.
 const DEFLECTION_ROLES: [&str; 2] = ["cushion", "suspension"];
 
 /// The time-series topics of a run of `layout`: `/wbv/measured`, `/wbv/state` and, for a model
 /// with links, `/wbv/links`. Every field is recorded once, except the measured-run channels
 /// `a_seat_z` and `a_head_z` (also `a_abs` of their masses) and `f_seat_z` (also the negated
 /// force of a single interface link), kept under model-independent names for the viewer layout
-/// and the measured-run readers. Only `/wbv/measured` carries `t`: it equals the log time.
+/// and the measured-run readers, and a cushion or suspension deflection equal to a mass's `x`. Only `/wbv/measured` carries `t`: it equals the log time.
 pub fn topics(layout: &Layout) -> Result<Vec<Topic>> {
     let masses = keys(&layout.masses, "mass")?;
     let links = keys(&layout.links, "link")?;
 
     let mut m = Builder::timed();
-    m.add(
-        &["a_base_z"],
-        Quantity::BaseA,
-        "seat-base (input) acceleration, m/s²".into(),
-    );
-    let seat = layout.seat.map_or(Quantity::BaseA, Quantity::AAbs);
-    m.add(
-        &["a_seat_z"],
-        seat,
-        "absolute acceleration at the occupant–cushion interface (the base for a rigid seat), m/s²"
-            .into(),
-    );
-    if let Some(p) = &layout.planar {
+    for (k, name) in layout.measured_channels().into_iter().enumerate() {
         m.add(
-            &["a_seat_x"],
-            Quantity::A(p.seat_x),
-            "fore-and-aft acceleration at the occupant–cushion interface (the base moves vertically), m/s²"
-                .into(),
-        );
-    }
-    if let Some(h) = layout.head {
-        m.add(
-            &["a_head_z"],
-            Quantity::AAbs(h),
-            "absolute head acceleration, m/s²".into(),
-        );
-    }
-    if !layout.interface.is_empty() {
-        m.add(
-            &["f_seat_z"],
-            Quantity::SeatForce,
-            "dynamic seat-surface force on the body (compression positive, static weight removed), N"
-                .into(),
+            &[name],
+            Quantity::Measured(k),
+            measured_description(name).into(),
         );
     }
 
@@ -205,7 +197,7 @@ pub fn topics(layout: &Layout) -> Result<Vec<Topic>> {
     for (i, k) in links.iter().enumerate() {
         let name = &layout.links[i];
         let role = layout.link_roles.get(i).map_or("", String::as_str);
-        if DEFLECTION_ROLES.contains(&role) {
+        if layout.planar.is_some() || DEFLECTION_ROLES.contains(&role) {
             l.add(
                 &[k, "deflection"],
                 Quantity::LinkDeflection(i),
@@ -237,10 +229,11 @@ pub fn topics(layout: &Layout) -> Result<Vec<Topic>> {
     Ok(topics)
 }
 
-/// Evaluates `quantities` of step `s` into `out` (cleared first).
-pub fn eval(quantities: &[Quantity], s: &Step<'_>, interface: &[usize], out: &mut Vec<f64>) {
+/// Evaluates `quantities` of step `s` into `out` (cleared first); `measured` holds
+/// [`Layout::measured`] of the step.
+pub fn eval(quantities: &[Quantity], s: &Step<'_>, measured: &[f64], out: &mut Vec<f64>) {
     out.clear();
-    out.extend(quantities.iter().map(|q| q.eval(s, interface)));
+    out.extend(quantities.iter().map(|q| q.eval(s, measured)));
 }
 
 /// The [`Signals`](crate::signals::Signals) channel name of a field of `topic`: the measured-run
@@ -274,7 +267,8 @@ mod tests {
         let layout = demo::layout(1000.0, 10);
         let fields = all(&layout);
         let has = |q: Quantity| fields.iter().any(|(_, f)| *f == q);
-        assert!(has(Quantity::BaseA) && has(Quantity::SeatForce));
+        let names: Vec<&str> = fields.iter().map(|(n, _)| n.as_str()).collect();
+        assert!(names.contains(&"a_base_z") && names.contains(&"f_seat_z"));
         for i in 0..layout.masses.len() {
             for q in [Quantity::X(i), Quantity::V(i), Quantity::A(i)] {
                 assert!(has(q), "{q:?}");
@@ -294,15 +288,26 @@ mod tests {
     #[test]
     fn only_the_measured_run_names_repeat_a_value() {
         let layout = demo::layout(1000.0, 10);
-        let fields = all(&layout);
-        let seat = Quantity::AAbs(layout.seat.unwrap());
-        let head = Quantity::AAbs(layout.head.unwrap());
-        for (i, (name, q)) in fields.iter().enumerate() {
-            let twice = fields[..i].iter().find(|(_, p)| p == q);
-            if let Some((first, _)) = twice {
+        let (fields, topics) = (all(&layout), topics(&layout).unwrap());
+        let quantities: Vec<Quantity> = topics.iter().flat_map(|t| t.quantities.clone()).collect();
+        let state = demo::State::at(1234, 1e-3);
+        let (mut measured, mut values) = (Vec::new(), Vec::new());
+        layout.measured(&state.step(), &mut measured);
+        eval(&quantities, &state.step(), &measured, &mut values);
+        // a_seat_z, a_head_z: a_abs of the cushion and head; f_seat_z: −force of k4; the cushion
+        // link's deflection is the cushion's `x` (its lower node is the base)
+        let repeats = [
+            "state.cushion.a_abs",
+            "state.head.a_abs",
+            "links.k4.force",
+            "links.cushion.deflection",
+        ];
+        for (j, (name, _)) in fields.iter().enumerate() {
+            if let Some(i) = (0..j).find(|&i| values[i].abs() == values[j].abs()) {
                 assert!(
-                    [seat, head].contains(q) && name.starts_with("state."),
-                    "{name} repeats {first}"
+                    repeats.contains(&name.as_str()),
+                    "{name} repeats {}",
+                    fields[i].0
                 );
             }
         }

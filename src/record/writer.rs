@@ -41,7 +41,9 @@ pub struct McapRecorder {
     block: Block,
     topics: Vec<(Topic, u16)>,
     scene: Option<(Scene, u16, u16)>,
-    interface: Vec<usize>,
+    /// The run's layout (measured channels) and the scratch for them.
+    layout: Option<Layout>,
+    measured: Vec<f64>,
     quantities: Vec<Quantity>,
     /// Indices of `Quantity::Time` in `quantities`: written exactly, never filtered.
     time_slots: Vec<usize>,
@@ -103,7 +105,8 @@ impl McapRecorder {
             block: Block::default(),
             topics: Vec::new(),
             scene: None,
-            interface: Vec::new(),
+            layout: None,
+            measured: Vec::new(),
             quantities: Vec::new(),
             time_slots: Vec::new(),
             values: Vec::new(),
@@ -164,7 +167,7 @@ impl McapRecorder {
             let fc = LowPass::CUTOFF_FRACTION * rate;
             self.lowpass = Some(LowPass::new(fs, fc, self.quantities.len())?);
         }
-        self.interface = layout.interface.clone();
+        self.layout = Some(layout.clone());
 
         let mut run = meta::run_record(&self.provenance);
         let o = &self.options;
@@ -273,7 +276,10 @@ impl McapRecorder {
     }
 
     fn record(&mut self, s: &Step<'_>) -> Result<()> {
-        eval(&self.quantities, s, &self.interface, &mut self.values);
+        if let Some(l) = &self.layout {
+            l.measured(s, &mut self.measured);
+        }
+        eval(&self.quantities, s, &self.measured, &mut self.values);
         if let Some(i) = self.values.iter().position(|v| !v.is_finite()) {
             return Err(self.non_finite(s, i));
         }

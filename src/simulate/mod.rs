@@ -59,7 +59,7 @@ impl Settings {
 /// The layout observers receive for `model` under `settings`.
 pub fn layout(model: &Model, settings: &Settings) -> Layout {
     let node = |n: Node| model.node_name(n).to_string();
-    Layout {
+    let mut lay = Layout {
         model: model.name.clone(),
         masses: model.masses.iter().map(|m| m.name.clone()).collect(),
         mass_roles: model
@@ -82,8 +82,21 @@ pub fn layout(model: &Model, settings: &Settings) -> Layout {
         interface: model.measure.interface.clone(),
         dt: settings.dt,
         steps: settings.steps() + 1,
-        planar: model.planar.as_deref().map(crate::planar::replay::layout),
+        planar: None,
+    };
+    if let Some(p) = model.planar.as_deref() {
+        // The seat contacts stand in for links (`Dynamics` reads them out in the same order).
+        let links = crate::planar::links::contact_links(p);
+        lay.interface = crate::planar::links::interface(&links);
+        lay.link_nodes = links
+            .iter()
+            .map(|l| (l.segment.clone(), "base".to_string()))
+            .collect();
+        lay.link_roles = links.iter().map(|l| l.role.clone()).collect();
+        lay.links = links.into_iter().map(|l| l.name).collect();
+        lay.planar = Some(crate::planar::replay::layout(p));
     }
+    lay
 }
 
 /// Runs the simulation, calling `observers` for every step from t = 0. The observers' `end` is
@@ -120,7 +133,7 @@ pub fn run(
     excitation.fill(&mut buf[..1]);
     check_input(buf[0], 0.0)?;
     let mut state = State::at_rest(&dynamics, buf[0]);
-    let nl = model.links.len();
+    let nl = lay.links.len();
     let (mut tension, mut deflection) = (vec![0.0; nl], vec![0.0; nl]);
     let mut f = vec![0.0; model.dof()];
     let (mut v_base, mut x_base) = (0.0, 0.0);

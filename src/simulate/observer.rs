@@ -41,6 +41,8 @@ pub struct PlanarLayout {
     pub influence: Vec<f64>,
     /// Coordinate of the fore-and-aft motion of the seat point (`a_seat_x`).
     pub seat_x: usize,
+    /// Rows `∂(x, z)/∂q` of the head's centre of mass (`a_head_x`, `a_head_z`), if defined.
+    pub head: Option<[Vec<f64>; 2]>,
     /// Rigid segments, for the 3-D replay.
     pub bodies: Vec<BodyPose>,
 }
@@ -107,7 +109,7 @@ pub trait Observer {
 impl Layout {
     /// Names of the measured-run channels this model yields (`../shared/specs/measured-runs.md`):
     /// `a_base_z`, `a_seat_z` (seat surface), `a_seat_x` (fore-and-aft, planar models),
-    /// `a_head_z` when a head is defined, and `f_seat_z` (the
+    /// `a_head_z` when a head is defined (and `a_head_x` for planar models), and `f_seat_z` (the
     /// seat-surface force on the body, static weight removed) when interface links are defined.
     pub fn measured_channels(&self) -> Vec<&'static str> {
         let mut names = vec!["a_base_z", "a_seat_z"];
@@ -116,6 +118,9 @@ impl Layout {
         }
         if self.head.is_some() {
             names.push("a_head_z");
+        }
+        if self.planar.as_ref().is_some_and(|p| p.head.is_some()) {
+            names.extend(["a_head_z", "a_head_x"]);
         }
         if !self.interface.is_empty() {
             names.push("f_seat_z");
@@ -134,6 +139,20 @@ impl Layout {
         }
         if let Some(h) = self.head {
             out.push(step.abs_acceleration(h));
+        }
+        if let Some(pl) = &self.planar
+            && let Some([jx, jz]) = &pl.head
+        {
+            // Absolute: the coordinates' accelerations plus the base's through its influence.
+            let abs = |j: &[f64]| -> f64 {
+                j.iter()
+                    .zip(step.a)
+                    .zip(&pl.influence)
+                    .map(|((j, a), r)| j * (a + r * step.a_base))
+                    .sum()
+            };
+            out.push(abs(jz));
+            out.push(abs(jx));
         }
         if !self.interface.is_empty() {
             out.push(

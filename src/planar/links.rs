@@ -1,0 +1,77 @@
+//! The seat contacts of a planar model as the links of a time-domain run.
+//!
+//! Each contact becomes two links, `<contact>_n` along the support's normal `n` and `<contact>_t`
+//! along its tangent `t` ([`super::contact::Contact::axes`]). About the equilibrium a contact
+//! point moves by `J·q` (its Jacobian at the equilibrium, [`super::posture::Posture::jacobian`]),
+//! so a link's deflection is the row `d = nᵀJ` (or `tᵀJ`) times `q`, and its tension — the
+//! incremental contact force, static preload removed — is `k·d·q + c·d·q̇` with the contact's
+//! linearised coefficients. Positive deflection lifts the body off the support (extension), so the
+//! force the support adds on the body is `−tension` along the axis, the 1-D link convention
+//! ([`crate::dynamics`]). These are exactly the contact terms of `K` and `C`
+//! ([`super::linearise`]): summed over all contacts, their vertical components equal the body's
+//! vertical momentum rate.
+
+use super::Planar;
+
+/// One contact axis as a link.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ContactLink {
+    /// `<contact>_n` (normal) or `<contact>_t` (tangential, shear).
+    pub name: String,
+    /// The contact's role: `cushion`, `backrest` or `footrest`.
+    pub role: String,
+    /// Segment the contact acts on (the link's upper node; the lower node is the base).
+    pub segment: String,
+    /// Deflection per unit coordinate, m per m or m per rad.
+    pub row: Vec<f64>,
+    /// Stiffness along the axis, N/m.
+    pub k: f64,
+    /// Damping along the axis, N·s/m.
+    pub c: f64,
+    /// Vertical component of the axis (`n_z` or `t_z`).
+    pub vertical: f64,
+}
+
+/// The normal and tangential links of every contact, in contact order.
+pub fn contact_links(p: &Planar) -> Vec<ContactLink> {
+    let pos = &p.spec.posture;
+    let pl = pos.place(&p.equilibrium.q);
+    let mut out = Vec::with_capacity(2 * p.spec.contacts.len());
+    for (ct, coef) in p.spec.contacts.iter().zip(&p.equilibrium.coefficients) {
+        let j = pos.jacobian(&pl, ct.segment, ct.at);
+        let (n, t) = ct.axes();
+        for (suffix, axis, k, c) in [("n", n, coef.0, coef.2), ("t", t, coef.1, coef.3)] {
+            out.push(ContactLink {
+                name: format!("{}_{suffix}", ct.name),
+                role: ct.role.clone(),
+                segment: pos.segments[ct.segment].name.clone(),
+                row: (0..pos.dof())
+                    .map(|i| axis[0] * j[0][i] + axis[1] * j[1][i])
+                    .collect(),
+                k,
+                c,
+                vertical: axis[1],
+            });
+        }
+    }
+    out
+}
+
+/// Indexes into [`contact_links`] whose tensions sum to minus the seat-surface force on the body:
+/// the normal links of the cushion contacts (vertical for a level seat pan).
+pub fn interface(links: &[ContactLink]) -> Vec<usize> {
+    links
+        .iter()
+        .enumerate()
+        .filter(|(_, l)| l.role == "cushion" && l.name.ends_with("_n"))
+        .map(|(i, _)| i)
+        .collect()
+}
+
+/// Rows `∂(x, z)/∂q` of the head's centre of mass at the equilibrium, when a head is defined.
+pub fn head_jacobian(p: &Planar) -> Option<[Vec<f64>; 2]> {
+    let s = p.spec.head?;
+    let pos = &p.spec.posture;
+    let pl = pos.place(&p.equilibrium.q);
+    Some(pos.jacobian(&pl, s, pos.segments[s].com))
+}
