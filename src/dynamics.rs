@@ -186,17 +186,19 @@ impl Dynamics {
         }
     }
 
-    /// Link forces on the masses `f` (N) at state `(x, v, q)`; optionally each link's tension and
-    /// deflection.
-    pub fn forces(
-        &self,
-        x: &[f64],
-        v: &[f64],
-        q: &[f64],
-        f: &mut [f64],
-        mut link_tension: Option<&mut [f64]>,
-        mut link_deflection: Option<&mut [f64]>,
-    ) {
+    /// Deflection `d` and tension `t` of link `l` at state `(x, v, q)`.
+    #[inline]
+    fn link_state(l: &LinkDyn, x: &[f64], v: &[f64], q: &[f64]) -> (f64, f64) {
+        let d = Self::relative(l, x);
+        let mut t = Self::parallel(l, d, Self::relative(l, v)).0;
+        if let Some((_, _, r)) = l.arm {
+            t += q[r];
+        }
+        (d, t)
+    }
+
+    /// Link forces on the masses `f` (N) at state `(x, v, q)`.
+    pub fn forces(&self, x: &[f64], v: &[f64], q: &[f64], f: &mut [f64]) {
         f.iter_mut().for_each(|v| *v = 0.0);
         if let Some(g) = &self.general {
             for (i, fi) in f.iter_mut().enumerate() {
@@ -204,37 +206,39 @@ impl Dynamics {
                     *fi += g.k[(i, j)] * x[j] + g.c[(i, j)] * v[j];
                 }
             }
-            for (li, l) in g.links.iter().enumerate() {
-                let dot = |y: &[f64]| l.row.iter().zip(y).map(|(r, y)| r * y).sum::<f64>();
-                let d = dot(x);
-                if let Some(out) = link_tension.as_deref_mut() {
-                    out[li] = l.k * d + l.c * dot(v);
-                }
-                if let Some(out) = link_deflection.as_deref_mut() {
-                    out[li] = d;
-                }
-            }
             return;
         }
-        for (li, l) in self.links.iter().enumerate() {
-            let d = Self::relative(l, x);
-            let dv = Self::relative(l, v);
-            let mut t = Self::parallel(l, d, dv).0;
-            if let Some((_, _, r)) = l.arm {
-                t += q[r];
-            }
+        for l in &self.links {
+            let t = Self::link_state(l, x, v, q).1;
             if let Some(i) = l.a {
                 f[i] += t;
             }
             if let Some(j) = l.b {
                 f[j] -= t;
             }
-            if let Some(out) = link_tension.as_deref_mut() {
-                out[li] = t;
+        }
+    }
+
+    /// Each link's tension (N) and deflection (m) at state `(x, v, q)`, for observers; a general
+    /// system's [`RowLink`]s.
+    pub fn link_outputs(
+        &self,
+        x: &[f64],
+        v: &[f64],
+        q: &[f64],
+        tension: &mut [f64],
+        deflection: &mut [f64],
+    ) {
+        if let Some(g) = &self.general {
+            for ((l, t), d) in g.links.iter().zip(tension).zip(deflection) {
+                let dot = |y: &[f64]| l.row.iter().zip(y).map(|(r, y)| r * y).sum::<f64>();
+                *d = dot(x);
+                *t = l.k * *d + l.c * dot(v);
             }
-            if let Some(out) = link_deflection.as_deref_mut() {
-                out[li] = d;
-            }
+            return;
+        }
+        for ((l, t), d) in self.links.iter().zip(tension).zip(deflection) {
+            (*d, *t) = Self::link_state(l, x, v, q);
         }
     }
 
@@ -291,7 +295,7 @@ mod tests {
         let x: Vec<f64> = (0..n).map(|i| 1e-3 * (i as f64 + 1.0).sin()).collect();
         let v: Vec<f64> = (0..n).map(|i| 1e-2 * (i as f64 + 2.0).cos()).collect();
         let mut f = vec![0.0; n];
-        dynm.forces(&x, &v, &[], &mut f, None, None);
+        dynm.forces(&x, &v, &[], &mut f);
         for i in 0..n {
             let expect: f64 = (0..n).map(|j| k[(i, j)] * x[j] + c[(i, j)] * v[j]).sum();
             assert!((f[i] - expect).abs() < 1e-9 * expect.abs().max(1.0));

@@ -32,6 +32,10 @@ pub struct Args {
     /// Replace existing outputs.
     #[arg(long)]
     pub force: bool,
+    /// Also time the simulation core alone (excitation + integration, no analysis or recording) in
+    /// an extra run before the real one, and print both times on stderr.
+    #[arg(long)]
+    pub timing: bool,
 }
 
 impl Args {
@@ -107,8 +111,35 @@ pub fn execute(
     Ok(outcome)
 }
 
+/// Times, in extra runs, generating the excitation alone and the simulation core (excitation +
+/// integration, no observers), in s: what `scipy.signal.lsim` does, for `tools/bench-peers`.
+fn time_core(scenario: &Scenario) -> crate::Result<(f64, f64)> {
+    let s = &scenario.settings;
+    let start = std::time::Instant::now();
+    let mut exc = scenario
+        .excitation
+        .build(s.excitation_step(), s.duration_s, scenario.seed)?;
+    let mut buf = vec![0.0; 4096];
+    let mut left = s.steps() as usize * s.method.substeps() + 1;
+    while left > 0 {
+        let k = left.min(buf.len());
+        exc.fill(&mut buf[..k]);
+        left -= k;
+    }
+    std::hint::black_box(&buf);
+    let excitation = start.elapsed().as_secs_f64();
+    let start = std::time::Instant::now();
+    scenario.simulate(&mut [], None)?;
+    Ok((excitation, start.elapsed().as_secs_f64()))
+}
+
 pub fn run(args: Args) -> crate::Result<()> {
     let scenario = args.scenario()?;
+    let core = if args.timing {
+        Some(time_core(&scenario)?)
+    } else {
+        None
+    };
     let options = RecordOptions {
         compression: Compression::parse(&args.compression)?,
         record_rate_hz: args.record_rate,
@@ -122,11 +153,21 @@ pub fn run(args: Args) -> crate::Result<()> {
             scenario.seed
         ))
     });
-    execute(
+    let outcome = execute(
         &scenario,
         (!args.no_record).then_some(dir.as_path()),
         options,
         args.csv.clone(),
     )?;
+    if let Some((excitation, core)) = core {
+        let ns = 1e9 / scenario.settings.steps() as f64;
+        eprintln!(
+            "timing: excitation {excitation:.4} s, core {core:.4} s ({:.1} ns per step, of which integration {:.1} ns), run {:.4} s (with analysis{})",
+            core * ns,
+            (core - excitation) * ns,
+            outcome.elapsed_s,
+            if args.no_record { "" } else { " and recording" }
+        );
+    }
     Ok(())
 }

@@ -1,7 +1,9 @@
 //! Time integrators over [`Dynamics`]: Newmark-β ([`newmark`]) and classical Runge–Kutta
 //! ([`rk4`]). Both evaluate the same link forces ([`Dynamics::forces`]); only the time
-//! discretisation differs.
+//! discretisation differs. For a linear model either one is run as its step matrix
+//! ([`linear::LinearStep`]), which gives the same numbers faster.
 
+pub mod linear;
 pub mod newmark;
 pub mod rk4;
 pub mod stability;
@@ -108,7 +110,23 @@ pub trait Integrator: Send {
 }
 
 /// Builds the integrator for `method` at step `dt` (s), checking its stability where it is limited.
+/// A linear model gets the integrator's step matrix ([`linear::LinearStep`]).
 pub fn build(
+    method: Method,
+    dynamics: &Dynamics,
+    model: &crate::model::Model,
+    dt: f64,
+) -> Result<Box<dyn Integrator>> {
+    let mut integrator = build_stepping(method, dynamics, model, dt)?;
+    if dynamics.is_nonlinear() {
+        return Ok(integrator);
+    }
+    let step = linear::LinearStep::probe(integrator.as_mut(), dynamics, method.substeps() + 1)?;
+    Ok(Box::new(step))
+}
+
+/// Builds the integrator for `method` that evaluates the forces at every step, for any model.
+pub fn build_stepping(
     method: Method,
     dynamics: &Dynamics,
     model: &crate::model::Model,

@@ -143,8 +143,7 @@ impl Integrator for Newmark {
         let mut converged = false;
         for _ in 0..MAX_ITERATIONS {
             self.trial(&a);
-            self.dynamics
-                .forces(&self.x, &self.v, &self.q, &mut self.f, None, None);
+            self.dynamics.forces(&self.x, &self.v, &self.q, &mut self.f);
             self.dynamics
                 .residual(&a, ab, &self.f, self.rhs.as_mut_slice());
             let solved = match &self.linear {
@@ -188,38 +187,4 @@ impl Integrator for Newmark {
         self.dynamics.arm_rates(&state.v, &state.q, &mut state.qdot);
         Ok(())
     }
-}
-
-/// The linear average-acceleration Newmark step written as a discrete state-space recursion
-/// `y₊ = Φ·y + Γ₀·a_base + Γ₁·a_base₊` over `y = [x, v, a]` (Kelvin–Voigt links only), obtained by
-/// stepping the integrator from unit states. Used as the hand-written lower bound in benchmarks and
-/// to check that the integrator is exactly this linear map.
-pub fn discrete_recursion(
-    model: &crate::model::Model,
-    dt: f64,
-) -> (DMatrix<f64>, DVector<f64>, DVector<f64>) {
-    let dynamics = Dynamics::new(model);
-    let n = dynamics.dof();
-    let mut integ = Newmark::new(dynamics.clone(), dt, 0.5, 0.25);
-    let mut phi = DMatrix::zeros(3 * n, 3 * n);
-    let mut step = |y: &[f64], u0: f64, u1: f64| -> Vec<f64> {
-        let mut s = State::at_rest(&dynamics, 0.0);
-        s.x.copy_from_slice(&y[..n]);
-        s.v.copy_from_slice(&y[n..2 * n]);
-        s.a.copy_from_slice(&y[2 * n..]);
-        integ.advance(&mut s, &[u0, u1], 0.0).expect("linear step");
-        [s.x, s.v, s.a].concat()
-    };
-    for j in 0..3 * n {
-        let mut e = vec![0.0; 3 * n];
-        e[j] = 1.0;
-        let col = step(&e, 0.0, 0.0);
-        for i in 0..3 * n {
-            phi[(i, j)] = col[i];
-        }
-    }
-    let zero = vec![0.0; 3 * n];
-    let g0 = DVector::from_vec(step(&zero, 1.0, 0.0));
-    let g1 = DVector::from_vec(step(&zero, 0.0, 1.0));
-    (phi, g0, g1)
 }

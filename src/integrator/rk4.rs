@@ -43,8 +43,7 @@ impl Rk4 {
 
     /// Evaluates the derivative at the trial state (`self.x, v, q`) into stage `s`.
     fn derivative(&mut self, s: usize, a_base: f64) {
-        self.dynamics
-            .forces(&self.x, &self.v, &self.q, &mut self.f, None, None);
+        self.dynamics.forces(&self.x, &self.v, &self.q, &mut self.f);
         self.kx[s].copy_from_slice(&self.v);
         self.dynamics
             .accelerations(&self.f, a_base, &mut self.kv[s]);

@@ -135,18 +135,13 @@ pub fn run(
     let mut state = State::at_rest(&dynamics, buf[0]);
     let nl = lay.links.len();
     let (mut tension, mut deflection) = (vec![0.0; nl], vec![0.0; nl]);
-    let mut f = vec![0.0; model.dof()];
     let (mut v_base, mut x_base) = (0.0, 0.0);
     let mut emit =
         |index: u64, state: &State, a_base: f64, v_base: f64, x_base: f64| -> Result<()> {
-            dynamics.forces(
-                &state.x,
-                &state.v,
-                &state.q,
-                &mut f,
-                Some(&mut tension),
-                Some(&mut deflection),
-            );
+            if observers.is_empty() {
+                return Ok(());
+            }
+            dynamics.link_outputs(&state.x, &state.v, &state.q, &mut tension, &mut deflection);
             let step = Step {
                 index,
                 t: index as f64 * dt,
