@@ -70,9 +70,27 @@ fn recorded_signals_read_back_bit_identically() {
             same("state.head.x", st.x[0]);
             same("state.upper_torso.v_abs", st.v[1] + st.base[1]);
             same("state.cushion.a", st.a[4]);
-            same("links.k2.deflection", st.deflection[1]);
+            same("links.cushion.deflection", st.deflection[4]);
+            same("links.k2.force", st.force[1]);
             same("links.cushion.force", st.force[4]);
-            same("base.x", st.base[2]);
+            // Recorded once: the base motion is a_base_z and x_abs − x, a body link's deflection
+            // the difference of two displacements.
+            let base_x = s.require("state.pelvis.x_abs").unwrap()[k]
+                - s.require("state.pelvis.x").unwrap()[k];
+            assert!(
+                (base_x - st.base[2]).abs() <= 1e-15,
+                "{base_x} vs {}",
+                st.base[2]
+            );
+        }
+        for absent in [
+            "base.a",
+            "base.x",
+            "links.k2.deflection",
+            "state.t",
+            "links.t",
+        ] {
+            assert!(s.require(absent).is_err(), "{absent} is recorded twice");
         }
         assert_eq!(run.provenance, provenance());
         assert_eq!(run.results["iso2631"]["vdv_z"][1], 2.5);
@@ -213,7 +231,11 @@ fn every_channel_schema_is_in_the_lichtblick_subset() {
     record(&path, RecordOptions::default(), 50).unwrap();
     let bytes = std::fs::read(&path).unwrap();
     let summary = mcap::Summary::read(&bytes).unwrap().unwrap();
-    assert!(summary.channels.len() >= 6);
+    assert_eq!(
+        summary.channels.len(),
+        5,
+        "measured, state, links, scene, tf"
+    );
     for c in summary.channels.values() {
         let schema = c.schema.as_ref().expect("every channel has a schema");
         assert_eq!(schema.encoding, "jsonschema");

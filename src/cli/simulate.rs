@@ -23,8 +23,8 @@ pub struct Args {
     /// Record the time series at this rate in Hz (low-pass filtered first); default: every step.
     #[arg(long)]
     pub record_rate: Option<f64>,
-    /// MCAP chunk compression: lz4, zstd or none.
-    #[arg(long, default_value = "lz4")]
+    /// MCAP chunk compression: zstd, lz4 or none.
+    #[arg(long, default_value = "zstd")]
     pub compression: String,
     /// Also write the measured-run channels (t_s, a_base_z, a_seat_z, a_head_z, f_seat_z) as CSV.
     #[arg(long)]

@@ -3,7 +3,8 @@
 //! A message is rendered from precomputed text fragments and the values in between, so a step costs
 //! only the float formatting. Floats use the shortest text that parses back to the same `f64`
 //! (serde_json's formatter), so a recorded run reads back bit-identically; NaN and ±∞ have no JSON
-//! representation (serde_json would write `null`, which breaks plots and schemas) and are refused.
+//! representation (serde_json would write `null`, which breaks plots and schemas): the recorder
+//! refuses them before rendering.
 
 use serde_json::{Map, Value, json};
 
@@ -75,16 +76,19 @@ impl Template {
         self.fragments.len() - 1
     }
 
-    /// Appends the message for `values` to `out`; on a non-finite value returns its index and leaves
-    /// `out` with a partial message (the caller discards it).
-    pub fn render(&self, values: &[f64], out: &mut Vec<u8>) -> Result<(), usize> {
+    /// Appends the message for `values`, which the caller has checked finite (a non-finite
+    /// value would be written as `null`).
+    pub fn render_finite(&self, values: &[f64], out: &mut Vec<u8>) {
+        use serde_json::ser::{CompactFormatter, Formatter};
         debug_assert_eq!(values.len(), self.len());
-        for (i, (frag, &v)) in self.fragments.iter().zip(values).enumerate() {
+        debug_assert!(values.iter().all(|v| v.is_finite()));
+        for (frag, &v) in self.fragments.iter().zip(values) {
             out.extend_from_slice(frag);
-            write_f64(out, v).map_err(|()| i)?;
+            CompactFormatter
+                .write_f64(out, v)
+                .expect("writing to a Vec cannot fail");
         }
         out.extend_from_slice(self.fragments.last().expect("closing fragment"));
-        Ok(())
     }
 }
 
@@ -206,7 +210,7 @@ mod tests {
         let t = Template::new(&leaves());
         let vals = [0.001, -1.234_567_890_123_456_7e-7, 9.81, 1e300, -0.0];
         let mut out = Vec::new();
-        t.render(&vals, &mut out).unwrap();
+        t.render_finite(&vals, &mut out);
         let v: Value = serde_json::from_slice(&out).unwrap();
         assert_eq!(
             std::str::from_utf8(&out).unwrap().matches('{').count(),
@@ -227,13 +231,17 @@ mod tests {
     }
 
     #[test]
-    fn non_finite_values_are_refused_with_their_index() {
-        let t = Template::new(&leaves());
+    fn a_template_may_start_inside_an_object() {
+        let leaves = [
+            Leaf::new(&["head", "x"], "m"),
+            Leaf::new(&["head", "v"], "m/s"),
+            Leaf::new(&["k1", "force"], "N"),
+        ];
         let mut out = Vec::new();
-        assert_eq!(t.render(&[0.0, 1.0, f64::NAN, 0.0, 0.0], &mut out), Err(2));
+        Template::new(&leaves).render_finite(&[1.5, -2.0, 3e-7], &mut out);
         assert_eq!(
-            t.render(&[0.0, 1.0, 2.0, 0.0, f64::INFINITY], &mut out),
-            Err(4)
+            std::str::from_utf8(&out).unwrap(),
+            r#"{"head":{"x":1.5,"v":-2.0},"k1":{"force":3e-7}}"#
         );
     }
 

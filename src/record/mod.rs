@@ -8,9 +8,14 @@
 //! |---|---|
 //! | `/wbv/measured` | `t`, `a_base_z`, `a_seat_z`, `a_head_z`, `f_seat_z`: the measured-run channel names |
 //! | `/wbv/state` | per mass: `x`, `v`, `a` relative to the base and `x_abs`, `v_abs`, `a_abs` |
-//! | `/wbv/links` | per link: `deflection` (m), `force` (N, tension positive) |
-//! | `/wbv/base` | base `a`, `v`, `x` |
+//! | `/wbv/links` | per link: `force` (N, tension positive); cushion and suspension links also `deflection` (m) |
 //! | `/wbv/scene` | `foxglove.SceneUpdate`, 3-D replay at the scene rate, displacements magnified |
+//!
+//! Every value is recorded once (but the measured-run names, see `topics.rs`): the
+//! base motion is `a_base_z` (its integrals are `x_abs − x` of any mass), a body link's
+//! deflection is the difference of two `/wbv/state` displacements, and only `/wbv/measured`
+//! carries `t`. Floats are written at full precision (shortest round-trip text), so a run reads
+//! back bit-identically; that text is what costs: see `benches/record.rs`.
 //!
 //! Time: `log_time = publish_time = round(t·1e9)` ns from 0 (Foxglove plays by log time, PlotJuggler
 //! plots publish time), `sequence` = step index. No wall-clock time is written anywhere, so the same
@@ -22,6 +27,7 @@ pub mod demo;
 mod json;
 mod lowpass;
 mod meta;
+mod pipeline;
 mod reader;
 mod scene;
 mod topics;
@@ -49,9 +55,10 @@ pub fn run_file(path: &std::path::Path) -> std::path::PathBuf {
 /// Chunk compression of the MCAP file.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Compression {
-    /// Zstandard (smallest files).
+    /// Zstandard level 1, compressed on worker threads (the default: half the size of lz4 for
+    /// the same CPU time, see `benches/record.rs`).
     Zstd,
-    /// LZ4 (fastest compressed option; the default, see `benches/record.rs`).
+    /// LZ4, compressed on the writer thread.
     Lz4,
     /// No compression (largest files, fastest to write).
     None,
@@ -99,16 +106,20 @@ pub struct RecordOptions {
     pub magnification: f64,
     /// Whether an existing file may be replaced.
     pub overwrite: Overwrite,
+    /// Threads that format messages and, with zstd, compress chunks; `None`: one per core, at
+    /// most 4. The file does not depend on it.
+    pub threads: Option<usize>,
 }
 
 impl Default for RecordOptions {
     fn default() -> Self {
         RecordOptions {
-            compression: Compression::Lz4,
+            compression: Compression::Zstd,
             record_rate_hz: None,
             scene_rate_hz: 30.0,
             magnification: 20.0,
             overwrite: Overwrite::Refuse,
+            threads: None,
         }
     }
 }

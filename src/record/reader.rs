@@ -287,13 +287,12 @@ impl Table {
         Ok(())
     }
 
-    /// Sample times must be `i / fs` (uniform sampling from 0), to 0.1 % of a sample.
+    /// Sample times must be `i / fs` (uniform sampling from 0), to 0.1 % of a sample. A topic
+    /// without `t` (all but `/wbv/measured`) is timed by its log time only.
     fn check_time(&self, fs: f64) -> std::result::Result<(), String> {
-        let t = self
-            .names
-            .iter()
-            .position(|n| n.len() == 1 && n[0] == "t")
-            .ok_or("no `t` field")?;
+        let Some(t) = self.names.iter().position(|n| n.len() == 1 && n[0] == "t") else {
+            return Ok(());
+        };
         for (i, &ti) in self.columns[t].iter().enumerate() {
             if (ti * fs - i as f64).abs() > 1e-3 {
                 return Err(format!(

@@ -11,9 +11,6 @@ use serde_json::Value;
 pub enum Quantity {
     /// Simulation time in s (never filtered).
     Time,
-    BaseA,
-    BaseV,
-    BaseX,
     /// Relative displacement/velocity/acceleration of mass `i`.
     X(usize),
     V(usize),
@@ -32,9 +29,6 @@ impl Quantity {
     fn eval(self, s: &Step<'_>, measured: &[f64]) -> f64 {
         match self {
             Quantity::Time => s.t,
-            Quantity::BaseA => s.a_base,
-            Quantity::BaseV => s.v_base,
-            Quantity::BaseX => s.x_base,
             Quantity::X(i) => s.x[i],
             Quantity::V(i) => s.v[i],
             Quantity::A(i) => s.a[i],
@@ -73,10 +67,18 @@ struct Builder {
 }
 
 impl Builder {
-    fn new() -> Self {
+    /// A topic whose messages start with the simulation time `t`.
+    fn timed() -> Self {
         Builder {
             leaves: vec![Leaf::new(&["t"], "simulation time, s")],
             quantities: vec![Quantity::Time],
+        }
+    }
+    /// A topic without `t`: its time is the message `log_time` (= `publish_time`).
+    fn untimed() -> Self {
+        Builder {
+            leaves: Vec::new(),
+            quantities: Vec::new(),
         }
     }
     fn add(&mut self, path: &[&str], q: Quantity, description: String) {
@@ -137,12 +139,23 @@ fn measured_description(name: &str) -> &'static str {
     }
 }
 
-/// The four time-series topics of a run of `layout`.
+/// Link roles whose deflection is recorded in a lumped-mass model: cushion deflection and
+/// suspension travel, named as such even where they equal the upper mass's `x` (a link to the
+/// base). The deflection of any other of its links is `x_upper − x_lower` of two `/wbv/state`
+/// displacements. A planar model's contact links all have theirs: a contact's
+/// deflection is a Jacobian row times the coordinates, not a difference a viewer can plot.
+const DEFLECTION_ROLES: [&str; 2] = ["cushion", "suspension"];
+
+/// The time-series topics of a run of `layout`: `/wbv/measured`, `/wbv/state` and, for a model
+/// with links, `/wbv/links`. Every field is recorded once, except the measured-run channels
+/// `a_seat_z` and `a_head_z` (also `a_abs` of their masses) and `f_seat_z` (also the negated
+/// force of a single interface link), kept under model-independent names for the viewer layout
+/// and the measured-run readers, and a cushion or suspension deflection equal to a mass's `x`. Only `/wbv/measured` carries `t`: it equals the log time.
 pub fn topics(layout: &Layout) -> Result<Vec<Topic>> {
     let masses = keys(&layout.masses, "mass")?;
     let links = keys(&layout.links, "link")?;
 
-    let mut m = Builder::new();
+    let mut m = Builder::timed();
     for (k, name) in layout.measured_channels().into_iter().enumerate() {
         m.add(
             &[name],
@@ -151,7 +164,7 @@ pub fn topics(layout: &Layout) -> Result<Vec<Topic>> {
         );
     }
 
-    let mut s = Builder::new();
+    let mut s = Builder::untimed();
     for (i, k) in masses.iter().enumerate() {
         let name = &layout.masses[i];
         // A planar coordinate that the vertical base does not move is absolute already.
@@ -180,15 +193,17 @@ pub fn topics(layout: &Layout) -> Result<Vec<Topic>> {
         }
     }
 
-    let mut l = Builder::new();
+    let mut l = Builder::untimed();
     for (i, k) in links.iter().enumerate() {
         let name = &layout.links[i];
         let role = layout.link_roles.get(i).map_or("", String::as_str);
-        l.add(
-            &[k, "deflection"],
-            Quantity::LinkDeflection(i),
-            format!("{name} ({role}): deflection x_upper − x_lower, m (extension positive)"),
-        );
+        if layout.planar.is_some() || DEFLECTION_ROLES.contains(&role) {
+            l.add(
+                &[k, "deflection"],
+                Quantity::LinkDeflection(i),
+                format!("{name} ({role}): deflection x_upper − x_lower, m (extension positive)"),
+            );
+        }
         l.add(
             &[k, "force"],
             Quantity::LinkForce(i),
@@ -196,25 +211,22 @@ pub fn topics(layout: &Layout) -> Result<Vec<Topic>> {
         );
     }
 
-    let mut b = Builder::new();
-    b.add(&["a"], Quantity::BaseA, "base acceleration, m/s²".into());
-    b.add(&["v"], Quantity::BaseV, "base velocity, m/s".into());
-    b.add(&["x"], Quantity::BaseX, "base displacement, m".into());
-
-    Ok(vec![
+    let mut topics = vec![
         m.finish(
             "/wbv/measured",
             "wbv.Measured",
             "measured-run channels (shared/specs/measured-runs.md)",
         ),
         s.finish("/wbv/state", "wbv.State", "state of every mass"),
-        l.finish(
+    ];
+    if !l.leaves.is_empty() {
+        topics.push(l.finish(
             "/wbv/links",
             "wbv.Links",
-            "deflection and force of every link",
-        ),
-        b.finish("/wbv/base", "wbv.Base", "base (input) motion"),
-    ])
+            "force of every link; deflection of the cushion and suspension links",
+        ));
+    }
+    Ok(topics)
 }
 
 /// Evaluates `quantities` of step `s` into `out` (cleared first); `measured` holds
@@ -231,5 +243,78 @@ pub fn channel_name(topic: &str, path: &[String]) -> String {
     match topic.strip_prefix("/wbv/") {
         Some("measured") | None => joined,
         Some(rest) => format!("{rest}.{joined}"),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::record::demo;
+
+    fn all(layout: &Layout) -> Vec<(String, Quantity)> {
+        let topics = topics(layout).unwrap();
+        let mut out = Vec::new();
+        for t in &topics {
+            for (leaf, q) in t.leaves.iter().zip(&t.quantities) {
+                out.push((channel_name(t.topic, &leaf.path), *q));
+            }
+        }
+        out
+    }
+
+    #[test]
+    fn every_signal_the_issue_lists_is_recorded() {
+        let layout = demo::layout(1000.0, 10);
+        let fields = all(&layout);
+        let has = |q: Quantity| fields.iter().any(|(_, f)| *f == q);
+        let names: Vec<&str> = fields.iter().map(|(n, _)| n.as_str()).collect();
+        assert!(names.contains(&"a_base_z") && names.contains(&"f_seat_z"));
+        for i in 0..layout.masses.len() {
+            for q in [Quantity::X(i), Quantity::V(i), Quantity::A(i)] {
+                assert!(has(q), "{q:?}");
+            }
+            for q in [Quantity::XAbs(i), Quantity::VAbs(i), Quantity::AAbs(i)] {
+                assert!(has(q), "{q:?}");
+            }
+        }
+        for l in 0..layout.links.len() {
+            assert!(has(Quantity::LinkForce(l)));
+        }
+        // the cushion link (index 4): its deflection; the body links' are differences of `x`
+        assert!(has(Quantity::LinkDeflection(4)));
+        assert!(!has(Quantity::LinkDeflection(1)));
+    }
+
+    #[test]
+    fn only_the_measured_run_names_repeat_a_value() {
+        let layout = demo::layout(1000.0, 10);
+        let (fields, topics) = (all(&layout), topics(&layout).unwrap());
+        let quantities: Vec<Quantity> = topics.iter().flat_map(|t| t.quantities.clone()).collect();
+        let state = demo::State::at(1234, 1e-3);
+        let (mut measured, mut values) = (Vec::new(), Vec::new());
+        layout.measured(&state.step(), &mut measured);
+        eval(&quantities, &state.step(), &measured, &mut values);
+        // a_seat_z, a_head_z: a_abs of the cushion and head; f_seat_z: −force of k4; the cushion
+        // link's deflection is the cushion's `x` (its lower node is the base)
+        let repeats = [
+            "state.cushion.a_abs",
+            "state.head.a_abs",
+            "links.k4.force",
+            "links.cushion.deflection",
+        ];
+        for (j, (name, _)) in fields.iter().enumerate() {
+            if let Some(i) = (0..j).find(|&i| values[i].abs() == values[j].abs()) {
+                assert!(
+                    repeats.contains(&name.as_str()),
+                    "{name} repeats {}",
+                    fields[i].0
+                );
+            }
+        }
+        let times: Vec<&String> = (fields.iter())
+            .filter(|(_, q)| *q == Quantity::Time)
+            .map(|(n, _)| n)
+            .collect();
+        assert_eq!(times, ["t"], "only /wbv/measured carries t");
     }
 }

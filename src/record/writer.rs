@@ -1,59 +1,31 @@
 //! [`McapRecorder`]: an [`Observer`] that records every step of a run to an MCAP file.
 //!
-//! The simulation thread renders JSON messages into batches; a second thread frames and compresses
-//! them into the MCAP file (two cores: formatting and compression overlap). Message order, and so the
-//! file, does not depend on the thread timing.
+//! The simulation thread only evaluates and checks each step's values and renders the 3-D scene;
+//! JSON formatting, framing and compression run on other threads (see [`super::pipeline`]), in an
+//! order fixed by the step index, so the file does not depend on thread timing or count.
 
-use super::json::Template;
 use super::lowpass::{LowPass, decimation};
 use super::meta;
+use super::pipeline::{self, BLOCK_STEPS, Block, Channel, McapWriter, Pipeline, json_channel};
 use super::scene::{FRAME_TRANSFORMS_SCHEMA, SCENE_UPDATE_SCHEMA, Scene};
 use super::topics::{Quantity, Topic, channel_name, eval, topics};
-use super::{Compression, Provenance, RecordOptions};
+use super::{Provenance, RecordOptions};
 use crate::error::{Error, Result};
 use crate::io::atomic::{Overwrite, partial_path};
 use crate::simulate::observer::{Layout, Observer, Step};
 use mcap::records::{MessageHeader, Metadata};
 use std::collections::BTreeMap;
 use std::fs::{self, File};
-use std::io::BufWriter;
 use std::path::{Path, PathBuf};
-use std::sync::mpsc::{Receiver, SyncSender, sync_channel};
-use std::thread::JoinHandle;
 
-type McapWriter = mcap::Writer<BufWriter<File>>;
-
-/// Messages rendered on the simulation thread, written in order by the writer thread.
-#[derive(Default)]
-struct Batch {
-    data: Vec<u8>,
-    /// Header and end offset in `data` of each message (the start is the previous end).
-    messages: Vec<(MessageHeader, usize)>,
-}
-
-/// Target batch size; large enough to amortise the channel hand-over, small enough to overlap.
-const BATCH_BYTES: usize = 1 << 20;
-
-struct Pipeline {
-    tx: SyncSender<Batch>,
-    handle: JoinHandle<std::result::Result<McapWriter, Box<(McapWriter, mcap::McapError)>>>,
-}
-
-fn spawn(mut writer: McapWriter) -> Pipeline {
-    let (tx, rx): (SyncSender<Batch>, Receiver<Batch>) = sync_channel(2);
-    let handle = std::thread::spawn(move || {
-        for batch in rx {
-            let mut start = 0;
-            for (header, end) in &batch.messages {
-                if let Err(e) = writer.write_to_known_channel(header, &batch.data[start..*end]) {
-                    return Err(Box::new((writer, e)));
-                }
-                start = *end;
-            }
-        }
-        Ok(writer)
-    });
-    Pipeline { tx, handle }
+/// Formatter threads and zstd workers: [`RecordOptions::threads`], else one per core (at most 4).
+/// The file is the same for any count: blocks are written in step order, and zstd's output does
+/// not depend on its number of workers once there is at least one (`tests/record_threads.rs`).
+fn threads(options: &RecordOptions) -> usize {
+    options
+        .threads
+        .unwrap_or_else(|| std::thread::available_parallelism().map_or(1, |n| n.get().min(4)))
+        .max(1)
 }
 
 /// Records a run to `<path>` (through `<path>.partial`, renamed only once complete).
@@ -65,13 +37,16 @@ pub struct McapRecorder {
     /// The MCAP writer before `begin` (then owned by the pipeline).
     writer: Option<McapWriter>,
     pipeline: Option<Pipeline>,
-    batch: Batch,
+    /// The block being filled on the simulation thread.
+    block: Block,
     topics: Vec<(Topic, u16)>,
     scene: Option<(Scene, u16, u16)>,
     /// The run's layout (measured channels) and the scratch for them.
     layout: Option<Layout>,
     measured: Vec<f64>,
     quantities: Vec<Quantity>,
+    /// Indices of `Quantity::Time` in `quantities`: written exactly, never filtered.
+    time_slots: Vec<usize>,
     values: Vec<f64>,
     lowpass: Option<LowPass>,
     every: u64,
@@ -117,16 +92,8 @@ impl McapRecorder {
         }
         let partial = partial_path(path);
         let file = File::create(&partial).map_err(|e| Error::io(&partial, e))?;
-        let compression = match options.compression {
-            Compression::Zstd => Some(mcap::Compression::Zstd),
-            Compression::Lz4 => Some(mcap::Compression::Lz4),
-            Compression::None => None,
-        };
-        let writer = mcap::WriteOptions::new()
-            .compression(compression)
-            .compression_threads(0)
-            .library(format!("wbv/{} mcap-rust/0.26", provenance.version))
-            .create(BufWriter::with_capacity(1 << 20, file))
+        let library = format!("wbv/{} mcap-rust/0.26", provenance.version);
+        let writer = pipeline::open(file, options.compression, threads(&options), library)
             .map_err(mcap_err(&partial))?;
         Ok(McapRecorder {
             path: path.to_path_buf(),
@@ -135,12 +102,13 @@ impl McapRecorder {
             options,
             writer: Some(writer),
             pipeline: None,
-            batch: Batch::default(),
+            block: Block::default(),
             topics: Vec::new(),
             scene: None,
             layout: None,
             measured: Vec::new(),
             quantities: Vec::new(),
+            time_slots: Vec::new(),
             values: Vec::new(),
             lowpass: None,
             every: 1,
@@ -191,6 +159,10 @@ impl McapRecorder {
         self.every = decimation(fs, rate)?;
         let topics = topics(layout)?;
         self.quantities = topics.iter().flat_map(|t| t.quantities.clone()).collect();
+        self.time_slots = (self.quantities.iter().enumerate())
+            .filter(|(_, q)| **q == Quantity::Time)
+            .map(|(i, _)| i)
+            .collect();
         if self.every > 1 {
             let fc = LowPass::CUTOFF_FRACTION * rate;
             self.lowpass = Some(LowPass::new(fs, fc, self.quantities.len())?);
@@ -243,74 +215,52 @@ impl McapRecorder {
 
         for t in topics {
             let schema = serde_json::to_vec(&t.schema).expect("schema serialises");
-            let sid = w
-                .add_schema(t.schema_name, "jsonschema", &schema)
-                .map_err(&err)?;
-            let cid = w
-                .add_channel(sid, t.topic, "json", &BTreeMap::new())
-                .map_err(&err)?;
+            let cid = json_channel(w, t.topic, t.schema_name, &schema).map_err(&err)?;
             self.topics.push((t, cid));
         }
         let scene = Scene::new(layout, self.options.magnification);
-        let sid = w
-            .add_schema(
-                "foxglove.SceneUpdate",
-                "jsonschema",
-                SCENE_UPDATE_SCHEMA.as_bytes(),
-            )
-            .map_err(&err)?;
-        let scene_id = w
-            .add_channel(sid, "/wbv/scene", "json", &BTreeMap::new())
-            .map_err(&err)?;
-        let sid = w
-            .add_schema(
-                "foxglove.FrameTransforms",
-                "jsonschema",
-                FRAME_TRANSFORMS_SCHEMA.as_bytes(),
-            )
-            .map_err(&err)?;
-        let tf_id = w
-            .add_channel(sid, "/tf", "json", &BTreeMap::new())
+        let (scene_schema, tf_schema) = (SCENE_UPDATE_SCHEMA, FRAME_TRANSFORMS_SCHEMA);
+        let scene_id = json_channel(
+            w,
+            "/wbv/scene",
+            "foxglove.SceneUpdate",
+            scene_schema.as_bytes(),
+        )
+        .map_err(&err)?;
+        let tf_id = json_channel(w, "/tf", "foxglove.FrameTransforms", tf_schema.as_bytes())
             .map_err(&err)?;
         self.scene = Some((scene, scene_id, tf_id));
         let writer = self.writer.take().expect("checked above");
-        self.pipeline = Some(spawn(writer));
+        let channels = (self.topics.iter())
+            .map(|(t, id)| Channel {
+                template: t.template.clone(),
+                id: *id,
+            })
+            .collect();
+        self.pipeline = Some(Pipeline::spawn(writer, channels, threads(&self.options)));
         Ok(())
     }
 
-    fn push_message(&mut self, channel_id: u16, sequence: u32, time_ns: u64) {
-        self.batch.messages.push((
-            MessageHeader {
-                channel_id,
-                sequence,
-                log_time: time_ns,
-                publish_time: time_ns,
-            },
-            self.batch.data.len(),
-        ));
-    }
-
-    fn send_batch(&mut self) -> Result<()> {
-        let batch = std::mem::take(&mut self.batch);
-        let p = self.pipeline.as_ref().expect("recording");
-        if p.tx.send(batch).is_err() {
+    /// Hands the filled block to the pipeline.
+    fn send_block(&mut self) -> Result<()> {
+        let p = self.pipeline.as_mut().expect("recording");
+        let block = std::mem::replace(&mut self.block, p.empty_block());
+        if !p.send(block) {
             // The writer thread stopped on an error: collect it.
             return Err(self.stop().err().unwrap_or_else(|| {
                 Error::data(&self.partial, None, "MCAP writer stopped unexpectedly")
             }));
         }
-        self.batch.data.reserve(BATCH_BYTES + (BATCH_BYTES >> 3));
         Ok(())
     }
 
-    /// Stops the writer thread and returns the writer.
+    /// Stops the pipeline threads and returns the writer.
     fn stop(&mut self) -> Result<McapWriter> {
         let p = self
             .pipeline
             .take()
             .ok_or_else(|| Error::parameter("recorder", "not recording"))?;
-        drop(p.tx);
-        match p.handle.join() {
+        match p.finish() {
             Ok(Ok(w)) => Ok(w),
             Ok(Err(failed)) => {
                 let (w, e) = *failed;
@@ -320,7 +270,7 @@ impl McapRecorder {
             Err(_) => Err(Error::data(
                 &self.partial,
                 None,
-                "MCAP writer thread panicked",
+                "MCAP recording thread panicked",
             )),
         }
     }
@@ -343,16 +293,12 @@ impl McapRecorder {
             Error::parameter("steps", "more than 2³² steps cannot be numbered in MCAP")
         })?;
         let time_ns = (s.t * 1e9).round() as u64;
-        let mut offset = 0;
-        for k in 0..self.topics.len() {
-            let (topic, cid) = &self.topics[k];
-            let (n, cid) = (topic.template.len(), *cid);
-            let vals = &mut self.values[offset..offset + n];
-            vals[0] = s.t; // time is exact, never filtered
-            render(&topic.template, vals, &mut self.batch.data);
-            offset += n;
-            self.push_message(cid, sequence, time_ns);
+        for &i in &self.time_slots {
+            self.values[i] = s.t; // time is exact, never filtered
         }
+        // Finite before filtering stays finite through a stable low-pass.
+        self.block.values.extend_from_slice(&self.values);
+        self.block.steps.push((sequence, time_ns));
         self.last_time_ns = time_ns;
         Ok(())
     }
@@ -384,19 +330,31 @@ impl McapRecorder {
         let sequence = u32::try_from(self.next_scene_frame - 1).unwrap_or(u32::MAX);
         let time_ns = (s.t * 1e9).round() as u64;
         let (scene, scene_id, tf_id) = self.scene.as_ref().expect("recording");
-        let (scene_id, tf_id) = (*scene_id, *tf_id);
-        scene.scene_update(s, &mut self.batch.data);
-        self.push_message(scene_id, sequence, time_ns);
-        let (scene, _, _) = self.scene.as_ref().expect("recording");
-        scene.frame_transforms(s, &mut self.batch.data);
-        self.push_message(tf_id, sequence, time_ns);
+        let b = &mut self.block;
+        for (channel_id, render) in [
+            (
+                *scene_id,
+                Scene::scene_update as fn(&Scene, &Step<'_>, &mut Vec<u8>),
+            ),
+            (*tf_id, Scene::frame_transforms),
+        ] {
+            render(scene, s, &mut b.extra);
+            let header = MessageHeader {
+                channel_id,
+                sequence,
+                log_time: time_ns,
+                publish_time: time_ns,
+            };
+            b.extra_messages
+                .push((header, b.steps.len(), b.extra.len()));
+        }
         self.last_time_ns = self.last_time_ns.max(time_ns);
         Ok(())
     }
 
     fn finish(&mut self) -> Result<()> {
-        if !self.batch.messages.is_empty() {
-            self.send_batch()?;
+        if !self.block.is_empty() {
+            self.send_block()?;
         }
         let mut w = self.stop()?;
         let err = mcap_err(&self.partial);
@@ -439,16 +397,6 @@ impl McapRecorder {
     }
 }
 
-/// Renders one message; values were checked finite before filtering, and a stable low-pass of
-/// finite values stays finite.
-fn render(template: &Template, values: &[f64], out: &mut Vec<u8>) {
-    let start = out.len();
-    if template.render(values, out).is_err() {
-        out.truncate(start);
-        unreachable!("values are checked finite before rendering");
-    }
-}
-
 impl Observer for McapRecorder {
     fn begin(&mut self, layout: &Layout) -> Result<()> {
         self.setup(layout)
@@ -460,8 +408,8 @@ impl Observer for McapRecorder {
         }
         self.record(step)?;
         self.record_scene(step)?;
-        if self.batch.data.len() >= BATCH_BYTES {
-            self.send_batch()?;
+        if self.block.steps.len() >= BLOCK_STEPS {
+            self.send_block()?;
         }
         Ok(())
     }

@@ -1,0 +1,257 @@
+//! The recording pipeline behind [`McapRecorder`](super::McapRecorder): the simulation thread
+//! collects the values of each step into [`Block`]s, formatter threads render blocks into JSON
+//! messages in parallel, and one writer thread hands the messages to the MCAP writer (which
+//! frames and compresses the chunks, zstd on its own worker threads).
+//!
+//! Block `i` always goes to formatter `i mod n` and the writer takes the rendered batches in the
+//! same round-robin order, so the message order — and the file — depends neither on thread timing
+//! nor on the number of formatters. Buffers travel back to where they are filled, so a long run
+//! reuses the same few megabytes instead of faulting in fresh pages.
+
+use super::Compression;
+use super::json::Template;
+use mcap::records::MessageHeader;
+use std::collections::BTreeMap;
+use std::fs::File;
+use std::io::BufWriter;
+use std::sync::Arc;
+use std::sync::mpsc::{Receiver, Sender, SyncSender, channel, sync_channel};
+use std::thread::JoinHandle;
+
+pub type McapWriter = mcap::Writer<BufWriter<File>>;
+
+/// What the writer thread returns: the writer, or the writer with the error that stopped it.
+pub type WriterResult = std::result::Result<McapWriter, Box<(McapWriter, mcap::McapError)>>;
+
+/// zstd level of the chunks: the fastest positive level. Its entropy coding halves the file
+/// against lz4 or negative levels (the digits of full-precision floats are close to random, so
+/// only their ~3.3 bits per character can be saved) for about the same CPU time, and it runs on
+/// the zstd workers while lz4 runs on the writer thread (see `benches/record.rs`).
+const ZSTD_LEVEL: u32 = 1;
+
+/// Uncompressed chunk size: several zstd jobs (2 MiB at level 1), so that the zstd workers run in
+/// parallel within a chunk, and small enough for viewers that decompress a chunk at a time.
+const CHUNK_BYTES: u64 = 8 << 20;
+
+/// Opens the MCAP writer: chunked, compressed, with message indexes, chunk indexes and summary
+/// (the mcap defaults), zstd on `threads` workers.
+pub fn open(
+    file: File,
+    compression: Compression,
+    threads: usize,
+    library: String,
+) -> mcap::McapResult<McapWriter> {
+    let (compression, level) = match compression {
+        Compression::Zstd => (Some(mcap::Compression::Zstd), ZSTD_LEVEL),
+        Compression::Lz4 => (Some(mcap::Compression::Lz4), 0), // lz4's default (fast) mode
+        Compression::None => (None, 0),
+    };
+    mcap::WriteOptions::new()
+        .compression(compression)
+        .compression_level(level)
+        .compression_threads(threads as u32)
+        .chunk_size(Some(CHUNK_BYTES))
+        .library(library)
+        .create(BufWriter::with_capacity(1 << 20, file))
+}
+
+/// Adds a `json` channel on `topic` with its `jsonschema` schema; returns the channel id.
+pub fn json_channel(
+    w: &mut McapWriter,
+    topic: &str,
+    schema_name: &str,
+    schema: &[u8],
+) -> mcap::McapResult<u16> {
+    let sid = w.add_schema(schema_name, "jsonschema", schema)?;
+    w.add_channel(sid, topic, "json", &BTreeMap::new())
+}
+
+/// Steps per block: about 1.5 MB of JSON for a 6-mass model, enough to amortise the hand-overs.
+pub const BLOCK_STEPS: usize = 1024;
+
+/// One time-series topic as the formatters see it.
+#[derive(Debug, Clone)]
+pub struct Channel {
+    pub template: Template,
+    pub id: u16,
+}
+
+/// The values of up to [`BLOCK_STEPS`] recorded steps, and messages rendered on the simulation
+/// thread (the 3-D scene) that follow a step.
+#[derive(Default)]
+pub struct Block {
+    /// Per step, the values of every channel's template, channel after channel.
+    pub values: Vec<f64>,
+    /// Per step: sequence number and log time in ns.
+    pub steps: Vec<(u32, u64)>,
+    /// Pre-rendered messages: header, number of steps they follow (the length of `steps` when
+    /// they were added) and end offset in `extra`.
+    pub extra_messages: Vec<(MessageHeader, usize, usize)>,
+    pub extra: Vec<u8>,
+}
+
+impl Block {
+    fn clear(&mut self) {
+        self.values.clear();
+        self.steps.clear();
+        self.extra_messages.clear();
+        self.extra.clear();
+    }
+
+    pub fn is_empty(&self) -> bool {
+        self.steps.is_empty() && self.extra_messages.is_empty()
+    }
+}
+
+/// Rendered messages in file order.
+#[derive(Default)]
+struct Batch {
+    data: Vec<u8>,
+    /// Header and end offset in `data` of each message (the start is the previous end).
+    messages: Vec<(MessageHeader, usize)>,
+}
+
+impl Batch {
+    fn push(&mut self, channel_id: u16, sequence: u32, time_ns: u64) {
+        let header = MessageHeader {
+            channel_id,
+            sequence,
+            log_time: time_ns,
+            publish_time: time_ns,
+        };
+        self.messages.push((header, self.data.len()));
+    }
+
+    /// Renders `block`: per step its channels in order, each pre-rendered message right after the
+    /// step it follows.
+    fn render(&mut self, channels: &[Channel], block: &Block) {
+        self.data.clear();
+        self.messages.clear();
+        let per_step: usize = channels.iter().map(|c| c.template.len()).sum();
+        let mut extra = block.extra_messages.iter().peekable();
+        let mut extra_start = 0;
+        for k in 0..=block.steps.len() {
+            while let Some(&&(header, _, end)) = extra.peek().filter(|e| e.1 == k) {
+                self.data.extend_from_slice(&block.extra[extra_start..end]);
+                self.messages.push((header, self.data.len()));
+                extra_start = end;
+                extra.next();
+            }
+            let Some(&(sequence, time_ns)) = block.steps.get(k) else {
+                break;
+            };
+            let mut values = &block.values[k * per_step..(k + 1) * per_step];
+            for c in channels {
+                let (v, rest) = values.split_at(c.template.len());
+                c.template.render_finite(v, &mut self.data);
+                self.push(c.id, sequence, time_ns);
+                values = rest;
+            }
+        }
+    }
+}
+
+/// The running threads; dropping the senders ends them in order.
+pub struct Pipeline {
+    to_format: Vec<SyncSender<Block>>,
+    recycled: Receiver<Block>,
+    next: usize,
+    formatters: Vec<JoinHandle<()>>,
+    writer: JoinHandle<WriterResult>,
+}
+
+impl Pipeline {
+    /// Starts `formatters` formatter threads (at least one) and the writer thread.
+    pub fn spawn(writer: McapWriter, channels: Vec<Channel>, formatters: usize) -> Self {
+        let channels = Arc::new(channels);
+        let (recycle_block, recycled) = channel::<Block>();
+        let mut to_format = Vec::new();
+        let mut from_format = Vec::new();
+        let mut batch_returns = Vec::new();
+        let mut handles = Vec::new();
+        for _ in 0..formatters.max(1) {
+            let (tx_block, rx_block) = sync_channel::<Block>(2);
+            let (tx_batch, rx_batch) = sync_channel::<Batch>(2);
+            let (tx_return, rx_return) = channel::<Batch>();
+            let channels = Arc::clone(&channels);
+            let recycle_block = recycle_block.clone();
+            handles.push(std::thread::spawn(move || {
+                for mut block in rx_block {
+                    let mut batch = rx_return.try_recv().unwrap_or_default();
+                    batch.render(&channels, &block);
+                    if tx_batch.send(batch).is_err() {
+                        return; // the writer stopped on an error
+                    }
+                    block.clear();
+                    let _ = recycle_block.send(block);
+                }
+            }));
+            to_format.push(tx_block);
+            from_format.push(rx_batch);
+            batch_returns.push(tx_return);
+        }
+        let writer = std::thread::spawn(move || write_batches(writer, from_format, batch_returns));
+        Pipeline {
+            to_format,
+            recycled,
+            next: 0,
+            formatters: handles,
+            writer,
+        }
+    }
+
+    /// An empty block to fill, reusing a returned one when there is one.
+    pub fn empty_block(&self) -> Block {
+        self.recycled.try_recv().unwrap_or_default()
+    }
+
+    /// Hands `block` to the next formatter; `false` when the pipeline stopped on an error.
+    pub fn send(&mut self, block: Block) -> bool {
+        let k = self.next % self.to_format.len();
+        self.next += 1;
+        self.to_format[k].send(block).is_ok()
+    }
+
+    /// Waits for every block sent to be written and returns the writer. If a thread panicked,
+    /// the writer is abandoned without its summary (a file that cannot look complete).
+    pub fn finish(self) -> std::thread::Result<WriterResult> {
+        drop(self.to_format);
+        let mut panicked = None;
+        for h in self.formatters {
+            if let Err(e) = h.join() {
+                panicked.get_or_insert(e);
+            }
+        }
+        let written = self.writer.join();
+        match (panicked, written) {
+            (None, written) => written,
+            (Some(e), Ok(Ok(w))) => {
+                drop(w.into_inner());
+                Err(e)
+            }
+            (Some(e), _) => Err(e),
+        }
+    }
+}
+
+/// The writer thread: batches in round-robin order until the formatter due next has finished.
+fn write_batches(
+    mut writer: McapWriter,
+    from_format: Vec<Receiver<Batch>>,
+    batch_returns: Vec<Sender<Batch>>,
+) -> WriterResult {
+    for k in (0..from_format.len()).cycle() {
+        let Ok(batch) = from_format[k].recv() else {
+            break;
+        };
+        let mut start = 0;
+        for (header, end) in &batch.messages {
+            if let Err(e) = writer.write_to_known_channel(header, &batch.data[start..*end]) {
+                return Err(Box::new((writer, e)));
+            }
+            start = *end;
+        }
+        let _ = batch_returns[k].send(batch);
+    }
+    Ok(writer)
+}
