@@ -18,15 +18,21 @@ const LANES: usize = 4;
 /// Largest padded column length with a fixed-size kernel; longer ones use the general loop.
 const MAX_FIXED: usize = 32;
 
-/// `out = Σ_j cols_j · scales_j` over columns of length `P` (a compile-time size, so the loop is
-/// unrolled and vectorised). Always inlined, so the AVX2 wrapper compiles it with AVX2.
+/// `out = Σ_j cols_j · s_j` over columns of length `P` (a compile-time size, so the loop is
+/// unrolled and vectorised), `s` the concatenation of `parts` (read in place, not copied).
+/// Always inlined, so the AVX2 wrapper compiles it with AVX2.
 #[inline(always)]
-fn product<const P: usize>(cols: &[f64], scales: &[f64], out: &mut [f64]) {
+fn product<const P: usize>(cols: &[f64], parts: &[&[f64]], out: &mut [f64]) {
     let mut acc = [0.0; P];
-    for (col, s) in cols.chunks_exact(P).zip(scales) {
-        for (a, c) in acc.iter_mut().zip(col) {
-            *a += c * s;
+    let mut start = 0;
+    for part in parts {
+        let block = &cols[start * P..(start + part.len()) * P];
+        for (col, s) in block.chunks_exact(P).zip(*part) {
+            for (a, c) in acc.iter_mut().zip(col) {
+                *a += c * s;
+            }
         }
+        start += part.len();
     }
     out[..P].copy_from_slice(&acc);
 }
@@ -36,26 +42,29 @@ fn product<const P: usize>(cols: &[f64], scales: &[f64], out: &mut [f64]) {
 /// results are bit-identical to the baseline build.
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx2")]
-fn product_avx2<const P: usize>(cols: &[f64], scales: &[f64], out: &mut [f64]) {
-    product::<P>(cols, scales, out)
+fn product_avx2<const P: usize>(cols: &[f64], parts: &[&[f64]], out: &mut [f64]) {
+    product::<P>(cols, parts, out)
 }
 
 /// [`product`] with the widest vectors this processor has.
 #[inline]
-fn product_best<const P: usize>(avx2: bool, cols: &[f64], scales: &[f64], out: &mut [f64]) {
+fn product_best<const P: usize>(avx2: bool, cols: &[f64], parts: &[&[f64]], out: &mut [f64]) {
     #[cfg(target_arch = "x86_64")]
     if avx2 {
         // SAFETY: `avx2` is true only when the processor reports AVX2 (`LinearStep::probe`).
-        return unsafe { product_avx2::<P>(cols, scales, out) };
+        return unsafe { product_avx2::<P>(cols, parts, out) };
     }
     let _ = avx2;
-    product::<P>(cols, scales, out)
+    product::<P>(cols, parts, out)
 }
 
 /// The same for any column length `p`.
-fn product_any(p: usize, cols: &[f64], scales: &[f64], out: &mut [f64]) {
+fn product_any(p: usize, cols: &[f64], parts: &[&[f64]], out: &mut [f64]) {
     out.fill(0.0);
-    for (col, s) in cols.chunks_exact(p).zip(scales) {
+    for (col, s) in cols
+        .chunks_exact(p)
+        .zip(parts.iter().flat_map(|p| p.iter()))
+    {
         for (a, c) in out.iter_mut().zip(col) {
             *a += c * s;
         }
@@ -77,13 +86,12 @@ pub struct LinearStep {
     padded: usize,
     /// The columns of `Γ` then `Φ`, each zero-padded to `padded`.
     columns: Vec<f64>,
-    /// `[u, y]`: the step's inputs then the state.
-    scales: Vec<f64>,
     next: Vec<f64>,
     /// The processor has AVX2.
     avx2: bool,
 }
 
+#[cfg_attr(not(test), allow(dead_code))]
 fn pack(s: &State, y: &mut [f64]) {
     let mut k = 0;
     for part in [&s.x, &s.v, &s.a, &s.q, &s.qdot] {
@@ -163,7 +171,6 @@ impl LinearStep {
             inputs,
             padded,
             columns,
-            scales: vec![0.0; inputs + m],
             next: vec![0.0; padded],
             avx2: has_avx2(),
         })
@@ -188,10 +195,15 @@ impl LinearStep {
 
 impl Integrator for LinearStep {
     fn advance(&mut self, state: &mut State, a_base: &[f64], _t: f64) -> Result<()> {
-        let (u, y) = self.scales.split_at_mut(self.inputs);
-        u.copy_from_slice(&a_base[..self.inputs]);
-        pack(state, y);
-        let (c, s, o, w) = (&self.columns, &self.scales, &mut self.next, self.avx2);
+        let parts: [&[f64]; 6] = [
+            &a_base[..self.inputs],
+            &state.x,
+            &state.v,
+            &state.a,
+            &state.q,
+            &state.qdot,
+        ];
+        let (c, s, o, w) = (&self.columns, &parts[..], &mut self.next, self.avx2);
         match self.padded {
             4 => product_best::<4>(w, c, s, o),
             8 => product_best::<8>(w, c, s, o),
@@ -223,9 +235,10 @@ mod tests {
         let mut fixed = vec![0.0; p];
         let mut any = vec![0.0; p];
         let mut best = vec![0.0; p];
-        product::<8>(&c, &s, &mut fixed);
-        product_any(p, &c, &s, &mut any);
-        product_best::<8>(has_avx2(), &c, &s, &mut best);
+        let parts: [&[f64]; 2] = [&s[..4], &s[4..]];
+        product::<8>(&c, &parts, &mut fixed);
+        product_any(p, &c, &parts, &mut any);
+        product_best::<8>(has_avx2(), &c, &parts, &mut best);
         assert_eq!(fixed, any);
         assert_eq!(fixed, best);
         let by_hand: f64 = (0..cols).map(|j| c[j * p + 3] * s[j]).sum();
