@@ -99,12 +99,9 @@ impl Scene {
         }
     }
 
-    /// Appends the `foxglove.SceneUpdate` JSON of step `s` to `out`.
-    pub fn scene_update(&self, s: &Step<'_>, out: &mut Vec<u8>) {
-        if let Some(bodies) = &self.planar {
-            return self.planar_update(bodies, s, out);
-        }
-        let ts = stamp(s.t);
+    /// The start of the one entity of a scene update at time `t` (s), up to its first cube.
+    fn entity_start(&self, t: f64, out: &mut Vec<u8>) {
+        let ts = stamp(t);
         let _ = write!(
             out,
             r#"{{"deletions":[],"entities":[{{"timestamp":{ts},"frame_id":"world","id":"wbv","lifetime":{{"sec":0,"nsec":0}},"frame_locked":false,"metadata":[{{"key":"display_magnification","value":""#
@@ -113,6 +110,14 @@ impl Scene {
         out.extend_from_slice(
             br#""}],"arrows":[],"spheres":[],"cylinders":[],"triangles":[],"models":[],"cubes":["#,
         );
+    }
+
+    /// Appends the `foxglove.SceneUpdate` JSON of step `s` to `out`.
+    pub fn scene_update(&self, s: &Step<'_>, out: &mut Vec<u8>) {
+        if let Some(bodies) = &self.planar {
+            return self.planar_update(bodies, s, out);
+        }
+        self.entity_start(s.t, out);
         cube(out, self.z(None, s), [0.6, 0.6, 0.02], [0.2, 0.2, 0.2, 1.0]);
         for (i, b) in self.bodies.iter().enumerate() {
             out.push(b',');
@@ -188,16 +193,8 @@ impl Scene {
     /// `foxglove.SceneUpdate` of a planar model: a floor and seat pan moving with the base, and a
     /// box per segment that translates and pitches.
     fn planar_update(&self, bodies: &[BodyPose], s: &Step<'_>, out: &mut Vec<u8>) {
-        let ts = stamp(s.t);
         let zb = self.magnification * s.x_base;
-        let _ = write!(
-            out,
-            r#"{{"deletions":[],"entities":[{{"timestamp":{ts},"frame_id":"world","id":"wbv","lifetime":{{"sec":0,"nsec":0}},"frame_locked":false,"metadata":[{{"key":"display_magnification","value":""#
-        );
-        write_num(out, self.magnification);
-        out.extend_from_slice(
-            br#""}],"arrows":[],"spheres":[],"cylinders":[],"triangles":[],"models":[],"cubes":["#,
-        );
+        self.entity_start(s.t, out);
         let grey = [0.3, 0.3, 0.3, 1.0];
         posed_cube(out, [0.4, zb - 0.30], 0.0, [1.2, 0.6, 0.02], grey);
         out.push(b',');
