@@ -56,6 +56,11 @@ impl FrfSet {
     pub fn get(&self, name: &str) -> Option<&Response> {
         self.responses.iter().find(|r| r.name == name)
     }
+
+    /// The names of the responses, in order.
+    pub fn names(&self) -> Vec<String> {
+        self.responses.iter().map(|r| r.name.clone()).collect()
+    }
 }
 
 /// A frequency grid from `from` to `to` Hz with `points` points, logarithmic or linear.

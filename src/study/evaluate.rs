@@ -30,6 +30,9 @@ pub struct Evaluator {
     n: usize,
     d: Vec<Complex64>,
     x: Vec<Complex64>,
+    /// For a planar model: the response's name in its [`crate::response::frf::compute`] set
+    /// (`seat`, `seat_x`, `head_z`, `apms_x`, …), evaluated through the planar solver.
+    planar: Option<String>,
 }
 
 impl Evaluator {
@@ -44,6 +47,35 @@ impl Evaluator {
                 ),
             )
         };
+        if let Some(f) = freq_hz.iter().find(|f| !(f.is_finite() && **f >= 0.0)) {
+            return Err(Error::parameter(
+                "frequency",
+                format!("{f} Hz; expected ≥ 0"),
+            ));
+        }
+        let omega: Vec<f64> = freq_hz.iter().map(|f| 2.0 * PI * f).collect();
+        let n = model.dof();
+        if model.planar.is_some() {
+            let names = crate::response::frf::compute(model, &[1.0])?.names();
+            if !names.iter().any(|r| r == response) {
+                return Err(Error::parameter(
+                    "--response",
+                    format!(
+                        "`{response}` is not a response of the planar model `{}`; expected one of {}",
+                        model.name,
+                        names.join(", ")
+                    ),
+                ));
+            }
+            return Ok(Evaluator {
+                kind: Kind::Seat,
+                omega,
+                n,
+                d: Vec::new(),
+                x: Vec::new(),
+                planar: Some(response.to_string()),
+            });
+        }
         let kind = match response {
             "stht" => Kind::Stht(model.measure.head.ok_or_else(|| unknown("has no head"))?),
             "seat" => Kind::Seat,
@@ -60,19 +92,13 @@ impl Evaluator {
                 None => return Err(unknown("is unknown")),
             },
         };
-        if let Some(f) = freq_hz.iter().find(|f| !(f.is_finite() && **f >= 0.0)) {
-            return Err(Error::parameter(
-                "frequency",
-                format!("{f} Hz; expected ≥ 0"),
-            ));
-        }
-        let n = model.dof();
         Ok(Evaluator {
             kind,
-            omega: freq_hz.iter().map(|f| 2.0 * PI * f).collect(),
+            omega,
             n,
             d: vec![Complex64::default(); n * n],
             x: vec![Complex64::default(); n],
+            planar: None,
         })
     }
 
@@ -93,6 +119,15 @@ impl Evaluator {
                 "model",
                 "the evaluator was built for a model of another size",
             ));
+        }
+        if let Some(name) = &self.planar {
+            let freq: Vec<f64> = self.omega.iter().map(|w| w / (2.0 * PI)).collect();
+            let set = crate::response::frf::compute(model, &freq)?;
+            let r = set.get(name).ok_or_else(|| {
+                Error::parameter("--response", format!("`{name}` is not a planar response"))
+            })?;
+            out.copy_from_slice(&r.values);
+            return Ok(());
         }
         for (j, o) in out.iter_mut().enumerate() {
             let w = self.omega[j];
@@ -225,6 +260,21 @@ mod tests {
                 }
             }
         }
+    }
+
+    #[test]
+    fn planar_responses_come_from_the_planar_solver() {
+        let model = crate::model::catalog::resolve("planar-occupant").unwrap();
+        let freq = [2.0, 4.5, 7.0];
+        let set = crate::response::frf::compute(&model, &freq).unwrap();
+        for name in ["seat", "seat_x", "head_x", "apms_z"] {
+            let mut ev = Evaluator::new(&model, name, &freq).unwrap();
+            let mut out = vec![Complex64::default(); 3];
+            ev.eval(&model, &mut out).unwrap();
+            assert_eq!(out, set.get(name).unwrap().values, "{name}");
+            assert!(out.iter().all(|v| v.norm() > 1e-3), "{name}: {out:?}");
+        }
+        assert!(Evaluator::new(&model, "stht_x", &freq).is_err());
     }
 
     #[test]
