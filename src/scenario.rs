@@ -75,6 +75,8 @@ pub struct Outputs {
     pub mcap: Option<(std::path::PathBuf, crate::record::RecordOptions)>,
     /// A measured-run CSV of the simulated channels.
     pub csv: Option<std::path::PathBuf>,
+    /// Whether existing outputs (the CSV; the MCAP follows its own options) may be replaced.
+    pub overwrite: crate::io::atomic::Overwrite,
     /// The command line, for the run's provenance.
     pub command_line: String,
 }
@@ -126,12 +128,8 @@ impl Scenario {
             )?),
             None => None,
         };
-        let overwrite = outputs
-            .mcap
-            .as_ref()
-            .map_or(crate::io::atomic::Overwrite::Refuse, |(_, o)| o.overwrite);
         let mut csv = match &outputs.csv {
-            Some(p) => Some(crate::io::csv_run::CsvWriter::create(p, overwrite)?),
+            Some(p) => Some(crate::io::csv_run::CsvWriter::create(p, outputs.overwrite)?),
             None => None,
         };
         let mut analysis = crate::analysis::AnalysisObserver::new(

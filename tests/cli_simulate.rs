@@ -91,3 +91,34 @@ fn bad_input_gives_one_error_line_and_leaves_nothing() {
         assert!(!out.join("run.mcap").exists() && !out.join("run.mcap.partial").exists());
     }
 }
+
+/// A CSV written by `--no-record` is never replaced silently, and `--force` replaces it.
+#[test]
+fn force_replaces_a_csv_also_without_recording() {
+    let dir = tempfile::tempdir().unwrap();
+    let csv = dir.path().join("m.csv");
+    let args = |seed: &'static str, force: bool| {
+        let mut a = vec![
+            "simulate",
+            "--duration",
+            "2",
+            "--seed",
+            seed,
+            "--no-record",
+            "--csv",
+            s(&csv),
+        ];
+        if force {
+            a.push("--force");
+        }
+        wbv(&a)
+    };
+    assert!(args("1", false).status.success());
+    let first = std::fs::read(&csv).unwrap();
+    let refused = args("2", false);
+    assert!(!refused.status.success());
+    assert!(String::from_utf8_lossy(&refused.stderr).contains("--force"));
+    assert_eq!(std::fs::read(&csv).unwrap(), first, "kept without --force");
+    assert!(args("2", true).status.success());
+    assert_ne!(std::fs::read(&csv).unwrap(), first, "replaced with --force");
+}

@@ -76,6 +76,7 @@ pub fn execute(
     csv: Option<PathBuf>,
 ) -> crate::Result<Outcome> {
     let outputs = Outputs {
+        overwrite: options.overwrite,
         mcap: dir.map(|d| (d.join(RUN_FILE), options)),
         csv,
         command_line: command_line(),
