@@ -354,6 +354,16 @@ fn bounds(model: &Model, cand: Option<Candidate>) -> (Vec<f64>, Vec<f64>) {
 
 /// Runs the diagnosis of `model` against training runs and one held-out check run.
 pub fn diagnose(model: &Model, train: &[Signals], check: &Signals) -> Result<Diagnosis> {
+    if model.planar.is_some() {
+        // The candidate effects act on the links of a chain; a planar model has contacts instead.
+        return Err(Error::parameter(
+            "--model",
+            format!(
+                "`{}` is a planar model; the gap diagnosis works on 1-D chain models (its candidate effects modify chain links)",
+                model.name
+            ),
+        ));
+    }
     let tr: Vec<RunSpectra> = train.iter().map(measure::estimate).collect::<Result<_>>()?;
     let ck = measure::estimate(check)?;
     let mut warnings = Vec::new();
