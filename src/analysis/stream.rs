@@ -49,7 +49,9 @@ struct ChannelAnalyzer {
     linear: RunningRms,
     exponential: RunningRms,
     psd: PsdAccumulator,
+    /// Block buffers of the Wk (or Wd/Wc) and the Wf chains.
     scratch: Vec<f64>,
+    scratch_sickness: Vec<f64>,
 }
 
 impl ChannelAnalyzer {
@@ -79,24 +81,39 @@ impl ChannelAnalyzer {
             exponential: RunningRms::new(fs, opts.tau_s, Averaging::Exponential),
             psd: PsdAccumulator::new(welch),
             scratch: Vec::new(),
+            scratch_sickness: Vec::new(),
         })
     }
 
+    /// The three chains of a block are independent — spectrum, weighted figures, Wf motion-sickness
+    /// dose — so they run side by side (each block is thousands of samples, far more than a
+    /// task's overhead); every figure is computed exactly as in sequence.
     fn push(&mut self, x: &[f64], welch: &mut Welch) {
-        self.raw.push(x);
-        self.psd.push(welch, x);
-        if let Some((filter, moments)) = self.sickness.as_mut() {
-            self.scratch.clear();
-            self.scratch.extend_from_slice(x);
-            filter.process(&mut self.scratch);
-            moments.push(&self.scratch);
-        }
-        self.scratch.clear();
-        self.scratch.extend_from_slice(x);
-        self.weight.process(&mut self.scratch);
-        self.weighted.push(&self.scratch);
-        self.linear.push(&self.scratch);
-        self.exponential.push(&self.scratch);
+        let (raw, psd) = (&mut self.raw, &mut self.psd);
+        let spectrum = || {
+            raw.push(x);
+            psd.push(welch, x);
+        };
+        let (scratch, weight, weighted) = (&mut self.scratch, &mut self.weight, &mut self.weighted);
+        let (linear, exponential) = (&mut self.linear, &mut self.exponential);
+        let weighted_chain = || {
+            scratch.clear();
+            scratch.extend_from_slice(x);
+            weight.process(scratch);
+            weighted.push(scratch);
+            linear.push(scratch);
+            exponential.push(scratch);
+        };
+        let (sick_scratch, sickness) = (&mut self.scratch_sickness, &mut self.sickness);
+        let sickness_chain = || {
+            if let Some((filter, moments)) = sickness.as_mut() {
+                sick_scratch.clear();
+                sick_scratch.extend_from_slice(x);
+                filter.process(sick_scratch);
+                moments.push(sick_scratch);
+            }
+        };
+        rayon::join(spectrum, || rayon::join(weighted_chain, sickness_chain));
     }
 
     fn finish(self, fs: f64, welch: &Welch) -> Result<ChannelReport> {
