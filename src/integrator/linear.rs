@@ -73,25 +73,21 @@ fn product_any(p: usize, cols: &[f64], parts: &[&[f64]], out: &mut [f64]) {
 
 /// The step of a linear model as `y₊ = Φ·y + Γ·u`.
 pub struct LinearStep {
-    /// Mass degrees of freedom `n` and relaxing arms `r`: `y` has `3n + 2r` entries.
-    n: usize,
-    r: usize,
-    /// `Φ`, column-major, `m × m` with `m = 3n + 2r`: the product is a sum of columns scaled by
-    /// the state entries (independent lanes, no long reduction chain).
-    phi: Vec<f64>,
-    /// `Γ`, column-major, `m × s` with `s` the number of input samples per step.
-    gamma: Vec<f64>,
+    /// State entries `m = 3n + 2r` (`n` masses, `r` relaxing arms).
+    m: usize,
+    /// Input samples per step `s`.
     inputs: usize,
     /// Padded column length (a multiple of [`LANES`]).
     padded: usize,
-    /// The columns of `Γ` then `Φ`, each zero-padded to `padded`.
+    /// The `s` columns of `Γ` then the `m` columns of `Φ`, each zero-padded to `padded`: the
+    /// product is a sum of columns scaled by the inputs and state entries (independent lanes, no
+    /// long reduction chain).
     columns: Vec<f64>,
     next: Vec<f64>,
     /// The processor has AVX2.
     avx2: bool,
 }
 
-#[cfg_attr(not(test), allow(dead_code))]
 fn pack(s: &State, y: &mut [f64]) {
     let mut k = 0;
     for part in [&s.x, &s.v, &s.a, &s.q, &s.qdot] {
@@ -130,44 +126,31 @@ impl LinearStep {
         dynamics: &Dynamics,
         inputs: usize,
     ) -> Result<LinearStep> {
-        let n = dynamics.dof();
-        let r = dynamics.arms;
-        let m = 3 * n + 2 * r;
-        let mut phi = vec![0.0; m * m];
-        let mut gamma = vec![0.0; m * inputs];
+        let m = 3 * dynamics.dof() + 2 * dynamics.arms;
+        let padded = m.next_multiple_of(LANES).max(LANES);
+        let mut columns = vec![0.0; padded * (inputs + m)];
         let mut state = State::at_rest(dynamics, 0.0);
         let mut y = vec![0.0; m];
         let mut u = vec![0.0; inputs];
         let mut column = |y0: &[f64], u: &[f64], out: &mut [f64]| {
             unpack(y0, &mut state);
             integrator.advance(&mut state, u, 0.0)?;
-            pack(&state, out);
+            pack(&state, &mut out[..m]);
             Ok::<(), crate::Error>(())
         };
-        for (j, col) in phi.chunks_exact_mut(m).enumerate() {
-            y[j] = 1.0;
-            column(&y, &u, col)?;
-            y[j] = 0.0;
-        }
-        for (k, col) in gamma.chunks_exact_mut(m).enumerate() {
+        let (gamma, phi) = columns.split_at_mut(padded * inputs);
+        for (k, col) in gamma.chunks_exact_mut(padded).enumerate() {
             u[k] = 1.0;
             column(&y, &u, col)?;
             u[k] = 0.0;
         }
-        let padded = m.next_multiple_of(LANES).max(LANES);
-        let mut columns = vec![0.0; padded * (inputs + m)];
-        for (col, dst) in gamma
-            .chunks_exact(m)
-            .chain(phi.chunks_exact(m))
-            .zip(columns.chunks_exact_mut(padded))
-        {
-            dst[..m].copy_from_slice(col);
+        for (j, col) in phi.chunks_exact_mut(padded).enumerate() {
+            y[j] = 1.0;
+            column(&y, &u, col)?;
+            y[j] = 0.0;
         }
         Ok(LinearStep {
-            n,
-            r,
-            phi,
-            gamma,
+            m,
             inputs,
             padded,
             columns,
@@ -178,18 +161,22 @@ impl LinearStep {
 
     /// Number of state entries `3n + 2r`.
     pub fn states(&self) -> usize {
-        3 * self.n + 2 * self.r
+        self.m
+    }
+
+    /// Column `j` of `[Γ Φ]`, unpadded.
+    fn column(&self, j: usize) -> &[f64] {
+        &self.columns[j * self.padded..j * self.padded + self.m]
     }
 
     /// `Φ` (`m × m`, over `y = [x, v, a, q, q̇]`).
     pub fn phi_matrix(&self) -> nalgebra::DMatrix<f64> {
-        let m = self.states();
-        nalgebra::DMatrix::from_column_slice(m, m, &self.phi)
+        nalgebra::DMatrix::from_fn(self.m, self.m, |i, j| self.column(self.inputs + j)[i])
     }
 
     /// `Γ` (`m × s`, one column per input sample of the step).
     pub fn gamma_matrix(&self) -> nalgebra::DMatrix<f64> {
-        nalgebra::DMatrix::from_column_slice(self.states(), self.inputs, &self.gamma)
+        nalgebra::DMatrix::from_fn(self.m, self.inputs, |i, k| self.column(k)[i])
     }
 }
 
