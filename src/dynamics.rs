@@ -95,10 +95,11 @@ impl Dynamics {
                     k: l.k.clone(),
                     m_inv,
                     r: l.r_z.iter().copied().collect(),
-                    links: crate::planar::links::contact_links(p)
-                        .into_iter()
+                    links: p
+                        .links
+                        .iter()
                         .map(|c| RowLink {
-                            row: c.row,
+                            row: c.row.clone(),
                             k: c.k,
                             c: c.c,
                         })

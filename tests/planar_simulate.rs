@@ -102,7 +102,7 @@ impl wbv::simulate::observer::Observer for Balance {
 fn contact_forces_balance_the_momentum_rate_at_every_step() {
     let model = catalog::resolve("planar-occupant").unwrap();
     let p = model.planar.as_deref().unwrap();
-    let links = wbv::planar::links::contact_links(p);
+    let links = &p.links;
     let l = &p.linear;
     // M is symmetric: r_zᵀM is the row of M·r_z.
     let m_r: Vec<f64> = (&l.m * &l.r_z).iter().copied().collect();

@@ -12,6 +12,8 @@
 //! vertical momentum rate.
 
 use super::Planar;
+use super::Spec;
+use super::equilibrium::Equilibrium;
 
 /// One contact axis as a link.
 #[derive(Debug, Clone, PartialEq)]
@@ -32,12 +34,13 @@ pub struct ContactLink {
     pub vertical: f64,
 }
 
-/// The normal and tangential links of every contact, in contact order.
-pub fn contact_links(p: &Planar) -> Vec<ContactLink> {
-    let pos = &p.spec.posture;
-    let pl = pos.place(&p.equilibrium.q);
-    let mut out = Vec::with_capacity(2 * p.spec.contacts.len());
-    for (ct, coef) in p.spec.contacts.iter().zip(&p.equilibrium.coefficients) {
+/// The normal and tangential links of every contact, in contact order, about the equilibrium
+/// `eq` (kept as [`Planar::links`]).
+pub fn contact_links(spec: &Spec, eq: &Equilibrium) -> Vec<ContactLink> {
+    let pos = &spec.posture;
+    let pl = pos.place(&eq.q);
+    let mut out = Vec::with_capacity(2 * spec.contacts.len());
+    for (ct, coef) in spec.contacts.iter().zip(&eq.coefficients) {
         let j = pos.jacobian(&pl, ct.segment, ct.at);
         let (n, t) = ct.axes();
         for (suffix, axis, k, c) in [("n", n, coef.0, coef.2), ("t", t, coef.1, coef.3)] {

@@ -93,6 +93,8 @@ pub struct Planar {
     pub equilibrium: Equilibrium,
     /// `M`, `C`, `K` and base influence about the equilibrium.
     pub linear: Linear,
+    /// The contacts as links of a time-domain run (normal and shear of each).
+    pub links: Vec<links::ContactLink>,
 }
 
 impl Planar {
@@ -100,10 +102,12 @@ impl Planar {
     pub fn build(spec: Spec) -> Result<Planar> {
         let equilibrium = equilibrium::solve(&spec)?;
         let linear = linearise::linearise(&spec, &equilibrium);
+        let links = links::contact_links(&spec, &equilibrium);
         Ok(Planar {
             spec,
             equilibrium,
             linear,
+            links,
         })
     }
 }

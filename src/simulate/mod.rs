@@ -86,14 +86,14 @@ pub fn layout(model: &Model, settings: &Settings) -> Layout {
     };
     if let Some(p) = model.planar.as_deref() {
         // The seat contacts stand in for links (`Dynamics` reads them out in the same order).
-        let links = crate::planar::links::contact_links(p);
-        lay.interface = crate::planar::links::interface(&links);
+        let links = &p.links;
+        lay.interface = crate::planar::links::interface(links);
         lay.link_nodes = links
             .iter()
             .map(|l| (l.segment.clone(), "base".to_string()))
             .collect();
         lay.link_roles = links.iter().map(|l| l.role.clone()).collect();
-        lay.links = links.into_iter().map(|l| l.name).collect();
+        lay.links = links.iter().map(|l| l.name.clone()).collect();
         lay.planar = Some(crate::planar::replay::layout(p));
     }
     lay
