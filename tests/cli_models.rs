@@ -1,13 +1,7 @@
 //! The model commands work on every built-in model and fail with one clear line on bad input.
 
-use std::process::Command;
-
-fn wbv(args: &[&str]) -> std::process::Output {
-    Command::new(env!("CARGO_BIN_EXE_wbv"))
-        .args(args)
-        .output()
-        .unwrap()
-}
+mod common;
+use common::wbv;
 
 #[test]
 fn frf_and_modes_work_on_every_builtin_model() {

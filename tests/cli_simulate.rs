@@ -1,15 +1,10 @@
 //! `wbv simulate` end to end: a recorded run that analyses and replays, deterministic bytes, and one
 //! clear error line (nothing half-written) for bad input.
 
+mod common;
+use common::wbv;
 use std::path::Path;
 use std::process::Command;
-
-fn wbv(args: &[&str]) -> std::process::Output {
-    Command::new(env!("CARGO_BIN_EXE_wbv"))
-        .args(args)
-        .output()
-        .unwrap()
-}
 
 fn s(p: &Path) -> &str {
     p.to_str().unwrap()

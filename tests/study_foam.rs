@@ -1,7 +1,8 @@
 //! Foam-thickness study (paper 000 Table 4): the trends of a thicker, softer layer in both domains,
 //! and the `wbv foam` table next to the paper's values.
 
-use std::process::Command;
+mod common;
+use common::wbv;
 use wbv::model::catalog;
 use wbv::study::foam::{Foam, PAPER_TABLE_4, paper_run, thickness_study};
 
@@ -31,13 +32,6 @@ fn thicker_foam_lowers_the_resonance_seat_and_a_v() {
     assert!(base.iter().all(|b| (b - base[0]).abs() < 1e-12 * base[0]));
     // The base's Wk-weighted r.m.s. of a flat 0.5–20 Hz, 0.4 m/s² input: below the unweighted 0.4.
     assert!(base[0] > 0.2 && base[0] < 0.4, "{base:?}");
-}
-
-fn wbv(args: &[&str]) -> std::process::Output {
-    Command::new(env!("CARGO_BIN_EXE_wbv"))
-        .args(args)
-        .output()
-        .unwrap()
 }
 
 #[test]

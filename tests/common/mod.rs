@@ -1,4 +1,7 @@
-//! Inputs shared by the integration tests.
+//! Inputs and helpers shared by the integration tests.
+
+// Each test crate includes this module and uses a part of it.
+#![allow(dead_code)]
 
 use std::f64::consts::PI;
 use wbv::excitation::Excitation;
@@ -31,4 +34,12 @@ impl Excitation for Sine {
     fn describe(&self) -> String {
         format!("test sine {} Hz", self.f)
     }
+}
+
+/// Runs the `wbv` binary with `args` and returns its output.
+pub fn wbv(args: &[&str]) -> std::process::Output {
+    std::process::Command::new(env!("CARGO_BIN_EXE_wbv"))
+        .args(args)
+        .output()
+        .unwrap()
 }
