@@ -20,6 +20,9 @@ enum Kind {
     Apms,
     Dpmi,
     Mass(usize),
+    /// Response `k` of a planar model's [`crate::response::frf::compute`] set (`seat`, `seat_x`,
+    /// `head_z`, `apms_x`, …), evaluated through the planar solver.
+    Planar(usize),
 }
 
 /// Evaluates one response of models with the same structure as the one it was built for.
@@ -30,9 +33,6 @@ pub struct Evaluator {
     n: usize,
     d: Vec<Complex64>,
     x: Vec<Complex64>,
-    /// For a planar model: the response's name in its [`crate::response::frf::compute`] set
-    /// (`seat`, `seat_x`, `head_z`, `apms_x`, …), evaluated through the planar solver.
-    planar: Option<String>,
 }
 
 impl Evaluator {
@@ -57,23 +57,22 @@ impl Evaluator {
         let n = model.dof();
         if model.planar.is_some() {
             let names = crate::response::frf::compute(model, &[1.0])?.names();
-            if !names.iter().any(|r| r == response) {
-                return Err(Error::parameter(
+            let k = names.iter().position(|r| r == response).ok_or_else(|| {
+                Error::parameter(
                     "--response",
                     format!(
                         "`{response}` is not a response of the planar model `{}`; expected one of {}",
                         model.name,
                         names.join(", ")
                     ),
-                ));
-            }
+                )
+            })?;
             return Ok(Evaluator {
-                kind: Kind::Seat,
+                kind: Kind::Planar(k),
                 omega,
                 n,
                 d: Vec::new(),
                 x: Vec::new(),
-                planar: Some(response.to_string()),
             });
         }
         let kind = match response {
@@ -98,7 +97,6 @@ impl Evaluator {
             n,
             d: vec![Complex64::default(); n * n],
             x: vec![Complex64::default(); n],
-            planar: None,
         })
     }
 
@@ -120,11 +118,11 @@ impl Evaluator {
                 "the evaluator was built for a model of another size",
             ));
         }
-        if let Some(name) = &self.planar {
+        if let Kind::Planar(k) = self.kind {
             let freq: Vec<f64> = self.omega.iter().map(|w| w / (2.0 * PI)).collect();
             let set = crate::response::frf::compute(model, &freq)?;
-            let r = set.get(name).ok_or_else(|| {
-                Error::parameter("--response", format!("`{name}` is not a planar response"))
+            let r = set.responses.get(k).ok_or_else(|| {
+                Error::parameter("model", "the evaluator was built for another planar model")
             })?;
             out.copy_from_slice(&r.values);
             return Ok(());
@@ -193,6 +191,13 @@ impl Evaluator {
             Kind::Apms => force() / a_seat,
             Kind::Dpmi => Complex64::new(0.0, w) * force() / a_seat,
             Kind::Mass(i) => acc(i),
+            // `eval` takes planar responses from the planar solver before reaching here.
+            Kind::Planar(_) => {
+                return Err(Error::parameter(
+                    "model",
+                    "a planar response is evaluated over the whole grid",
+                ));
+            }
         })
     }
 }
