@@ -150,7 +150,8 @@ const DEFLECTION_ROLES: [&str; 2] = ["cushion", "suspension"];
 /// with links, `/wbv/links`. Every field is recorded once, except the measured-run channels
 /// `a_seat_z` and `a_head_z` (also `a_abs` of their masses) and `f_seat_z` (also the negated
 /// force of a single interface link), kept under model-independent names for the viewer layout
-/// and the measured-run readers, and a cushion or suspension deflection equal to a mass's `x`. Only `/wbv/measured` carries `t`: it equals the log time.
+/// and the measured-run readers, and a cushion or suspension deflection equal to a mass's `x`.
+/// Only `/wbv/measured` carries `t`: it equals the log time.
 pub fn topics(layout: &Layout) -> Result<Vec<Topic>> {
     let masses = keys(&layout.masses, "mass")?;
     let links = keys(&layout.links, "link")?;
