@@ -4,7 +4,7 @@
 
 use criterion::{Criterion, criterion_group, criterion_main};
 use std::hint::black_box;
-use wbv::model::{catalog, params};
+use wbv::model::catalog;
 use wbv::response::frf;
 use wbv::study::calibrate::{Method, Problem, Target, calibrate, ga};
 use wbv::study::param::Param;
@@ -12,7 +12,7 @@ use wbv::study::param::Param;
 fn problem() -> Problem {
     let truth = catalog::resolve("reference").unwrap();
     let freq = frf::grid(1.0, 15.0, 60, false).unwrap();
-    let mag = frf::compute(&truth, &freq)
+    let mag = frf::compute(truth.system(), &freq)
         .unwrap()
         .get("seat")
         .unwrap()
@@ -25,7 +25,7 @@ fn problem() -> Problem {
     ];
     let mut start = truth.clone();
     for (p, _, _, v) in fitted {
-        params::set(&mut start, p, v).unwrap();
+        start.set(p, v).unwrap();
     }
     Problem {
         params: fitted

@@ -14,7 +14,7 @@ fn bench(c: &mut Criterion) {
     let mut g = c.benchmark_group("frf_seed001_full");
     g.throughput(Throughput::Elements(freq.len() as u64));
     g.bench_function("1000_frequencies", |b| {
-        b.iter(|| black_box(frf::compute(&model, black_box(&freq)).expect("frf")))
+        b.iter(|| black_box(frf::compute(model.system(), black_box(&freq)).expect("frf")))
     });
     g.finish();
 }

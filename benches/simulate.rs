@@ -85,15 +85,15 @@ fn bench(c: &mut Criterion) {
                     step: settings.excitation_step(),
                     k: 0,
                 };
-                run(&model, &mut exc, &settings, &mut [], None).unwrap();
+                run(model.system(), &mut exc, &settings, &mut [], None).unwrap();
             })
         });
     }
     // Hand-written lower bound: y₊ = Φ·y + Γ₀·u + Γ₁·u₊ (18 states: x, v, a of 6 masses).
-    let dynamics = wbv::dynamics::Dynamics::new(&model);
+    let dynamics = wbv::system::Dynamics::new(model.system());
     let method = Method::AVERAGE_ACCELERATION;
-    let mut newmark =
-        wbv::integrator::build_stepping(method, &dynamics, &model, dt).expect("linear model");
+    let mut newmark = wbv::integrator::build_stepping(method, &dynamics, model.system(), dt)
+        .expect("linear model");
     let step =
         wbv::integrator::linear::LinearStep::probe(newmark.as_mut(), &dynamics, 2).expect("probe");
     let (phi, gamma) = (step.phi_matrix(), step.gamma_matrix());

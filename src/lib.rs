@@ -7,13 +7,11 @@
 pub mod analysis;
 pub mod cli;
 pub mod diagnosis;
-pub mod dynamics;
 pub mod error;
 pub mod excitation;
 pub mod integrator;
 pub mod io;
 pub mod model;
-pub mod planar;
 pub mod plot;
 pub mod record;
 pub mod reproduce;
@@ -22,5 +20,6 @@ pub mod scenario;
 pub mod signals;
 pub mod simulate;
 pub mod study;
+pub mod system;
 
 pub use error::{Error, Result};

@@ -52,7 +52,7 @@ impl Scenario {
             self.seed,
         )?;
         simulate::run(
-            &self.model,
+            self.model.system(),
             exc.as_mut(),
             &self.settings,
             observers,
@@ -129,7 +129,7 @@ impl Scenario {
             None => None,
         };
         let mut csv = match &outputs.csv {
-            Some(p) => Some(crate::io::csv_run::CsvWriter::create(p, outputs.overwrite)?),
+            Some(p) => Some(crate::record::csv::CsvWriter::create(p, outputs.overwrite)?),
             None => None,
         };
         let mut analysis = crate::analysis::AnalysisObserver::new(

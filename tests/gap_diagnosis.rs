@@ -22,7 +22,7 @@ fn replayed_h1_matches_the_analytic_frf_within_its_error_band() {
     // frequency response D(ω)⁻¹ of the same linear model, on every path including apparent mass
     // (which checks the force sign convention of both sides).
     let case = make_case(0, &opts()).unwrap();
-    let model = catalog::resolve("reference").unwrap();
+    let model = catalog::resolve_chain("reference").unwrap();
     let base = case.check.require("a_base_z").unwrap();
     let sim = replay(&model, base, case.check.sample_rate_hz, "replay").unwrap();
     let spec = estimate(&sim).unwrap();
@@ -50,7 +50,7 @@ fn replayed_h1_matches_the_analytic_frf_within_its_error_band() {
 fn no_structural_gap_is_reported_as_none() {
     let case = make_case(0, &opts()).unwrap();
     assert_eq!(case.label.effect, "none");
-    let model = catalog::resolve("reference").unwrap();
+    let model = catalog::resolve_chain("reference").unwrap();
     let d = diagnose(&model, &case.train, &case.check).unwrap();
     assert_eq!(d.verdict, "none", "{}", d.verdict_text);
     assert!(d.warnings.is_empty(), "{:?}", d.warnings);
@@ -69,7 +69,7 @@ fn drop_channel(s: &Signals, name: &str) -> Signals {
 #[test]
 fn runs_with_different_channels_are_an_error() {
     let case = make_case(0, &opts()).unwrap();
-    let model = catalog::resolve("reference").unwrap();
+    let model = catalog::resolve_chain("reference").unwrap();
     let check = drop_channel(&case.check, "a_head_z");
     let err = diagnose(&model, &case.train, &check)
         .unwrap_err()
@@ -80,7 +80,7 @@ fn runs_with_different_channels_are_an_error() {
 #[test]
 fn short_run_is_an_error() {
     let case = make_case(0, &opts()).unwrap();
-    let model = catalog::resolve("reference").unwrap();
+    let model = catalog::resolve_chain("reference").unwrap();
     let mut short = Signals::new(case.check.sample_rate_hz, "short.csv");
     for (n, d) in case.check.names.iter().zip(&case.check.data) {
         short.push(n.clone(), d[..5000].to_vec()).unwrap();
@@ -97,7 +97,7 @@ fn short_run_is_an_error() {
 #[test]
 fn outputs_unrelated_to_the_base_are_an_error() {
     let case = make_case(0, &opts()).unwrap();
-    let model = catalog::resolve("reference").unwrap();
+    let model = catalog::resolve_chain("reference").unwrap();
     // Swap in another realisation's outputs: no coherence with this base.
     let other = &case.train[0];
     let mut bad = Signals::new(case.check.sample_rate_hz, "incoherent.csv");
@@ -121,7 +121,7 @@ fn check_run_outside_the_training_magnitudes_is_warned() {
         ..opts()
     };
     let case = make_case(0, &o).unwrap();
-    let model = catalog::resolve("reference").unwrap();
+    let model = catalog::resolve_chain("reference").unwrap();
     let d = diagnose(&model, &case.train, &case.check).unwrap();
     assert!(
         d.warnings

@@ -6,7 +6,7 @@ use num_complex::Complex64;
 use std::f64::consts::PI;
 use wbv::excitation::Excitation;
 use wbv::integrator::Method;
-use wbv::model::{Model, assembly, catalog};
+use wbv::model::{Model, catalog};
 use wbv::response::frf;
 use wbv::simulate::observer::{Layout, Observer, Step};
 use wbv::simulate::{Settings, run};
@@ -91,7 +91,7 @@ fn simulate(
         k: 0,
     };
     let mut trace = Trace::default();
-    run(model, &mut exc, &settings, &mut [&mut trace], None).unwrap();
+    run(model.system(), &mut exc, &settings, &mut [&mut trace], None).unwrap();
     trace
 }
 
@@ -112,7 +112,7 @@ fn steady_state_sine_matches_the_frf_for_both_integrators() {
     for method in [Method::AVERAGE_ACCELERATION, Method::Rk4] {
         for f in [1.0, 4.0, 8.0, 15.0] {
             let tr = simulate(&model, method, dt, 12.0, vec![(1.0, f)]);
-            let head = model.measure.head.unwrap();
+            let head = model.chain().unwrap().measure.head.unwrap();
             // Analyse t in [4, 12): a whole number of periods at each test frequency.
             let keep = |i: usize| tr.t[i] >= 4.0 - 1e-9 && tr.t[i] < 12.0 - 1e-9;
             let idx: Vec<usize> = (0..tr.t.len()).filter(|&i| keep(i)).collect();
@@ -120,7 +120,7 @@ fn steady_state_sine_matches_the_frf_for_both_integrators() {
             let base: Vec<f64> = idx.iter().map(|&i| tr.a_base[i]).collect();
             let abs_head: Vec<f64> = idx.iter().map(|&i| tr.a[i][head] + tr.a_base[i]).collect();
             let ratio = amplitude(&t, &abs_head, f) / amplitude(&t, &base, f);
-            let exact = frf::compute(&model, &[f])
+            let exact = frf::compute(model.system(), &[f])
                 .unwrap()
                 .get("t_head")
                 .unwrap()
@@ -146,7 +146,7 @@ fn steady_state_sine_matches_the_frf_for_both_integrators() {
 
 /// Exact response of the linear state-space model to `a_base = sin(ωt)` from rest, at time `t`.
 fn exact_state(model: &Model, f: f64, t: f64) -> DVector<f64> {
-    let ss = assembly::state_space(model);
+    let ss = model.system().state_space();
     let size = ss.a.nrows();
     let w = 2.0 * PI * f;
     let ac = DMatrix::from_fn(size, size, |i, j| Complex64::new(ss.a[(i, j)], 0.0));
@@ -226,12 +226,14 @@ fn work_of_the_base_equals_stored_plus_dissipated_energy() {
                 4.0,
                 vec![(1.0, 3.1), (0.6, 7.3), (0.3, 13.0)],
             );
-            let m: Vec<f64> = model.masses.iter().map(|m| m.m).collect();
+            let m: Vec<f64> = model.chain().unwrap().masses.iter().map(|m| m.m).collect();
             let energy = |i: usize| -> f64 {
                 let kinetic: f64 = (0..m.len())
                     .map(|j| 0.5 * m[j] * (tr.v[i][j] + tr.v_base[i]).powi(2))
                     .sum();
                 let potential: f64 = model
+                    .chain()
+                    .unwrap()
                     .links
                     .iter()
                     .enumerate()
@@ -253,7 +255,7 @@ fn work_of_the_base_equals_stored_plus_dissipated_energy() {
             };
             // Power dissipated and power put in by the base at each step.
             let rel_v = |i: usize, l: usize| -> f64 {
-                let link = &model.links[l];
+                let link = &model.chain().unwrap().links[l];
                 let at = |n: wbv::model::Node| match n {
                     wbv::model::Node::Base => 0.0,
                     wbv::model::Node::Mass(j) => tr.v[i][j],
@@ -262,6 +264,8 @@ fn work_of_the_base_equals_stored_plus_dissipated_energy() {
             };
             let dissipation = |i: usize| -> f64 {
                 model
+                    .chain()
+                    .unwrap()
                     .links
                     .iter()
                     .enumerate()
@@ -280,6 +284,8 @@ fn work_of_the_base_equals_stored_plus_dissipated_energy() {
             };
             let input = |i: usize| -> f64 {
                 model
+                    .chain()
+                    .unwrap()
                     .links
                     .iter()
                     .enumerate()
@@ -321,14 +327,14 @@ fn rk4_refuses_a_step_beyond_its_stability_limit() {
         step: settings.excitation_step(),
         k: 0,
     };
-    let err = run(&model, &mut exc, &settings, &mut [], None)
+    let err = run(model.system(), &mut exc, &settings, &mut [], None)
         .unwrap_err()
         .to_string();
     assert!(
         err.contains("RK4 stability limit") && err.contains("Hz"),
         "{err}"
     );
-    let (limit, _) = wbv::integrator::stability::rk4_max_step(&model);
+    let (limit, _) = wbv::integrator::stability::rk4_max_step(model.system());
     // Just below the limit the run stays bounded; just above it is refused.
     let ok = Settings {
         dt: 0.99 * limit,
@@ -340,5 +346,5 @@ fn rk4_refuses_a_step_beyond_its_stability_limit() {
         step: ok.excitation_step(),
         k: 0,
     };
-    run(&model, &mut exc, &ok, &mut [], None).unwrap();
+    run(model.system(), &mut exc, &ok, &mut [], None).unwrap();
 }

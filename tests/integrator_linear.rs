@@ -6,10 +6,10 @@
 use num_complex::Complex64;
 use rand::{RngExt, SeedableRng};
 use rand_chacha::ChaCha8Rng;
-use wbv::dynamics::Dynamics;
 use wbv::integrator::linear::LinearStep;
 use wbv::integrator::{Integrator, Method, State, build, build_stepping};
-use wbv::model::{catalog, file};
+use wbv::model::catalog;
+use wbv::system::Dynamics;
 
 /// Undamped single oscillator, ω = √(k/m).
 fn oscillator(m: f64, k: f64) -> wbv::model::Model {
@@ -18,14 +18,14 @@ fn oscillator(m: f64, k: f64) -> wbv::model::Model {
          [[link]]\nname = \"s\"\nbetween = [\"a\", \"base\"]\ntype = \"kelvin-voigt\"\nk = {k}\nc = 0.0\n\
          [measure]\nseat = \"base\"\nhead = \"a\"\ninterface = [\"s\"]\n"
     );
-    file::parse(&text, "sdof.toml").unwrap()
+    catalog::parse(&text, "sdof.toml").unwrap()
 }
 
 /// Eigenvalues of the `[x, v, a]` step matrix of the oscillator under `method`.
 fn eigenvalues(method: Method, m: f64, k: f64, dt: f64) -> Vec<Complex64> {
     let model = oscillator(m, k);
-    let dynamics = Dynamics::new(&model);
-    let mut inner = build_stepping(method, &dynamics, &model, dt).unwrap();
+    let dynamics = Dynamics::new(model.system());
+    let mut inner = build_stepping(method, &dynamics, model.system(), dt).unwrap();
     let step = LinearStep::probe(inner.as_mut(), &dynamics, method.substeps() + 1).unwrap();
     step.phi_matrix()
         .complex_eigenvalues()
@@ -112,11 +112,11 @@ fn step_matrix_equals_the_integrators_to_round_off() {
         "planar-occupant",
     ] {
         let model = catalog::resolve(name).unwrap();
-        let dynamics = Dynamics::new(&model);
+        let dynamics = Dynamics::new(model.system());
         assert!(!dynamics.is_nonlinear(), "{name}");
         for (method, dt) in [(Method::AVERAGE_ACCELERATION, 1e-3), (Method::Rk4, 2e-4)] {
-            let mut fast = build(method, &dynamics, &model, dt).unwrap();
-            let mut slow = build_stepping(method, &dynamics, &model, dt).unwrap();
+            let mut fast = build(method, &dynamics, model.system(), dt).unwrap();
+            let mut slow = build_stepping(method, &dynamics, model.system(), dt).unwrap();
             let err = divergence(
                 fast.as_mut(),
                 slow.as_mut(),

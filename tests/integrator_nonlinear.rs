@@ -2,7 +2,7 @@
 //! trajectory, and the laws must behave as their physics says.
 
 use wbv::integrator::Method;
-use wbv::model::{Model, file};
+use wbv::model::{Model, catalog};
 use wbv::simulate::observer::{Layout, Observer, Step};
 use wbv::simulate::{Settings, run};
 
@@ -14,7 +14,7 @@ struct Head(Vec<f64>, Option<usize>);
 
 impl Observer for Head {
     fn begin(&mut self, l: &Layout) -> wbv::Result<()> {
-        self.1 = l.head;
+        self.1 = l.masses.iter().position(|m| m == "head");
         Ok(())
     }
     fn step(&mut self, s: &Step<'_>) -> wbv::Result<()> {
@@ -56,7 +56,7 @@ head = "head"
 interface = ["cushion"]
 "#
     );
-    file::parse(&text, "nl.toml").unwrap()
+    catalog::parse(&text, "nl.toml").unwrap()
 }
 
 fn head_motion(model: &Model, method: Method, dt: f64, amp: f64, f: f64, dur: f64) -> Vec<f64> {
@@ -67,7 +67,7 @@ fn head_motion(model: &Model, method: Method, dt: f64, amp: f64, f: f64, dur: f6
     };
     let mut exc = Sine::new(amp, f, settings.excitation_step());
     let mut head = Head::default();
-    run(model, &mut exc, &settings, &mut [&mut head], None).unwrap();
+    run(model.system(), &mut exc, &settings, &mut [&mut head], None).unwrap();
     head.0
 }
 

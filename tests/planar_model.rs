@@ -2,20 +2,20 @@
 //! differences, symmetry of M and K, static equilibrium sums, modes = eig(M⁻¹K).
 
 use wbv::model::catalog;
-use wbv::planar::equilibrium::{gradient, potential};
-use wbv::planar::file::parse_spec;
-use wbv::planar::linearise::{mass, stiffness};
+use wbv::model::planar::equilibrium::{gradient, potential};
+use wbv::model::planar::file::parse_spec;
+use wbv::model::planar::linearise::{mass, stiffness};
 
 const TEXT: &str = include_str!("../models/planar-occupant.toml");
 
-fn spec() -> wbv::planar::Spec {
+fn spec() -> wbv::model::planar::Spec {
     parse_spec(TEXT, "planar-occupant.toml").unwrap().0
 }
 
-type Coefficients = Vec<wbv::planar::contact::Coefficients>;
+type Coefficients = Vec<wbv::model::planar::contact::Coefficients>;
 
 /// A non-trivial configuration and plausible contact coefficients.
-fn probe(spec: &wbv::planar::Spec) -> (Vec<f64>, Coefficients) {
+fn probe(spec: &wbv::model::planar::Spec) -> (Vec<f64>, Coefficients) {
     let n = spec.posture.dof();
     let q: Vec<f64> = (0..n)
         .map(|i| 0.01 * ((i as f64) * 1.7 + 0.3).sin())
@@ -64,20 +64,24 @@ fn gradient_and_hessian_match_finite_differences_of_the_potential() {
 #[test]
 fn mass_and_stiffness_are_symmetric_and_mass_is_positive_definite() {
     let model = catalog::resolve("planar-occupant").unwrap();
-    let l = &model.planar.as_ref().unwrap().linear;
+    let l = &model.planar().unwrap().linear;
     for (name, m) in [("M", &l.m), ("K", &l.k), ("C", &l.c)] {
         let asym = (m - m.transpose()).amax();
         assert!(asym <= 1e-9 * m.amax(), "{name} asymmetric by {asym}");
     }
     assert!(l.m.clone().cholesky().is_some());
     // M at zero pitch rates: the total mass sits on the translational coordinates.
-    let total = model.planar.as_ref().unwrap().spec.body_mass();
+    let total = model.planar().unwrap().spec.body_mass();
     assert!((l.m[(0, 0)] - total).abs() < 1e-9 && (l.m[(1, 1)] - total).abs() < 1e-9);
     let _ = mass;
 }
 
-fn planar() -> wbv::planar::Planar {
-    *catalog::resolve("planar-occupant").unwrap().planar.unwrap()
+fn planar() -> wbv::model::planar::Planar {
+    catalog::resolve("planar-occupant")
+        .unwrap()
+        .planar()
+        .unwrap()
+        .clone()
 }
 
 #[test]
@@ -147,7 +151,7 @@ fn modes_are_the_eigenvalues_of_m_inverse_k() {
     }
     // All stable at the seated equilibrium, and the words name the paper's kinds of motion.
     assert!(modes[0].freq_hz > 0.5);
-    let described = wbv::planar::modes::describe(&p).unwrap();
+    let described = wbv::response::modes::describe(&p.system()).unwrap();
     assert!(
         described
             .iter()
@@ -165,7 +169,7 @@ fn bad_planar_files_name_the_key_and_expectation() {
     let bad = |from: &str, to: &str| {
         let text = TEXT.replacen(from, to, 1);
         assert_ne!(text, TEXT, "replacement `{from}` not found");
-        wbv::model::file::parse(&text, "bad.toml")
+        wbv::model::catalog::parse(&text, "bad.toml")
             .unwrap_err()
             .to_string()
     };
@@ -192,16 +196,12 @@ fn bad_planar_files_name_the_key_and_expectation() {
     let e = bad("thickness = 0.08", "thickness = \"thick\"");
     assert!(e.starts_with("bad.toml: line"), "{e}");
     let mut model = catalog::resolve("planar-occupant").unwrap();
-    let e = wbv::model::params::set(&mut model, "joint.elbow.k", 1.0)
-        .unwrap_err()
-        .to_string();
+    let e = model.set("joint.elbow.k", 1.0).unwrap_err().to_string();
     assert!(
         e.contains("joint.elbow.k") && e.contains("unknown planar parameter"),
         "{e}"
     );
-    let e = wbv::model::params::set(&mut model, "cushion.area", 0.0)
-        .unwrap_err()
-        .to_string();
+    let e = model.set("cushion.area", 0.0).unwrap_err().to_string();
     assert!(e.contains("> 0"), "{e}");
     assert!(catalog::resolve("planar-occupant+cushion-zener").is_err());
 }

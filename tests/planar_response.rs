@@ -3,14 +3,14 @@
 
 use num_complex::Complex64;
 use std::f64::consts::PI;
-use wbv::model::{catalog, file, params};
-use wbv::planar::Planar;
-use wbv::planar::contact::Law;
+use wbv::model::catalog;
+use wbv::model::planar::Planar;
+use wbv::model::planar::contact::Law;
 use wbv::response::{frf, peak};
 
 fn peak_of(model: &wbv::model::Model, name: &str) -> peak::Peak {
     let f = frf::grid(1.0, 12.0, 2201, false).unwrap();
-    let set = frf::compute(model, &f).unwrap();
+    let set = frf::compute(model.system(), &f).unwrap();
     peak::global_peak(&f, &set.get(name).unwrap().magnitude()).unwrap()
 }
 
@@ -22,8 +22,8 @@ fn vertical_shaking_gives_a_fore_and_aft_seat_response() {
     let am = peak_of(&model, "apms_x");
     assert!(am.value > 1.0, "{am:?}");
     // Static limits: the seat follows the base, the apparent mass is the body mass.
-    let set = frf::compute(&model, &[0.01]).unwrap();
-    let mass = model.planar.as_ref().unwrap().spec.body_mass();
+    let set = frf::compute(model.system(), &[0.01]).unwrap();
+    let mass = model.planar().unwrap().spec.body_mass();
     assert!((set.get("seat").unwrap().values[0].norm() - 1.0).abs() < 1e-3);
     assert!(set.get("seat_x").unwrap().values[0].norm() < 1e-3);
     assert!((set.get("apms_z").unwrap().values[0].norm() - mass).abs() < 1e-3 * mass);
@@ -34,7 +34,7 @@ fn thicker_foam_lowers_both_seat_resonances() {
     let mut last = (f64::INFINITY, f64::INFINITY);
     for t in [0.06, 0.08, 0.10] {
         let mut model = catalog::resolve("planar-occupant").unwrap();
-        params::set(&mut model, "cushion.thickness", t).unwrap();
+        model.set("cushion.thickness", t).unwrap();
         let (vv, vh) = (peak_of(&model, "seat"), peak_of(&model, "seat_x"));
         assert!(
             vv.freq_hz < last.0 && vh.freq_hz < last.1,
@@ -47,7 +47,7 @@ fn thicker_foam_lowers_both_seat_resonances() {
 #[test]
 fn without_backrest_and_footrest_and_with_rigid_joints_it_is_the_1d_chain() {
     let model = catalog::resolve("planar-occupant").unwrap();
-    let mut spec = model.planar.as_ref().unwrap().spec.clone();
+    let mut spec = model.planar().unwrap().spec.clone();
     // Keep only the cushion under the seat point; make every joint 10⁷ times stiffer.
     spec.contacts.retain(|c| c.name == "ischial");
     spec.seat_contact = 0;
@@ -62,7 +62,7 @@ fn without_backrest_and_footrest_and_with_rigid_joints_it_is_the_1d_chain() {
     let m = p.spec.body_mass();
     // The lone support carries the weight, under the centre of mass.
     assert!((p.equilibrium.loads[0].normal - m * 9.81).abs() < 1e-8 * m * 9.81);
-    let one_d = file::parse(
+    let one_d = catalog::parse(
         &format!(
             "name = \"chain\"\ndescription = \"body on cushion\"\n[[mass]]\nname = \"body\"\nm = {m}\n\
              [[link]]\nname = \"cushion\"\nbetween = [\"body\", \"base\"]\ntype = \"kelvin-voigt\"\nk = {k}\nc = {c}\n\
@@ -72,8 +72,8 @@ fn without_backrest_and_footrest_and_with_rigid_joints_it_is_the_1d_chain() {
     )
     .unwrap();
     let freq = frf::grid(0.5, 10.0, 80, false).unwrap();
-    let planar = wbv::planar::response::compute(&p, &[], &freq).unwrap();
-    let chain = frf::compute(&one_d, &freq).unwrap();
+    let planar = frf::compute(&p.system(), &freq).unwrap();
+    let chain = frf::compute(one_d.system(), &freq).unwrap();
     for (i, f) in freq.iter().enumerate() {
         let w = 2.0 * PI * f;
         let closed = Complex64::new(k, w * c) / Complex64::new(k - w * w * m, w * c);

@@ -35,14 +35,14 @@ fn sine_steady_state_matches_the_planar_frf_for_both_integrators() {
             };
             let mut exc = Sine::new(1.0, f, settings.excitation_step());
             let mut c = Collector::new();
-            run(&model, &mut exc, &settings, &mut [&mut c], None).unwrap();
+            run(model.system(), &mut exc, &settings, &mut [&mut c], None).unwrap();
             let sig = c.into_signals("test").unwrap();
             let get = |n: &str| sig.get(n).unwrap().to_vec();
             let base = get("a_base_z");
             // Analyse t in [8, 16): whole periods, transients (slowest decay ~4 1/s) gone.
             let from = 8000;
             let ab = amplitude(1.0 / dt, &base[..16000], f, from);
-            let set = frf::compute(&model, &[f]).unwrap();
+            let set = frf::compute(model.system(), &[f]).unwrap();
             for (name, channel) in [
                 ("seat", "a_seat_z"),
                 ("seat_x", "a_seat_x"),
@@ -101,7 +101,7 @@ impl wbv::simulate::observer::Observer for Balance {
 #[test]
 fn contact_forces_balance_the_momentum_rate_at_every_step() {
     let model = catalog::resolve("planar-occupant").unwrap();
-    let p = model.planar.as_deref().unwrap();
+    let p = model.planar().unwrap();
     let links = &p.links;
     let l = &p.linear;
     // M is symmetric: r_zᵀM is the row of M·r_z.
@@ -119,7 +119,7 @@ fn contact_forces_balance_the_momentum_rate_at_every_step() {
         worst: 0.0,
         scale: 0.0,
     };
-    run(&model, &mut exc, &settings, &mut [&mut b], None).unwrap();
+    run(model.system(), &mut exc, &settings, &mut [&mut b], None).unwrap();
     // The body weighs ~70 kg under 1 m/s²: forces of tens of N.
     assert!(b.scale > 10.0, "momentum rate {} N", b.scale);
     assert!(b.worst < 1e-9 * b.scale, "{} N of {} N", b.worst, b.scale);

@@ -56,7 +56,7 @@ fn ten_minutes_of_random_input_give_the_analytic_transmissibility() {
                 if !(1.0..=20.0).contains(&f) || coh[i] <= 0.99 {
                     continue;
                 }
-                let exact = frf::compute(&model, &[f])
+                let exact = frf::compute(model.system(), &[f])
                     .unwrap()
                     .get(response)
                     .unwrap()

@@ -4,7 +4,7 @@
 
 use rand::{RngExt, SeedableRng};
 use rand_chacha::ChaCha8Rng;
-use wbv::model::{catalog, params};
+use wbv::model::catalog;
 use wbv::response::frf;
 use wbv::study::calibrate::{Method, Problem, Target, calibrate, ga};
 use wbv::study::param::Param;
@@ -17,7 +17,7 @@ const TRUE: [(&str, f64, (f64, f64)); 2] = [
 fn problem(noise: f64) -> Problem {
     let truth = catalog::resolve("reference").unwrap();
     let freq = frf::grid(1.0, 15.0, 60, false).unwrap();
-    let set = frf::compute(&truth, &freq).unwrap();
+    let set = frf::compute(truth.system(), &freq).unwrap();
     let mut rng = ChaCha8Rng::seed_from_u64(42);
     let mag = set
         .get("seat")
@@ -28,8 +28,8 @@ fn problem(noise: f64) -> Problem {
         .collect();
     // Start far from the truth.
     let mut start = truth.clone();
-    params::set(&mut start, "link.cushion.k", 50_000.0).unwrap();
-    params::set(&mut start, "link.cushion.c", 900.0).unwrap();
+    start.set("link.cushion.k", 50_000.0).unwrap();
+    start.set("link.cushion.c", 900.0).unwrap();
     Problem {
         params: TRUE
             .iter()
@@ -130,7 +130,7 @@ fn paper_settings_ga_recovers_four_parameters() {
         ("link.k4.k", 30_000.0, 300_000.0, 60_000.0),
         ("link.k4.c", 500.0, 6_000.0, 3_000.0),
     ] {
-        params::set(&mut p.model, name, start).unwrap();
+        p.model.set(name, start).unwrap();
         p.params.push(Param::parse(name, &p.model).unwrap());
         p.bounds.push((lo, hi));
     }
@@ -142,7 +142,7 @@ fn paper_settings_ga_recovers_four_parameters() {
     let truth = catalog::resolve("reference").unwrap();
     for (param, value) in p.params.iter().zip(&fit.values) {
         let name = param.spec.clone();
-        let expect = params::get(&truth, &name).unwrap();
+        let expect = truth.get(&name).unwrap();
         assert!(
             (value / expect - 1.0).abs() < 0.02,
             "{name}: {value} vs {expect}"

@@ -8,10 +8,7 @@ use super::health::{self, Health};
 use super::octave::Band;
 use super::seat;
 use super::spectrum::WelchOptions;
-pub use super::stream::ReportBuilder;
 use super::weighting::Weighting;
-use crate::error::Result;
-use crate::signals::Signals;
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
 
@@ -140,20 +137,6 @@ impl ChannelReport {
 }
 
 impl Report {
-    /// Analyses every `a_<place>_<x|y|z>` channel of `signals` (through [`ReportBuilder`], so a
-    /// run analysed while it is simulated gets the same report bit for bit).
-    pub fn from_signals(signals: &Signals, opts: &Options) -> Result<Report> {
-        let mut builder = ReportBuilder::new(
-            &signals.source,
-            &signals.names,
-            signals.sample_rate_hz,
-            signals.len(),
-            opts,
-        )?;
-        builder.push(&signals.data.iter().map(Vec::as_slice).collect::<Vec<_>>())?;
-        builder.finish()
-    }
-
     /// Combines the channel figures of a run into the report: comfort total value, SEAT, health
     /// and notes.
     pub(super) fn assemble(

@@ -10,6 +10,7 @@ use super::report::{ChannelReport, Options, Report};
 use super::spectrum::{PsdAccumulator, Segment, Welch};
 use super::weighting::Weighting;
 use crate::error::{Error, Result};
+use crate::signals::Signals;
 use crate::simulate::observer::{Layout, Observer, Step};
 
 /// Splits `a_<place>_<axis>` into (place, axis) for translational axes x, y, z.
@@ -352,6 +353,22 @@ impl Observer for AnalysisObserver {
     fn end(&mut self) -> Result<()> {
         self.flush();
         Ok(())
+    }
+}
+
+impl Report {
+    /// Analyses every `a_<place>_<x|y|z>` channel of `signals` (through [`ReportBuilder`], so a
+    /// run analysed while it is simulated gets the same report bit for bit).
+    pub fn from_signals(signals: &Signals, opts: &Options) -> Result<Report> {
+        let mut builder = ReportBuilder::new(
+            &signals.source,
+            &signals.names,
+            signals.sample_rate_hz,
+            signals.len(),
+            opts,
+        )?;
+        builder.push(&signals.data.iter().map(Vec::as_slice).collect::<Vec<_>>())?;
+        builder.finish()
     }
 }
 

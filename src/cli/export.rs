@@ -5,7 +5,6 @@
 use crate::analysis::{Weighting, WeightingFilter};
 use crate::error::Error;
 use crate::io::atomic::{Overwrite, write_atomic};
-use crate::model::Node;
 use serde_json::json;
 use std::io::Write;
 use std::path::PathBuf;
@@ -48,10 +47,11 @@ fn emit(text: String, out: &Option<PathBuf>, force: bool) -> crate::Result<()> {
 }
 
 /// Prints `ẏ = A·y + B·a_base`, `a_abs = C·y` (absolute mass accelerations; D = 0) of the model
-/// linearised at rest ([`crate::model::assembly::state_space`]).
+/// linearised at rest ([`crate::system::System::state_space`]).
 pub fn state_space(args: StateSpaceArgs) -> crate::Result<()> {
     let model = args.model.resolve()?;
-    let ss = crate::model::assembly::state_space(&model);
+    let system = model.system();
+    let ss = system.state_space();
     let n = ss.n;
     let rows = |m: &nalgebra::DMatrix<f64>, r: std::ops::Range<usize>| -> Vec<Vec<f64>> {
         r.map(|i| m.row(i).iter().copied().collect()).collect()
@@ -61,16 +61,22 @@ pub fn state_space(args: StateSpaceArgs) -> crate::Result<()> {
     let c = rows(&ss.a, n..2 * n);
     let mut states: Vec<String> = Vec::new();
     for prefix in ["x", "v"] {
-        states.extend(model.masses.iter().map(|m| format!("{prefix}_{}", m.name)));
+        states.extend(system.dofs.iter().map(|m| format!("{prefix}_{}", m.name)));
     }
     states.extend(
         ss.arms
             .iter()
-            .map(|&l| format!("q_{}", model.links[l].name)),
+            .map(|&l| format!("q_{}", system.links[l].name)),
     );
-    let name_of = |node: Node| match node {
-        Node::Base => None,
-        Node::Mass(i) => Some(model.masses[i].name.clone()),
+    // The coordinate a channel reads alone (a mass's absolute acceleration), if it does.
+    let name_of = |channel: &str| {
+        let c = &system.channels[system.channel_index(channel)?];
+        match &c.rule {
+            crate::system::Rule::Kinematic { row, base } if *base == 0.0 && row.len() == 1 => {
+                Some(system.dofs[row[0].0].name.clone())
+            }
+            _ => None,
+        }
     };
     let text = json!({
         "model": model.name,
@@ -78,9 +84,9 @@ pub fn state_space(args: StateSpaceArgs) -> crate::Result<()> {
                         states: displacements (m) and velocities (m/s) relative to the base, then \
                         relaxing-arm forces (N); outputs: absolute accelerations of the masses (m/s^2)",
         "states": states,
-        "outputs": model.masses.iter().map(|m| format!("a_{}", m.name)).collect::<Vec<_>>(),
-        "seat_mass": name_of(model.measure.seat),
-        "head_mass": model.measure.head.map(|h| model.masses[h].name.clone()),
+        "outputs": system.dofs.iter().map(|m| format!("a_{}", m.name)).collect::<Vec<_>>(),
+        "seat_mass": name_of("a_seat_z"),
+        "head_mass": name_of("a_head_z"),
         "A": rows(&ss.a, 0..ss.a.nrows()),
         "B": ss.b.iter().collect::<Vec<_>>(),
         "C": c,

@@ -56,10 +56,10 @@ fn write_csv(set: &frf::FrfSet, out: &mut dyn Write) -> std::io::Result<()> {
 pub fn run(args: Args) -> crate::Result<()> {
     let mut model = args.model.resolve()?;
     if let Some(t) = args.foam_thickness {
-        crate::planar::params::set_foam_thickness(&mut model, t)?;
+        model.set_foam_thickness(t)?;
     }
     let freqs = frf::grid(args.from, args.to, args.points, args.log)?;
-    let set = frf::compute(&model, &freqs)?;
+    let set = frf::compute(model.system(), &freqs)?;
     let overwrite = if args.force {
         Overwrite::Allow
     } else {

@@ -28,6 +28,16 @@ pub struct Args {
 
 pub fn run(args: Args) -> crate::Result<()> {
     let model = catalog::resolve(&args.model)?;
+    // The candidate effects edit a chain's masses and links (issue 15 brings them onto the system).
+    let model = model.chain().cloned().ok_or_else(|| {
+        crate::Error::parameter(
+            "--model",
+            format!(
+                "`{}` is not a chain of masses; the gap diagnosis's candidate effects modify chain links",
+                model.name
+            ),
+        )
+    })?;
     let train = args
         .runs
         .iter()

@@ -1,4 +1,4 @@
-use crate::model::{Kind, catalog, params};
+use crate::model::{Kind, catalog};
 
 /// Arguments of `wbv models`.
 #[derive(Debug, clap::Args)]
@@ -24,10 +24,10 @@ pub fn run(args: Args) -> crate::Result<()> {
         ),
     ] {
         println!("{title}");
-        for m in models.iter().filter(|m| m.kind == kind) {
+        for m in models.iter().filter(|m| m.kind() == kind) {
             println!("  {:width$}  {:>2} DOF  {}", m.name, m.dof(), m.description);
             if args.params {
-                println!("  {:width$}          {}", "", params::list(m).join(" "));
+                println!("  {:width$}          {}", "", m.params().join(" "));
             }
         }
     }

@@ -1,4 +1,5 @@
 use crate::response::modes;
+use crate::system::System;
 
 /// Arguments of `wbv modes`.
 #[derive(Debug, clap::Args)]
@@ -13,38 +14,51 @@ pub struct Args {
     foam_thickness: Option<f64>,
 }
 
-/// Static equilibrium and worded mode shapes of a planar model.
-fn print_planar(name: &str, p: &crate::planar::Planar) -> crate::Result<()> {
-    let eq = &p.equilibrium;
-    println!(
-        "Model {name}: static seated equilibrium ({} Newton iterations)",
-        eq.iterations
-    );
-    println!(
-        "  {:>10} {:>9} {:>9} {:>10} {:>10} {:>9} {:>9}",
-        "contact", "role", "N [N]", "T [N]", "Fx [N]", "Fz [N]", "x, z [m]"
-    );
-    for l in &eq.loads {
+/// The static equilibrium (when the model solves one) and the worded mode shapes (when the
+/// system names its motions).
+fn print_statics_and_words(system: &System) -> crate::Result<()> {
+    if let Some(eq) = &system.statics {
         println!(
-            "  {:>10} {:>9} {:>9.1} {:>10.1} {:>10.1} {:>9.1}   {:.3}, {:.3}",
-            l.name, l.role, l.normal, l.tangential, l.force[0], l.force[1], l.point[0], l.point[1]
+            "Model {}: static seated equilibrium ({} Newton iterations)",
+            system.name, eq.iterations
+        );
+        println!(
+            "  {:>10} {:>9} {:>9} {:>10} {:>10} {:>9} {:>9}",
+            "contact", "role", "N [N]", "T [N]", "Fx [N]", "Fz [N]", "x, z [m]"
+        );
+        for l in &eq.loads {
+            println!(
+                "  {:>10} {:>9} {:>9.1} {:>10.1} {:>10.1} {:>9.1}   {:.3}, {:.3}",
+                l.name,
+                l.role,
+                l.normal,
+                l.tangential,
+                l.force[0],
+                l.force[1],
+                l.point[0],
+                l.point[1]
+            );
+        }
+        let f = eq.total_force();
+        println!(
+            "  sum of support forces: Fx = {:.3e} N, Fz = {:.2} N; body weight {:.2} N",
+            f[0], f[1], eq.weight
+        );
+        println!(
+            "  pitch moments about the seat origin: supports {:.3} N·m, gravity {:.3} N·m (sum {:.2e})",
+            eq.support_moment,
+            eq.gravity_moment,
+            eq.support_moment + eq.gravity_moment
         );
     }
-    let f = eq.total_force();
-    println!(
-        "  sum of support forces: Fx = {:.3e} N, Fz = {:.2} N; body weight {:.2} N",
-        f[0], f[1], eq.weight
-    );
-    println!(
-        "  pitch moments about the seat origin: supports {:.3} N·m, gravity {:.3} N·m (sum {:.2e})",
-        eq.contact_moment(),
-        eq.gravity_moment,
-        eq.contact_moment() + eq.gravity_moment
-    );
+    let described = modes::describe(system)?;
+    if described.is_empty() {
+        return Ok(());
+    }
     println!(
         "\nUndamped modes described (dominant motions; effective vertical / fore-and-aft mass %)"
     );
-    for d in crate::planar::modes::describe(p)? {
+    for d in described {
         println!(
             "  {:7.3} Hz  {:5.1} % {:5.1} %  {}",
             d.mode.freq_hz,
@@ -57,14 +71,14 @@ fn print_planar(name: &str, p: &crate::planar::Planar) -> crate::Result<()> {
     Ok(())
 }
 
-/// The equilibrium of a planar model as JSON: loads in N, points in m, moments in N·m.
-fn planar_equilibrium_json(eq: &crate::planar::equilibrium::Equilibrium) -> serde_json::Value {
+/// The static equilibrium as JSON: loads in N, points in m, moments in N·m.
+fn statics_json(eq: &crate::system::Statics) -> serde_json::Value {
     let f = eq.total_force();
     serde_json::json!({
         "newton_iterations": eq.iterations,
         "body_weight_n": eq.weight,
         "support_force_n": {"x": f[0], "z": f[1]},
-        "support_moment_nm": eq.contact_moment(),
+        "support_moment_nm": eq.support_moment,
         "gravity_moment_nm": eq.gravity_moment,
         "loads": eq.loads.iter().map(|l| serde_json::json!({
             "contact": l.name, "role": l.role, "normal_n": l.normal,
@@ -77,16 +91,15 @@ fn planar_equilibrium_json(eq: &crate::planar::equilibrium::Equilibrium) -> serd
 pub fn run(args: Args) -> crate::Result<()> {
     let mut model = args.model.resolve()?;
     if let Some(t) = args.foam_thickness {
-        crate::planar::params::set_foam_thickness(&mut model, t)?;
+        model.set_foam_thickness(t)?;
     }
-    if let Some(p) = &model.planar
-        && !args.json
-    {
-        print_planar(&model.name, p)?;
+    let system = model.system();
+    if !args.json {
+        print_statics_and_words(system)?;
     }
-    let und = modes::undamped(&model)?;
-    let dam = modes::damped(&model)?;
-    let names: Vec<&str> = model.masses.iter().map(|m| m.name.as_str()).collect();
+    let und = modes::undamped(system)?;
+    let dam = modes::damped(system)?;
+    let names: Vec<&str> = system.dofs.iter().map(|m| m.name.as_str()).collect();
     if args.json {
         let mut json = serde_json::json!({
             "model": model.name,
@@ -100,9 +113,12 @@ pub fn run(args: Args) -> crate::Result<()> {
                 "shape_phase_deg": m.shape_phase_deg,
             })).collect::<Vec<_>>(),
         });
-        if let Some(p) = &model.planar {
-            json["equilibrium"] = planar_equilibrium_json(&p.equilibrium);
-            json["described"] = crate::planar::modes::describe(p)?
+        if let Some(eq) = &system.statics {
+            json["equilibrium"] = statics_json(eq);
+        }
+        let described = modes::describe(system)?;
+        if !described.is_empty() {
+            json["described"] = described
                 .iter()
                 .map(|d| {
                     serde_json::json!({

@@ -18,7 +18,7 @@ pub struct Args {
     /// Levels in % of the model's value (paper 000: −30, 0, +30).
     #[arg(long, default_value = "-30,0,30", allow_hyphen_values = true)]
     levels: String,
-    /// Response: stht, seat, apms, dpmi or t_<mass>; planar models also seat_x (v-h), head_z,
+    /// Response: stht, seat, apms, dpmi or t_<mass>; models with fore-and-aft motion also seat_x (v-h), head_z,
     /// head_x, apms_z, apms_x and t_<coordinate>.
     #[arg(long, default_value = "seat")]
     response: String,

@@ -23,7 +23,7 @@ pub struct Args {
     /// Values of each parameter, in order: `from:to:count` or `a,b,c`.
     #[arg(long = "values", required = true)]
     values: Vec<String>,
-    /// Response: stht, seat, apms, dpmi or t_<mass>; planar models also seat_x (v-h), head_z,
+    /// Response: stht, seat, apms, dpmi or t_<mass>; models with fore-and-aft motion also seat_x (v-h), head_z,
     /// head_x, apms_z, apms_x and t_<coordinate>.
     #[arg(long, default_value = "stht")]
     response: String,

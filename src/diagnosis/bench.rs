@@ -10,7 +10,7 @@ use super::{Diagnosis, diagnose};
 use crate::error::Result;
 use crate::excitation::{ExcitationSpec, Kind};
 use crate::integrator::Method;
-use crate::model::{Element, Law, Model, Role, catalog, params};
+use crate::model::{Chain, Element, Law, Role, catalog};
 use crate::scenario::Scenario;
 use crate::signals::{Signals, delay};
 use crate::simulate::Settings;
@@ -79,7 +79,7 @@ pub struct Case {
 
 /// r.m.s. deflection of `link` in the linear `model` for white base acceleration of r.m.s. `rms`
 /// over 0.5–40 Hz, m.
-fn link_rms(model: &Model, link: usize, rms: f64) -> Result<f64> {
+fn link_rms(model: &Chain, link: usize, rms: f64) -> Result<f64> {
     let df = 0.25;
     let freq: Vec<f64> = (0..=400).map(|i| i as f64 * df).collect();
     let g = rms * rms / 39.5;
@@ -94,7 +94,7 @@ fn link_rms(model: &Model, link: usize, rms: f64) -> Result<f64> {
         if p == 0.0 {
             continue;
         }
-        let (acc, _) = crate::response::frf::solve_point(&m, f)?;
+        let (acc, _) = super::predict::solve_point(&m, f)?;
         let w2 = (2.0 * std::f64::consts::PI * f).powi(2);
         let x = |n: crate::model::Node| match n {
             crate::model::Node::Base => num_complex::Complex64::new(0.0, 0.0),
@@ -107,14 +107,14 @@ fn link_rms(model: &Model, link: usize, rms: f64) -> Result<f64> {
 }
 
 /// A planted truth: model, optional (channel, delay in s), description.
-type Truth = (Model, Option<(&'static str, f64)>, String);
+type Truth = (Chain, Option<(&'static str, f64)>, String);
 
 /// The truth model and output delay of one case.
 fn plant(effect: &str, u: f64, rng: &mut ChaCha8Rng, hi_rms: f64) -> Result<Truth> {
-    let mut m = catalog::resolve("reference")?;
+    let mut m = catalog::resolve_chain("reference")?;
     for (path, nominal) in base_params(&m) {
         let f = 1.0 + 0.1 * (2.0 * rng.random::<f64>() - 1.0);
-        params::set(&mut m, &path, nominal * f)?;
+        m.set(&path, nominal * f)?;
     }
     let mut out_delay = None;
     let detail = match effect {
@@ -183,7 +183,7 @@ fn plant(effect: &str, u: f64, rng: &mut ChaCha8Rng, hi_rms: f64) -> Result<Trut
 
 /// Simulates one run of `model` at base r.m.s. `rms`; decimates by 2 and adds 1 % white sensor noise.
 fn simulate_run(
-    model: &Model,
+    model: &Chain,
     rms: f64,
     opts: &BenchOptions,
     seed: u64,
@@ -197,7 +197,7 @@ fn simulate_run(
         "bench random",
     )?;
     let sc = Scenario {
-        model: model.clone(),
+        model: crate::model::Model::from_chain(model.clone()),
         excitation: exc,
         settings: Settings {
             dt: 0.5 / opts.fs,
@@ -322,7 +322,7 @@ pub fn score_case(index: usize, label: Label, d: &Diagnosis) -> CaseScore {
 /// Runs case `index` end to end.
 pub fn run_case(index: usize, opts: &BenchOptions) -> Result<CaseScore> {
     let case = make_case(index, opts)?;
-    let model = catalog::resolve("reference")?;
+    let model = catalog::resolve_chain("reference")?;
     let d = diagnose(&model, &case.train, &case.check)?;
     Ok(score_case(index, case.label, &d))
 }

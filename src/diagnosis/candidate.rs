@@ -3,7 +3,7 @@
 
 use super::predict::Variant;
 use crate::error::{Error, Result};
-use crate::model::{Element, Law, Link, Mass, Model, Node, Role};
+use crate::model::{Chain, Element, Law, Link, Mass, Node, Role};
 use std::f64::consts::PI;
 
 /// Bound of the base-parameter re-fit: ±30 % around nominal (physical prior width).
@@ -99,7 +99,7 @@ impl Candidate {
     }
 
     /// Whether the model has the part this candidate extends.
-    pub fn applies_to(self, model: &Model) -> bool {
+    pub fn applies_to(self, model: &Chain) -> bool {
         match self {
             Candidate::BodySoftening => interface_link(model).is_some(),
             Candidate::CushionStiffening | Candidate::CushionViscoelastic => {
@@ -148,7 +148,7 @@ impl Candidate {
     }
 
     /// The variant with effect parameter values `p` applied to `model`.
-    pub fn apply(self, model: &Model, p: &[f64]) -> Result<Variant> {
+    pub fn apply(self, model: &Chain, p: &[f64]) -> Result<Variant> {
         let mut m = model.clone();
         let mut v_seat = 0.0;
         let mut v_head = 0.0;
@@ -205,7 +205,7 @@ impl Candidate {
 
 /// Inserts a seat-frame mass of [`FRAME_MASS_KG`] between the base and the cushion, tuned to
 /// `f_hz` (on a rigid base, cushion removed) with damping ratio `zeta`.
-pub fn add_frame(m: &mut Model, f_hz: f64, zeta: f64) -> Result<()> {
+pub fn add_frame(m: &mut Chain, f_hz: f64, zeta: f64) -> Result<()> {
     let i = role_link(m, Role::Cushion)
         .ok_or_else(|| Error::parameter("missing-dof", "the model has no cushion link"))?;
     let j = m.masses.len();
@@ -236,18 +236,18 @@ pub fn add_frame(m: &mut Model, f_hz: f64, zeta: f64) -> Result<()> {
 }
 
 /// Index of the first link with `role`.
-pub fn role_link(model: &Model, role: Role) -> Option<usize> {
+pub fn role_link(model: &Chain, role: Role) -> Option<usize> {
     model.links.iter().position(|l| l.role == role)
 }
 
 /// Index of the first body–seat interface link.
-pub fn interface_link(model: &Model) -> Option<usize> {
+pub fn interface_link(model: &Chain) -> Option<usize> {
     model.measure.interface.first().copied()
 }
 
 /// The base parameters re-fitted by the null candidate: k and c of every Kelvin–Voigt link, as
 /// `(path, nominal value)` for [`crate::model::params`].
-pub fn base_params(model: &Model) -> Vec<(String, f64)> {
+pub fn base_params(model: &Chain) -> Vec<(String, f64)> {
     let mut out = Vec::new();
     for l in &model.links {
         if let Element::KelvinVoigt { k, c } = l.element {
@@ -261,10 +261,10 @@ pub fn base_params(model: &Model) -> Vec<(String, f64)> {
 }
 
 /// `model` with base parameters scaled by `exp(u)`.
-pub fn scaled(model: &Model, base: &[(String, f64)], u: &[f64]) -> Result<Model> {
+pub fn scaled(model: &Chain, base: &[(String, f64)], u: &[f64]) -> Result<Chain> {
     let mut m = model.clone();
     for ((path, nominal), ui) in base.iter().zip(u) {
-        crate::model::params::set(&mut m, path, nominal * ui.exp())?;
+        m.set(path, nominal * ui.exp())?;
     }
     Ok(m)
 }

@@ -19,7 +19,7 @@ pub mod report;
 pub mod score;
 
 use crate::error::{Error, Result};
-use crate::model::Model;
+use crate::model::Chain;
 use crate::signals::Signals;
 use candidate::{BASE_BOUND, Candidate, Param, base_params, scaled};
 use gapmap::{BandCell, Weighted};
@@ -232,7 +232,7 @@ struct Fitted {
 
 /// Fits `cand` (None = null) jointly with the base parameters on `train`.
 fn fit_candidate(
-    model: &Model,
+    model: &Chain,
     cand: Option<Candidate>,
     train: &[RunSpectra],
     warm: &[f64],
@@ -291,7 +291,7 @@ fn fit_candidate(
 }
 
 fn estimates(
-    model: &Model,
+    model: &Chain,
     cand: Option<Candidate>,
     ft: &fit::Fit,
     lo: &[f64],
@@ -341,7 +341,7 @@ fn estimates(
     }
 }
 
-fn bounds(model: &Model, cand: Option<Candidate>) -> (Vec<f64>, Vec<f64>) {
+fn bounds(model: &Chain, cand: Option<Candidate>) -> (Vec<f64>, Vec<f64>) {
     let nb = base_params(model).len();
     let b = BASE_BOUND.ln();
     let (mut lo, mut hi) = (vec![-b; nb], vec![b; nb]);
@@ -353,17 +353,7 @@ fn bounds(model: &Model, cand: Option<Candidate>) -> (Vec<f64>, Vec<f64>) {
 }
 
 /// Runs the diagnosis of `model` against training runs and one held-out check run.
-pub fn diagnose(model: &Model, train: &[Signals], check: &Signals) -> Result<Diagnosis> {
-    if model.planar.is_some() {
-        // The candidate effects act on the links of a chain; a planar model has contacts instead.
-        return Err(Error::parameter(
-            "--model",
-            format!(
-                "`{}` is a planar model; the gap diagnosis works on 1-D chain models (its candidate effects modify chain links)",
-                model.name
-            ),
-        ));
-    }
+pub fn diagnose(model: &Chain, train: &[Signals], check: &Signals) -> Result<Diagnosis> {
     let tr: Vec<RunSpectra> = train.iter().map(measure::estimate).collect::<Result<_>>()?;
     let ck = measure::estimate(check)?;
     let mut warnings = Vec::new();

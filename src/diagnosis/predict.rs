@@ -1,4 +1,4 @@
-//! Model prediction of the measured paths of one run, in the frequency domain.
+//! Chain prediction of the measured paths of one run, in the frequency domain.
 //!
 //! Nonlinear links (cubic, softening, friction, end-stop laws) are replaced by their statistical
 //! linearisation for the run's own base spectrum: under stationary Gaussian response the
@@ -11,16 +11,31 @@
 
 use super::measure::{Path, RunSpectra};
 use crate::error::{Error, Result};
-use crate::model::{Element, Law, Model, Node};
-use crate::response::frf::solve_point;
+use crate::model::{Chain, Element, Law, Node};
 use num_complex::Complex64;
 use std::f64::consts::PI;
+
+/// Absolute mass accelerations and the interface force on the body (N), per unit base
+/// acceleration at `f` Hz ([`crate::response::frf`] on the chain's system).
+pub fn solve_point(model: &Chain, f: f64) -> Result<(Vec<Complex64>, Complex64)> {
+    let system = model.system();
+    let channels = crate::response::frf::solve_point(&system, f)?;
+    let omega = 2.0 * PI * f;
+    let x = crate::response::frf::displacements(&system, f)?;
+    let acc = (0..model.dof())
+        .map(|i| crate::response::frf::dof_value(&system, i, omega, x.as_slice()))
+        .collect();
+    let force = system
+        .channel_index("f_seat_z")
+        .map_or(Complex64::new(0.0, 0.0), |c| channels[c]);
+    Ok((acc, force))
+}
 
 /// A model plus output-channel delays (s): the thing a candidate evaluates.
 #[derive(Debug, Clone)]
 pub struct Variant {
     /// The (possibly nonlinear) model.
-    pub model: Model,
+    pub model: Chain,
     /// Lag of the seat channel in s (sensor or acquisition delay).
     pub delay_seat_s: f64,
     /// Lag of the head channel in s.
@@ -29,7 +44,7 @@ pub struct Variant {
 
 impl Variant {
     /// A variant with no delays.
-    pub fn plain(model: Model) -> Self {
+    pub fn plain(model: Chain) -> Self {
         Variant {
             model,
             delay_seat_s: 0.0,
@@ -70,14 +85,14 @@ fn rel(x: &[Complex64], n: Node) -> Complex64 {
 
 /// Base-relative displacements per unit base acceleration at `f` Hz: X = (A − 1)/(−ω²)… i.e.
 /// A = 1 − ω²X (see [`crate::response::frf`]).
-fn displacements(model: &Model, f: f64) -> Result<Vec<Complex64>> {
+fn displacements(model: &Chain, f: f64) -> Result<Vec<Complex64>> {
     let w2 = (2.0 * PI * f).powi(2);
     let (acc, _) = solve_point(model, f)?;
     Ok(acc.iter().map(|a| (1.0 - a) / w2).collect())
 }
 
 /// The statistically linearised model for a base acceleration PSD given on `(freq, psd)` bins.
-pub fn linearise(model: &Model, base_psd: &(Vec<f64>, Vec<f64>)) -> Result<Model> {
+pub fn linearise(model: &Chain, base_psd: &(Vec<f64>, Vec<f64>)) -> Result<Chain> {
     let nl: Vec<usize> = (0..model.links.len())
         .filter(|&i| model.links[i].law.is_some())
         .collect();
@@ -135,7 +150,7 @@ pub fn linearise(model: &Model, base_psd: &(Vec<f64>, Vec<f64>)) -> Result<Model
 
 /// Predicted H of each of `paths` at `f` Hz for an already linear model (one solve per frequency).
 fn path_values(
-    model: &Model,
+    model: &Chain,
     v: &Variant,
     f: f64,
     paths: &[Path],

@@ -11,7 +11,7 @@ use super::predict::{Variant, predict};
 use crate::error::Result;
 use num_complex::Complex64;
 
-/// Model-form floor of the relative FRF error (0.6 % ≈ 0.05 dB, 0.34°): what discrete-time
+/// Chain-form floor of the relative FRF error (0.6 % ≈ 0.05 dB, 0.34°): what discrete-time
 /// integration, H1 leakage at 0.25 Hz resolution and statistical linearisation leave even for the
 /// true model structure.
 pub const FLOOR: f64 = 0.006;

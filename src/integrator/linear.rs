@@ -10,8 +10,8 @@
 //! loop would run; `benches/simulate.rs` compares the two.
 
 use super::{Integrator, State};
-use crate::dynamics::Dynamics;
 use crate::error::Result;
+use crate::system::Dynamics;
 
 /// Column length padded to a multiple of this, so the product runs on fixed-size arrays.
 const LANES: usize = 4;

@@ -8,8 +8,8 @@ pub mod newmark;
 pub mod rk4;
 pub mod stability;
 
-use crate::dynamics::Dynamics;
 use crate::error::{Error, Result};
+use crate::system::Dynamics;
 
 /// The time-stepping scheme.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -114,10 +114,10 @@ pub trait Integrator: Send {
 pub fn build(
     method: Method,
     dynamics: &Dynamics,
-    model: &crate::model::Model,
+    system: &crate::system::System,
     dt: f64,
 ) -> Result<Box<dyn Integrator>> {
-    let mut integrator = build_stepping(method, dynamics, model, dt)?;
+    let mut integrator = build_stepping(method, dynamics, system, dt)?;
     if dynamics.is_nonlinear() {
         return Ok(integrator);
     }
@@ -129,7 +129,7 @@ pub fn build(
 pub fn build_stepping(
     method: Method,
     dynamics: &Dynamics,
-    model: &crate::model::Model,
+    system: &crate::system::System,
     dt: f64,
 ) -> Result<Box<dyn Integrator>> {
     if !(dt.is_finite() && dt > 0.0) {
@@ -147,7 +147,7 @@ pub fn build_stepping(
                 ));
             }
             if 2.0 * beta < gamma {
-                stability::check_newmark(model, dt, gamma, beta)?;
+                stability::check_newmark(system, dt, gamma, beta)?;
             }
             Ok(Box::new(newmark::Newmark::new(
                 dynamics.clone(),
@@ -157,7 +157,7 @@ pub fn build_stepping(
             )))
         }
         Method::Rk4 => {
-            stability::check_rk4(model, dt)?;
+            stability::check_rk4(system, dt)?;
             Ok(Box::new(rk4::Rk4::new(dynamics.clone(), dt)))
         }
     }

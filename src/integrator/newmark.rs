@@ -8,8 +8,8 @@
 //! constant, factorised once, and one Newton step is exact.
 
 use super::{Integrator, State};
-use crate::dynamics::{Dynamics, LinkDyn};
 use crate::error::{Error, Result};
+use crate::system::Dynamics;
 use nalgebra::{DMatrix, DVector, Dyn, LU};
 
 /// Most Newton iterations per step before the step is reported as failed.
@@ -37,19 +37,6 @@ pub struct Newmark {
     /// Trial accelerations and the Newton right-hand side (reused every step).
     a_trial: Vec<f64>,
     rhs: DVector<f64>,
-}
-
-fn stamp(jac: &mut DMatrix<f64>, l: &LinkDyn, s: f64) {
-    if let Some(i) = l.a {
-        jac[(i, i)] += s;
-    }
-    if let Some(j) = l.b {
-        jac[(j, j)] += s;
-    }
-    if let (Some(i), Some(j)) = (l.a, l.b) {
-        jac[(i, j)] -= s;
-        jac[(j, i)] -= s;
-    }
 }
 
 impl Newmark {
@@ -89,23 +76,8 @@ impl Newmark {
 
     /// `M + γ·dt·C_t + β·dt²·K_t` at displacements `x` and velocities `v`.
     fn jacobian(&self, x: &[f64], v: &[f64]) -> DMatrix<f64> {
-        let n = self.dynamics.dof();
-        let (g, b, dt) = (self.gamma, self.beta, self.dt);
-        if let Some(lin) = &self.dynamics.general {
-            return &lin.m + &lin.c * (g * dt) + &lin.k * (b * dt * dt);
-        }
-        let mut jac = DMatrix::from_diagonal(&DVector::from_column_slice(&self.dynamics.mass));
-        for l in &self.dynamics.links {
-            let (_, kd, cv) =
-                Dynamics::parallel(l, Dynamics::relative(l, x), Dynamics::relative(l, v));
-            let mut s = g * dt * cv + b * dt * dt * kd;
-            if let Some((k_m, _, r)) = l.arm {
-                s += g * dt * self.alpha[r] * g * dt * k_m;
-            }
-            stamp(&mut jac, l, s);
-        }
-        debug_assert_eq!(jac.nrows(), n);
-        jac
+        self.dynamics
+            .newmark_jacobian(x, v, (self.gamma, self.beta, self.dt), &self.alpha)
     }
 
     /// Positions, velocities and arm forces at the end of the step for trial accelerations `a`.

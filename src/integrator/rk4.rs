@@ -4,8 +4,8 @@
 //! force evaluations.
 
 use super::{Integrator, State};
-use crate::dynamics::Dynamics;
 use crate::error::Result;
+use crate::system::Dynamics;
 
 /// The RK4 integrator.
 pub struct Rk4 {

@@ -2,24 +2,9 @@
 //! state-space matrix with every nonlinear link at its stiffest tangent.
 
 use crate::error::{Error, Result};
-use crate::model::{Element, Law, Model};
+use crate::system::System;
 use num_complex::Complex64;
 use std::f64::consts::PI;
-
-/// The model with end stops engaged (their contact stiffness added) and other laws at rest, the
-/// stiffest linearisation the explicit step must survive.
-fn stiffest(model: &Model) -> Model {
-    let mut m = model.clone();
-    for l in &mut m.links {
-        if let (Some(Law::EndStop { k_stop, .. }), Element::KelvinVoigt { k, c }) =
-            (l.law, l.element)
-        {
-            l.element = Element::KelvinVoigt { k: k + k_stop, c };
-            l.law = None;
-        }
-    }
-    m
-}
 
 /// RK4 amplification factor `R(z) = 1 + z + z²/2 + z³/6 + z⁴/24`.
 pub fn rk4_amplification(z: Complex64) -> f64 {
@@ -59,8 +44,8 @@ fn rk4_limit(lambda: Complex64) -> f64 {
 }
 
 /// Largest stable RK4 step (s) and the eigenvalue that sets it.
-pub fn rk4_max_step(model: &Model) -> (f64, Complex64) {
-    let ss = crate::model::assembly::state_space(&stiffest(model));
+pub fn rk4_max_step(system: &System) -> (f64, Complex64) {
+    let ss = system.stiffest().state_space();
     ss.a.complex_eigenvalues()
         .iter()
         .map(|&l| (rk4_limit(l), l))
@@ -85,14 +70,14 @@ fn describe(l: Complex64) -> String {
 }
 
 /// Refuses an RK4 step beyond the stability limit, naming the limit and the fastest mode.
-pub fn check_rk4(model: &Model, dt: f64) -> Result<()> {
-    let (limit, lambda) = rk4_max_step(model);
+pub fn check_rk4(system: &System, dt: f64) -> Result<()> {
+    let (limit, lambda) = rk4_max_step(system);
     if dt > limit {
         return Err(Error::parameter(
             "--dt",
             format!(
                 "{dt} s exceeds the RK4 stability limit {limit:.3e} s of `{}`, set by {}; use a smaller step or --integrator newmark",
-                model.name,
+                system.name,
                 describe(lambda)
             ),
         ));
@@ -101,8 +86,8 @@ pub fn check_rk4(model: &Model, dt: f64) -> Result<()> {
 }
 
 /// Refuses a conditionally stable Newmark step (2β < γ) beyond `ω_max·dt ≤ 1/√(γ/2 − β)`.
-pub fn check_newmark(model: &Model, dt: f64, gamma: f64, beta: f64) -> Result<()> {
-    let modes = crate::response::modes::undamped(&stiffest(model))?;
+pub fn check_newmark(system: &System, dt: f64, gamma: f64, beta: f64) -> Result<()> {
+    let modes = crate::response::modes::undamped(&system.stiffest())?;
     let fastest = modes.last().map_or(0.0, |m| m.freq_hz);
     let limit = 1.0 / ((gamma / 2.0 - beta).sqrt() * 2.0 * PI * fastest);
     if dt > limit {
@@ -110,7 +95,7 @@ pub fn check_newmark(model: &Model, dt: f64, gamma: f64, beta: f64) -> Result<()
             "--dt",
             format!(
                 "{dt} s exceeds the Newmark (γ={gamma}, β={beta:.4}) stability limit {limit:.3e} s set by the {fastest:.1} Hz mode of `{}`",
-                model.name
+                system.name
             ),
         ));
     }

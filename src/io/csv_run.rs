@@ -170,67 +170,6 @@ pub fn write(path: &Path, signals: &Signals, overwrite: Overwrite) -> Result<()>
     })
 }
 
-/// Streams the measured-run channels of a simulation to a CSV file as it runs (an observer), so a
-/// simulated run can stand wherever a measurement can. Atomic: the file appears complete at `end`.
-pub struct CsvWriter {
-    file: Option<crate::io::atomic::AtomicFile>,
-    layout: Option<crate::simulate::observer::Layout>,
-    scratch: Vec<f64>,
-}
-
-impl CsvWriter {
-    /// Opens `<path>.partial`; refuses an existing `path` unless allowed.
-    pub fn create(path: &Path, overwrite: Overwrite) -> Result<Self> {
-        Ok(CsvWriter {
-            file: Some(crate::io::atomic::AtomicFile::create(path, overwrite)?),
-            layout: None,
-            scratch: Vec::new(),
-        })
-    }
-}
-
-impl crate::simulate::observer::Observer for CsvWriter {
-    fn begin(&mut self, layout: &crate::simulate::observer::Layout) -> Result<()> {
-        let file = self.file.as_mut().expect("open");
-        let path = file.path().to_path_buf();
-        let w = file.writer();
-        write!(w, "t_s").map_err(io_err(&path))?;
-        for n in layout.measured_channels() {
-            write!(w, ",{n}").map_err(io_err(&path))?;
-        }
-        writeln!(w).map_err(io_err(&path))?;
-        self.layout = Some(layout.clone());
-        Ok(())
-    }
-
-    fn step(&mut self, step: &crate::simulate::observer::Step<'_>) -> Result<()> {
-        let layout = self.layout.as_ref().expect("begin() before step()");
-        layout.measured(step, &mut self.scratch);
-        let file = self.file.as_mut().expect("open");
-        let path = file.path().to_path_buf();
-        let w = file.writer();
-        write!(w, "{}", step.t).map_err(io_err(&path))?;
-        for v in &self.scratch {
-            if !v.is_finite() {
-                return Err(Error::data(
-                    &path,
-                    None,
-                    format!("non-finite value at t = {} s", step.t),
-                ));
-            }
-            write!(w, ",{v}").map_err(io_err(&path))?;
-        }
-        writeln!(w).map_err(io_err(&path))
-    }
-
-    fn end(&mut self) -> Result<()> {
-        match self.file.take() {
-            Some(f) => f.commit(),
-            None => Ok(()),
-        }
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -5,32 +5,21 @@
 use crate::error::Result;
 use crate::simulate::observer::{Layout, Observer, Step};
 
-/// A 5-mass chain (head … pelvis on a cushion top) sampled at `fs` Hz for `steps` steps.
+/// A 5-mass chain (head … pelvis on a cushion top: the built-in `reference` model's system)
+/// sampled at `fs` Hz for `steps` steps.
 pub fn layout(fs: f64, steps: u64) -> Layout {
-    let s = |v: &[&str]| v.iter().map(|x| x.to_string()).collect::<Vec<_>>();
-    Layout {
-        model: "demo-5dof".into(),
-        masses: s(&["head", "upper_torso", "lower_torso", "pelvis", "cushion"]),
-        mass_roles: s(&["body", "body", "body", "body", "cushion"]),
-        links: s(&["k1", "k2", "k3", "k4", "cushion"]),
-        link_roles: s(&["body", "body", "body", "body", "cushion"]),
-        link_nodes: [
-            ("head", "upper_torso"),
-            ("upper_torso", "lower_torso"),
-            ("lower_torso", "pelvis"),
-            ("pelvis", "cushion"),
-            ("cushion", "base"),
-        ]
-        .iter()
-        .map(|(a, b)| (a.to_string(), b.to_string()))
-        .collect(),
-        seat: Some(4),
-        head: Some(0),
-        interface: vec![3],
-        dt: 1.0 / fs,
-        steps,
-        planar: None,
-    }
+    let model = crate::model::catalog::resolve("reference").expect("the built-in reference model");
+    let mut lay = crate::simulate::layout(
+        model.system(),
+        &crate::simulate::Settings {
+            dt: 1.0 / fs,
+            duration_s: 1.0,
+            method: crate::integrator::Method::AVERAGE_ACCELERATION,
+        },
+    );
+    lay.model = "demo-5dof".into();
+    lay.steps = steps;
+    lay
 }
 
 /// The owned state of step `index` (time `index · dt`).

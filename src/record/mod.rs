@@ -23,6 +23,7 @@
 //! `wbv.model`, `wbv.excitation`) and the exact model TOML as an attachment; analysis results given
 //! to [`McapRecorder::attach_results`] go to `wbv.results` metadata and `<name>.json` attachments.
 
+pub mod csv;
 pub mod demo;
 mod json;
 mod lowpass;

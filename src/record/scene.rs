@@ -1,14 +1,16 @@
-//! 3-D replay: `foxglove.SceneUpdate` (a box per mass, a base plate, a line per link) and
-//! `foxglove.FrameTransforms` (`world → base`, `world → <mass>`) in JSON, every field the published
-//! all-required schemas (npm `@foxglove/schemas` 2.1.0, embedded in `schemas/`) ask for.
+//! 3-D replay: `foxglove.SceneUpdate` (a box per body of the system's [`Scene`], a line per link
+//! where the scene has them) and `foxglove.FrameTransforms` (`world → base`, `world → <body>`) in
+//! JSON, every field the published all-required schemas (npm `@foxglove/schemas` 2.1.0, embedded in
+//! `schemas/`) ask for.
 //!
-//! The masses are stacked at rest heights `LEVEL_SPACING · level` (level = number of links down to
-//! the base) and move by `magnification · absolute displacement`, the factor being stated in the
-//! scene as a text label; nothing else is scaled.
+//! Each body sits at its rest pose and moves by `magnification ×` its linearised motion (the
+//! Jacobian rows times the coordinates, plus the base's vertical displacement), the factor being
+//! stated in the scene as a text label; nothing else is scaled.
 
 use super::json::write_f64;
 use super::topics::plot_key;
-use crate::simulate::observer::{BodyPose, Layout, Step};
+use crate::simulate::observer::{Layout, Step};
+use crate::system::SceneBody;
 use std::io::Write;
 
 /// `foxglove.SceneUpdate` JSON schema, verbatim from npm `@foxglove/schemas` 2.1.0.
@@ -16,87 +18,34 @@ pub const SCENE_UPDATE_SCHEMA: &str = include_str!("schemas/foxglove.SceneUpdate
 /// `foxglove.FrameTransforms` JSON schema, verbatim from npm `@foxglove/schemas` 2.1.0.
 pub const FRAME_TRANSFORMS_SCHEMA: &str = include_str!("schemas/foxglove.FrameTransforms.json");
 
-/// Vertical distance between stacked masses at rest, m (display only).
-const LEVEL_SPACING: f64 = 0.2;
-
-struct Body {
-    key: String,
-    rest_z: f64,
-    size: [f64; 3],
-    color: [f64; 4],
-}
-
 /// Builds the scene messages of a layout.
 pub struct Scene {
-    bodies: Vec<Body>,
-    /// Per link: upper and lower node as mass index (`None` = base), and colour.
-    links: Vec<(Option<usize>, Option<usize>, [f64; 4])>,
+    scene: crate::system::Scene,
     magnification: f64,
-    /// Planar models: rigid segments that translate and pitch ([`Self::planar_update`]).
-    planar: Option<Vec<BodyPose>>,
 }
 
-fn role_look(role: &str) -> ([f64; 3], [f64; 4]) {
-    match role {
-        "cushion" => ([0.45, 0.45, 0.06], [0.2, 0.4, 0.8, 1.0]),
-        "suspension" => ([0.5, 0.5, 0.05], [0.5, 0.5, 0.5, 1.0]),
-        "frame" => ([0.5, 0.5, 0.05], [0.3, 0.3, 0.3, 1.0]),
-        _ => ([0.3, 0.3, 0.1], [0.9, 0.7, 0.5, 1.0]),
-    }
+fn dot(row: &[(usize, f64)], x: &[f64]) -> f64 {
+    row.iter().fold(0.0, |s, &(i, c)| s + c * x[i])
 }
 
 impl Scene {
     pub fn new(layout: &Layout, magnification: f64) -> Self {
-        let n = layout.masses.len();
-        let node = |name: &str| layout.masses.iter().position(|m| m == name);
-        let links: Vec<_> = layout
-            .link_nodes
-            .iter()
-            .enumerate()
-            .map(|(l, (up, low))| {
-                let role = layout.link_roles.get(l).map_or("body", String::as_str);
-                let mut color = role_look(role).1;
-                color[3] = 0.8;
-                (node(up), node(low), color)
-            })
-            .collect();
-        // Longest path down to the base, by relaxation (at most n rounds for an acyclic chain).
-        let mut level: Vec<usize> = vec![0; n];
-        for _ in 0..n {
-            for &(up, low, _) in &links {
-                if let Some(u) = up {
-                    level[u] = level[u].max(low.map_or(0, |l| level[l]) + 1);
-                }
-            }
-        }
-        let bodies = (0..n)
-            .map(|i| {
-                let lv = if level[i] == 0 { i + 1 } else { level[i] };
-                let (size, color) =
-                    role_look(layout.mass_roles.get(i).map_or("body", String::as_str));
-                Body {
-                    key: plot_key(&layout.masses[i]),
-                    rest_z: LEVEL_SPACING * lv as f64,
-                    size,
-                    color,
-                }
-            })
-            .collect();
         Scene {
-            bodies,
-            links,
+            scene: layout.scene.clone(),
             magnification,
-            planar: layout.planar.as_ref().map(|p| p.bodies.clone()),
         }
     }
 
-    /// Display height of a node (mass `Some(i)` or the base) at step `s`, m.
-    fn z(&self, node: Option<usize>, s: &Step<'_>) -> f64 {
+    /// Display pose of a body at step `s`: centre `(x, z)` and the rotation about y (rad) that
+    /// turns a box's x axis onto the body's axis; motion magnified.
+    fn pose(&self, b: &SceneBody, s: &Step<'_>) -> ([f64; 2], f64) {
         let m = self.magnification;
-        match node {
-            Some(i) => self.bodies[i].rest_z + m * (s.x[i] + s.x_base),
-            None => m * s.x_base,
-        }
+        let centre = [
+            b.rest[0] + m * dot(&b.jacobian[0], s.x),
+            b.rest[1] + m * (dot(&b.jacobian[1], s.x) + s.x_base),
+        ];
+        // Rotating by θ about y maps x̂ to (cos θ, −sin θ) in x–z, so θ = −(axis angle).
+        (centre, m * dot(&b.jacobian[2], s.x) - b.angle)
     }
 
     /// The start of the one entity of a scene update at time `t` (s), up to its first cube.
@@ -114,17 +63,18 @@ impl Scene {
 
     /// Appends the `foxglove.SceneUpdate` JSON of step `s` to `out`.
     pub fn scene_update(&self, s: &Step<'_>, out: &mut Vec<u8>) {
-        if let Some(bodies) = &self.planar {
-            return self.planar_update(bodies, s, out);
-        }
         self.entity_start(s.t, out);
-        cube(out, self.z(None, s), [0.6, 0.6, 0.02], [0.2, 0.2, 0.2, 1.0]);
-        for (i, b) in self.bodies.iter().enumerate() {
-            out.push(b',');
-            cube(out, self.z(Some(i), s), b.size, b.color);
+        let mut z = Vec::with_capacity(self.scene.bodies.len());
+        for (k, b) in self.scene.bodies.iter().enumerate() {
+            let (c, theta) = self.pose(b, s);
+            z.push(c[1]);
+            if k > 0 {
+                out.push(b',');
+            }
+            posed_cube(out, c, theta, b.size, b.color);
         }
         out.extend_from_slice(b"],\"lines\":[");
-        for (k, &(up, low, color)) in self.links.iter().enumerate() {
+        for (k, &(low, up, color)) in self.scene.lines.iter().enumerate() {
             if k > 0 {
                 out.push(b',');
             }
@@ -133,95 +83,25 @@ impl Scene {
             out.extend_from_slice(
                 br#","thickness":0.01,"scale_invariant":false,"points":[{"x":0.1,"y":0,"z":"#,
             );
-            write_num(out, self.z(low, s));
+            write_num(out, z[low]);
             out.extend_from_slice(br#"},{"x":0.1,"y":0,"z":"#);
-            write_num(out, self.z(up, s));
+            write_num(out, z[up]);
             out.extend_from_slice(b"}],\"color\":");
             rgba(out, color);
             out.extend_from_slice(br#","colors":[],"indices":[]}"#);
         }
-        let top = self.bodies.iter().map(|b| b.rest_z).fold(0.0, f64::max) + 0.25;
         out.extend_from_slice(b"],\"texts\":[{\"pose\":");
-        pose(out, top);
+        pose(out, self.scene.label_z);
         let _ = write!(
             out,
-            r#","billboard":true,"font_size":0.05,"scale_invariant":false,"color":{{"r":1,"g":1,"b":1,"a":1}},"text":"displacements ×{} (t = {:.3} s)"}}]}}]}}"#,
-            self.magnification, s.t
+            r#","billboard":true,"font_size":0.05,"scale_invariant":false,"color":{{"r":1,"g":1,"b":1,"a":1}},"text":"{} ×{} (t = {:.3} s)"}}]}}]}}"#,
+            self.scene.label, self.magnification, s.t
         );
     }
 
-    /// Appends the `foxglove.FrameTransforms` JSON (`world → base`, `world → <mass>`) of step `s`.
+    /// Appends the `foxglove.FrameTransforms` JSON (`world → base`, `world → <body>`) of step `s`;
+    /// a body that only moves vertically is written as a plain translation.
     pub fn frame_transforms(&self, s: &Step<'_>, out: &mut Vec<u8>) {
-        if let Some(bodies) = &self.planar {
-            return self.planar_transforms(bodies, s, out);
-        }
-        let ts = stamp(s.t);
-        out.extend_from_slice(b"{\"transforms\":[");
-        for k in 0..=self.bodies.len() {
-            let (name, node) = match k {
-                0 => ("base", None),
-                _ => (self.bodies[k - 1].key.as_str(), Some(k - 1)),
-            };
-            if k > 0 {
-                out.push(b',');
-            }
-            let _ = write!(
-                out,
-                r#"{{"timestamp":{ts},"parent_frame_id":"world","child_frame_id":"{name}","translation":{{"x":0,"y":0,"z":"#
-            );
-            write_num(out, self.z(node, s));
-            out.extend_from_slice(br#"},"rotation":{"x":0,"y":0,"z":0,"w":1}}"#);
-        }
-        out.extend_from_slice(b"]}");
-    }
-}
-
-impl Scene {
-    /// Display pose of a planar segment at step `s`: centre `(x, z)` and the rotation about y
-    /// (rad) that turns a box's x axis onto the segment axis; motion magnified like the stack's.
-    fn planar_pose(&self, b: &BodyPose, s: &Step<'_>) -> ([f64; 2], f64) {
-        let m = self.magnification;
-        let d = |row: &[f64]| row.iter().zip(s.x).map(|(j, x)| j * x).sum::<f64>();
-        let centre = [
-            b.rest[0] + m * d(&b.jacobian[0]),
-            b.rest[1] + m * (d(&b.jacobian[1]) + s.x_base),
-        ];
-        // Rotating by θ about y maps x̂ to (cos θ, −sin θ) in x–z, so θ = −(axis angle).
-        (centre, -(b.angle - m * d(&b.jacobian[2])))
-    }
-
-    /// `foxglove.SceneUpdate` of a planar model: a floor and seat pan moving with the base, and a
-    /// box per segment that translates and pitches.
-    fn planar_update(&self, bodies: &[BodyPose], s: &Step<'_>, out: &mut Vec<u8>) {
-        let zb = self.magnification * s.x_base;
-        self.entity_start(s.t, out);
-        let grey = [0.3, 0.3, 0.3, 1.0];
-        posed_cube(out, [0.4, zb - 0.30], 0.0, [1.2, 0.6, 0.02], grey);
-        out.push(b',');
-        posed_cube(
-            out,
-            [0.12, zb - 0.04],
-            0.0,
-            [0.5, 0.5, 0.06],
-            [0.2, 0.4, 0.8, 1.0],
-        );
-        for b in bodies {
-            let (c, theta) = self.planar_pose(b, s);
-            out.push(b',');
-            posed_cube(out, c, theta, [b.length, 0.3, 0.12], [0.9, 0.7, 0.5, 1.0]);
-        }
-        out.extend_from_slice(b"],\"lines\":[],\"texts\":[{\"pose\":");
-        pose(out, 1.2);
-        let _ = write!(
-            out,
-            r#","billboard":true,"font_size":0.05,"scale_invariant":false,"color":{{"r":1,"g":1,"b":1,"a":1}},"text":"displacements and pitch ×{} (t = {:.3} s)"}}]}}]}}"#,
-            self.magnification, s.t
-        );
-    }
-
-    /// `foxglove.FrameTransforms` of a planar model: `world → base`, `world → <segment>` with
-    /// the segment's pitch as a quaternion about y.
-    fn planar_transforms(&self, bodies: &[BodyPose], s: &Step<'_>, out: &mut Vec<u8>) {
         let ts = stamp(s.t);
         out.extend_from_slice(b"{\"transforms\":[");
         let _ = write!(
@@ -230,17 +110,27 @@ impl Scene {
         );
         write_num(out, self.magnification * s.x_base);
         out.extend_from_slice(br#"},"rotation":{"x":0,"y":0,"z":0,"w":1}}"#);
-        for b in bodies {
-            let (c, theta) = self.planar_pose(b, s);
+        for b in self.scene.bodies.iter().filter(|b| b.frame) {
+            let (c, theta) = self.pose(b, s);
             let _ = write!(
                 out,
                 r#",{{"timestamp":{ts},"parent_frame_id":"world","child_frame_id":"{}","translation":"#,
                 plot_key(&b.name)
             );
-            vec3(out, c);
-            out.extend_from_slice(br#","rotation":"#);
-            quat_y(out, theta);
-            out.push(b'}');
+            let vertical = b.rest[0] == 0.0
+                && b.angle == 0.0
+                && b.jacobian[0].is_empty()
+                && b.jacobian[2].is_empty();
+            if vertical {
+                out.extend_from_slice(br#"{"x":0,"y":0,"z":"#);
+                write_num(out, c[1]);
+                out.extend_from_slice(br#"},"rotation":{"x":0,"y":0,"z":0,"w":1}}"#);
+            } else {
+                vec3(out, c);
+                out.extend_from_slice(br#","rotation":"#);
+                quat_y(out, theta);
+                out.push(b'}');
+            }
         }
         out.extend_from_slice(b"]}");
     }
@@ -308,26 +198,21 @@ fn rgba(out: &mut Vec<u8>, c: [f64; 4]) {
     );
 }
 
-/// A box at height `z` on the vertical axis, upright.
-fn cube(out: &mut Vec<u8>, z: f64, size: [f64; 3], color: [f64; 4]) {
-    posed_cube(out, [0.0, z], 0.0, size, color);
-}
-
 #[cfg(test)]
-mod planar_tests {
+mod scene_tests {
     use super::*;
     use crate::model::catalog;
     use crate::simulate::{Settings, layout};
 
     #[test]
-    fn planar_scene_is_valid_json_and_pitches_the_segments() {
+    fn pitching_scene_is_valid_json_and_turns_only_the_moved_segment() {
         let model = catalog::resolve("planar-occupant").unwrap();
         let settings = Settings {
             dt: 1e-3,
             duration_s: 1.0,
             method: crate::integrator::Method::AVERAGE_ACCELERATION,
         };
-        let lay = layout(&model, &settings);
+        let lay = layout(model.system(), &settings);
         let scene = Scene::new(&lay, 20.0);
         let n = model.dof();
         let render = |x: &[f64]| {

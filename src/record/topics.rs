@@ -139,13 +139,6 @@ fn measured_description(name: &str) -> &'static str {
     }
 }
 
-/// Link roles whose deflection is recorded in a lumped-mass model: cushion deflection and
-/// suspension travel, named as such even where they equal the upper mass's `x` (a link to the
-/// base). The deflection of any other of its links is `x_upper − x_lower` of two `/wbv/state`
-/// displacements. A planar model's contact links all have theirs: a contact's
-/// deflection is a Jacobian row times the coordinates, not a difference a viewer can plot.
-const DEFLECTION_ROLES: [&str; 2] = ["cushion", "suspension"];
-
 /// The time-series topics of a run of `layout`: `/wbv/measured`, `/wbv/state` and, for a model
 /// with links, `/wbv/links`. Every field is recorded once, except the measured-run channels
 /// `a_seat_z` and `a_head_z` (also `a_abs` of their masses) and `f_seat_z` (also the negated
@@ -168,11 +161,9 @@ pub fn topics(layout: &Layout) -> Result<Vec<Topic>> {
     let mut s = Builder::untimed();
     for (i, k) in masses.iter().enumerate() {
         let name = &layout.masses[i];
-        // A planar coordinate that the vertical base does not move is absolute already.
-        let fixed = layout
-            .planar
-            .as_ref()
-            .is_some_and(|p| p.influence[i] == 0.0);
+        // A coordinate that the vertical base does not move (a fore-and-aft translation, a
+        // pitch) is absolute already.
+        let fixed = layout.influence[i] == 0.0;
         let (xa, va, aa) = if fixed {
             (Quantity::X(i), Quantity::V(i), Quantity::A(i))
         } else {
@@ -198,7 +189,10 @@ pub fn topics(layout: &Layout) -> Result<Vec<Topic>> {
     for (i, k) in links.iter().enumerate() {
         let name = &layout.links[i];
         let role = layout.link_roles.get(i).map_or("", String::as_str);
-        if layout.planar.is_some() || DEFLECTION_ROLES.contains(&role) {
+        // Recorded where the system says so ([`crate::system::Link::record_deflection`]): a seat
+        // component's stroke, or a deflection that is not a difference of two recorded
+        // displacements a viewer could plot (a contact's Jacobian row times the coordinates).
+        if layout.link_deflection[i] {
             l.add(
                 &[k, "deflection"],
                 Quantity::LinkDeflection(i),

@@ -1,21 +1,21 @@
-//! Frequency response functions of a base-excited model, from the complex dynamic stiffness
-//! `D(ω) = −ω²M + Σ k*(ω)` (see [`crate::model::assembly::dynamic_matrix`]).
+//! Frequency response functions of a base-excited [`System`], from its complex dynamic stiffness
+//! `D(ω)` ([`System::dynamic_matrix`]).
 //!
-//! With a unit base acceleration, the base-relative displacements solve `D(ω)·X = −M·1`; the
-//! absolute acceleration of mass `i` is `A_i = 1 − ω²·X_i` (m/s² per m/s²). Then (papers 001 eqs.
-//! 8–10, 002 eqs. 1–3, with accelerations in place of displacements, which gives the same ratio):
-//! - `seat` = `A_seat`, base-to-seat transmissibility;
+//! With a unit base acceleration, the base-relative coordinates solve `D(ω)·X = −M·r`; a kinematic
+//! channel reads `base + Σ_i row_i·(−ω²·X_i + r_i)` (an absolute acceleration, m/s² per m/s², or a
+//! momentum rate, N per m/s²) and a force channel `Σ weight·k*_l(ω)·(row_l·X)`. The system's
+//! [`ResponseDef`]s then name the standard responses as ratios of them (papers 001 eqs. 8–10,
+//! 002 eqs. 1–3, 000 §5, with accelerations in place of displacements, which gives the same ratio):
+//! - `seat` = `A_seat`, base-to-seat transmissibility (`seat_x`: fore-and-aft cross-axis);
 //! - `stht` = `A_head / A_seat`, seat-to-head transmissibility;
-//! - `apms` = `F / A_seat` in kg, where `F` is the upward force the interface links put on the body;
+//! - `apms` = `F / A_seat` in kg, where `F` is the upward force the interface links put on the body
+//!   (`apms_z`, `apms_x`: the supports' force per unit base acceleration);
 //! - `dpmi` = `F / V_seat = iω·apms` in N·s/m;
-//! - `t_<mass>` = `A_mass`, base-to-mass transmissibility.
-//!
-//! Planar models have their own set (v-v and v-h seat transmissibility, apparent masses in both
-//! axes): [`crate::planar::response`].
+//! - `t_<coordinate>` = its absolute acceleration per unit base acceleration.
 
 use crate::error::{Error, Result};
-use crate::model::assembly::{dynamic_matrix, link_dynamic_stiffness};
-use crate::model::{Model, Node};
+use crate::system::linear::link_dynamic_stiffness;
+use crate::system::{Output, ResponseDef, Rule, System};
 use nalgebra::DVector;
 use num_complex::Complex64;
 use std::f64::consts::PI;
@@ -92,100 +92,107 @@ pub fn grid(from: f64, to: f64, points: usize, log: bool) -> Result<Vec<f64>> {
         .collect())
 }
 
-/// Solves for the absolute mass accelerations per unit base acceleration at `f` Hz, and the seat
-/// interface force on the body per unit base acceleration (N per m/s²).
-pub fn solve_point(model: &Model, f: f64) -> Result<(Vec<Complex64>, Complex64)> {
-    if model.planar.is_some() {
-        return Err(Error::parameter(
-            "model",
-            format!(
-                "`{}` is planar; use frf::compute for its responses",
-                model.name
-            ),
-        ));
-    }
+/// The value of every channel of `system` per unit base acceleration at `f` Hz.
+pub fn solve_point(system: &System, f: f64) -> Result<Vec<Complex64>> {
+    let (channels, _) = solve_full(system, f)?;
+    Ok(channels)
+}
+
+/// Coordinate displacements `X` per unit base acceleration at `f` Hz (`D(ω)·X = −M·r`).
+pub fn displacements(system: &System, f: f64) -> Result<DVector<Complex64>> {
+    Ok(solve_full(system, f)?.1)
+}
+
+/// Channels and coordinate displacements `X` per unit base acceleration at `f` Hz.
+fn solve_full(system: &System, f: f64) -> Result<(Vec<Complex64>, DVector<Complex64>)> {
     let omega = 2.0 * PI * f;
-    let d = dynamic_matrix(model, omega);
-    let rhs = DVector::from_iterator(
-        model.dof(),
-        model.masses.iter().map(|m| Complex64::new(-m.m, 0.0)),
-    );
+    let d = system.dynamic_matrix(omega);
+    let mr = &system.m * &system.r;
+    let rhs = DVector::from_iterator(system.dof(), mr.iter().map(|v| Complex64::new(-v, 0.0)));
     let x = d.lu().solve(&rhs).ok_or_else(|| {
         Error::parameter(
             "frequency",
             format!(
                 "the dynamic stiffness of `{}` is singular at {f} Hz",
-                model.name
+                system.name
             ),
         )
     })?;
-    let acc: Vec<Complex64> = x.iter().map(|xi| 1.0 - omega * omega * xi).collect();
-    let disp = |n: Node| match n {
-        Node::Base => Complex64::new(0.0, 0.0),
-        Node::Mass(i) => x[i],
-    };
-    let force: Complex64 = model
-        .measure
-        .interface
+    let channels = system
+        .channels
         .iter()
-        .map(|&li| {
-            let l = &model.links[li];
-            -link_dynamic_stiffness(l, omega) * (disp(l.a) - disp(l.b))
-        })
-        .sum();
-    Ok((acc, force))
+        .map(|c| channel_value(system, &c.rule, omega, x.as_slice()))
+        .collect();
+    Ok((channels, x))
 }
 
-/// Computes every standard response of `model` at the frequencies `freq_hz`.
-pub fn compute(model: &Model, freq_hz: &[f64]) -> Result<FrfSet> {
-    if let Some(p) = &model.planar {
-        let names: Vec<String> = model.masses.iter().map(|m| m.name.clone()).collect();
-        return crate::planar::response::compute(p, &names, freq_hz);
-    }
-    let n = model.dof();
-    let has_head = model.measure.head.is_some();
-    let has_force = !model.measure.interface.is_empty();
-    let mut stht = Vec::new();
-    let mut seat = Vec::new();
-    let mut apms = Vec::new();
-    let mut dpmi = Vec::new();
-    let mut t: Vec<Vec<Complex64>> = vec![Vec::with_capacity(freq_hz.len()); n];
+/// Computes every standard response of `system` at the frequencies `freq_hz`.
+pub fn compute(system: &System, freq_hz: &[f64]) -> Result<FrfSet> {
+    let mut values: Vec<Vec<Complex64>> =
+        vec![Vec::with_capacity(freq_hz.len()); system.responses.len()];
     for &f in freq_hz {
-        let (acc, force) = solve_point(model, f)?;
-        let a_seat = match model.measure.seat {
-            Node::Base => Complex64::new(1.0, 0.0),
-            Node::Mass(i) => acc[i],
+        let (channels, x) = solve_full(system, f)?;
+        let w = 2.0 * PI * f;
+        let out = |o: Output| match o {
+            Output::Channel(c) => channels[c],
+            Output::Dof(i) => dof_value(system, i, w, x.as_slice()),
         };
-        seat.push(a_seat);
-        if let Some(h) = model.measure.head {
-            stht.push(acc[h] / a_seat);
+        for (r, v) in system.responses.iter().zip(values.iter_mut()) {
+            v.push(response_value(r, w, &out));
         }
-        if has_force {
-            let am = force / a_seat;
-            apms.push(am);
-            dpmi.push(Complex64::new(0.0, 2.0 * PI * f) * am);
-        }
-        for (i, a) in acc.into_iter().enumerate() {
-            t[i].push(a);
-        }
-    }
-    let mut responses = Vec::new();
-    let mut add = |name: String, unit, values| {
-        responses.push(Response { name, unit, values });
-    };
-    if has_head {
-        add("stht".into(), "1", stht);
-    }
-    add("seat".into(), "1", seat);
-    if has_force {
-        add("apms".into(), "kg", apms);
-        add("dpmi".into(), "N·s/m", dpmi);
-    }
-    for (i, values) in t.into_iter().enumerate() {
-        add(format!("t_{}", model.masses[i].name), "1", values);
     }
     Ok(FrfSet {
         freq_hz: freq_hz.to_vec(),
-        responses,
+        responses: system
+            .responses
+            .iter()
+            .zip(values)
+            .map(|(r, values)| Response {
+                name: r.name.clone(),
+                unit: r.unit,
+                values,
+            })
+            .collect(),
     })
+}
+
+/// Absolute acceleration of coordinate `i` per unit base acceleration, `−ω²·X_i + r_i`.
+pub fn dof_value(system: &System, i: usize, omega: f64, x: &[Complex64]) -> Complex64 {
+    -omega * omega * x[i] + system.r[i]
+}
+
+/// A channel per unit base acceleration from the displacements `X` at `omega` (rad/s):
+/// `base + Σ row_i·(−ω²X_i + r_i)` or `Σ weight·k*_l(ω)·(row_l·X)`.
+pub fn channel_value(system: &System, rule: &Rule, omega: f64, x: &[Complex64]) -> Complex64 {
+    match rule {
+        Rule::Kinematic { row, base } => {
+            row.iter().fold(Complex64::new(*base, 0.0), |s, &(i, ci)| {
+                s + dof_value(system, i, omega, x) * ci
+            })
+        }
+        Rule::Force { links } => links.iter().fold(Complex64::new(0.0, 0.0), |s, &(l, w)| {
+            let link = &system.links[l];
+            let d: Complex64 = link
+                .row
+                .iter()
+                .fold(Complex64::new(0.0, 0.0), |s, &(i, ci)| s + x[i] * ci);
+            s + link_dynamic_stiffness(link, omega) * d * w
+        }),
+    }
+}
+
+/// `num / den` (times `iω`) of a response definition.
+pub fn response_value(
+    r: &ResponseDef,
+    omega: f64,
+    out: &impl Fn(Output) -> Complex64,
+) -> Complex64 {
+    let mut v = out(r.num);
+    if let Some(d) = r.den {
+        v /= out(d);
+    }
+    if r.times_i_omega {
+        v = Complex64::new(0.0, omega) * v;
+    }
+    v
 }

@@ -8,8 +8,7 @@
 //!   overdamped (non-oscillating) modes, reported with their time constant `−1/λ`.
 
 use crate::error::{Error, Result};
-use crate::model::Model;
-use crate::model::assembly::{mass_matrix, state_space, stiffness_matrix};
+use crate::system::System;
 use nalgebra::{DMatrix, DVector};
 use num_complex::Complex64;
 use std::f64::consts::PI;
@@ -41,25 +40,8 @@ pub struct DampedMode {
 }
 
 /// Undamped modes in ascending frequency.
-pub fn undamped(model: &Model) -> Result<Vec<UndampedMode>> {
-    let m = mass_matrix(model);
-    let k = stiffness_matrix(model);
-    if model.planar.is_some() {
-        return generalized(&m, &k);
-    }
-    let n = model.dof();
-    let s: Vec<f64> = (0..n).map(|i| 1.0 / m[(i, i)].sqrt()).collect();
-    let a = DMatrix::from_fn(n, n, |i, j| s[i] * k[(i, j)] * s[j]);
-    let eig = a.symmetric_eigen();
-    let mut modes: Vec<UndampedMode> = (0..n)
-        .map(|c| {
-            let lambda = eig.eigenvalues[c].max(0.0);
-            let shape = (0..n).map(|i| s[i] * eig.eigenvectors[(i, c)]).collect();
-            UndampedMode::normalised(lambda.sqrt() / (2.0 * PI), shape)
-        })
-        .collect();
-    modes.sort_by(|a, b| a.freq_hz.total_cmp(&b.freq_hz));
-    Ok(modes)
+pub fn undamped(system: &System) -> Result<Vec<UndampedMode>> {
+    generalized(&system.m, &system.locked_stiffness())
 }
 
 impl UndampedMode {
@@ -107,8 +89,8 @@ pub fn generalized(m: &DMatrix<f64>, k: &DMatrix<f64>) -> Result<Vec<UndampedMod
 
 /// Damped modes: one entry per complex-conjugate pair and one per real eigenvalue, ascending in
 /// natural frequency.
-pub fn damped(model: &Model) -> Result<Vec<DampedMode>> {
-    let ss = state_space(model);
+pub fn damped(system: &System) -> Result<Vec<DampedMode>> {
+    let ss = system.state_space();
     let n = ss.n;
     let eigs = ss.a.complex_eigenvalues();
     let mut modes = Vec::new();
@@ -175,4 +157,77 @@ fn eigenvector(a: &DMatrix<f64>, lambda: Complex64) -> Option<DVector<Complex64>
         v /= Complex64::new(nrm, 0.0);
     }
     Some(v)
+}
+
+/// An undamped mode with its description in words.
+#[derive(Debug, Clone)]
+pub struct Described {
+    /// The mode (frequency in Hz, shape over the coordinates).
+    pub mode: UndampedMode,
+    /// Dominant motions, largest first, e.g. `fore-and-aft head motion`.
+    pub components: Vec<String>,
+    /// Fraction of the rigid-body mass that moves vertically in this mode (effective modal mass
+    /// `(φᵀM r)² / (φᵀMφ)` over `rᵀMr`), 0–1.
+    pub vertical_mass_fraction: f64,
+    /// The same for fore-and-aft motion (`r_x`).
+    pub fore_aft_mass_fraction: f64,
+}
+
+impl Described {
+    /// The components joined into one phrase.
+    pub fn words(&self) -> String {
+        self.components.join(", ")
+    }
+}
+
+/// Undamped modes described by the system's named [`crate::system::Motion`]s (paper 000 §3 words
+/// its modes so): the motions within half of the largest amplitude `|row·φ|`, largest first, led
+/// by a whole-body axis that carries at least half the mass; empty when the system names none.
+pub fn describe(system: &System) -> Result<Vec<Described>> {
+    if system.motions.is_empty() {
+        return Ok(Vec::new());
+    }
+    let total = system.rigid_mass();
+    let modes = generalized(&system.m, &system.locked_stiffness())?;
+    Ok(modes
+        .into_iter()
+        .map(|mode| {
+            let phi = DVector::from_column_slice(&mode.shape);
+            let mphi = &system.m * &phi;
+            let modal = phi.dot(&mphi);
+            let frac = |r: &DVector<f64>| mphi.dot(r).powi(2) / (modal * total);
+            let mut amps: Vec<(String, f64)> = system
+                .motions
+                .iter()
+                .map(|m| {
+                    let a: f64 = m.row.iter().zip(&mode.shape).map(|(r, p)| r * p).sum();
+                    (m.name.clone(), a.abs())
+                })
+                .collect();
+            amps.sort_by(|a, b| b.1.total_cmp(&a.1));
+            let big = amps.first().map_or(0.0, |a| a.1);
+            let (vertical, fore_aft) = (frac(&system.r), frac(&system.r_x));
+            // A mode that carries most of the body mass in one axis is named by it first.
+            let whole = [
+                (vertical, "vertical whole-body motion"),
+                (fore_aft, "fore-and-aft whole-body motion"),
+            ];
+            let mut components: Vec<String> = whole
+                .iter()
+                .filter(|(f, _)| *f >= 0.5)
+                .map(|(_, w)| w.to_string())
+                .collect();
+            for a in amps.into_iter().filter(|a| a.1 >= 0.5 * big) {
+                if components.len() < 4 && !components.contains(&a.0) {
+                    components.push(a.0);
+                }
+            }
+            Described {
+                vertical_mass_fraction: vertical,
+                fore_aft_mass_fraction: fore_aft,
+                mode,
+                components,
+            }
+        })
+        .collect())
 }

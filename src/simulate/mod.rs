@@ -6,11 +6,10 @@
 pub mod collect;
 pub mod observer;
 
-use crate::dynamics::Dynamics;
 use crate::error::{Error, Result};
 use crate::excitation::Excitation;
 use crate::integrator::{self, Method, State};
-use crate::model::{Model, Node};
+use crate::system::{Dynamics, System};
 use observer::{Layout, Observer, Step};
 
 /// Steps per excitation block.
@@ -56,53 +55,36 @@ impl Settings {
     }
 }
 
-/// The layout observers receive for `model` under `settings`.
-pub fn layout(model: &Model, settings: &Settings) -> Layout {
-    let node = |n: Node| model.node_name(n).to_string();
-    let mut lay = Layout {
-        model: model.name.clone(),
-        masses: model.masses.iter().map(|m| m.name.clone()).collect(),
-        mass_roles: model
-            .masses
+/// The layout observers receive for `system` under `settings`.
+pub fn layout(system: &System, settings: &Settings) -> Layout {
+    Layout {
+        model: system.name.clone(),
+        masses: system.dofs.iter().map(|d| d.name.clone()).collect(),
+        mass_roles: system
+            .dofs
             .iter()
-            .map(|m| m.role.as_str().to_string())
+            .map(|d| d.role.as_str().to_string())
             .collect(),
-        links: model.links.iter().map(|l| l.name.clone()).collect(),
-        link_roles: model
+        influence: system.r.iter().copied().collect(),
+        links: system.links.iter().map(|l| l.name.clone()).collect(),
+        link_roles: system
             .links
             .iter()
             .map(|l| l.role.as_str().to_string())
             .collect(),
-        link_nodes: model.links.iter().map(|l| (node(l.a), node(l.b))).collect(),
-        seat: match model.measure.seat {
-            Node::Base => None,
-            Node::Mass(i) => Some(i),
-        },
-        head: model.measure.head,
-        interface: model.measure.interface.clone(),
+        link_nodes: system.links.iter().map(|l| l.nodes.clone()).collect(),
+        link_deflection: system.links.iter().map(|l| l.record_deflection).collect(),
+        channels: system.measured_channels().cloned().collect(),
+        scene: system.scene.clone(),
         dt: settings.dt,
         steps: settings.steps() + 1,
-        planar: None,
-    };
-    if let Some(p) = model.planar.as_deref() {
-        // The seat contacts stand in for links (`Dynamics` reads them out in the same order).
-        let links = &p.links;
-        lay.interface = crate::planar::links::interface(links);
-        lay.link_nodes = links
-            .iter()
-            .map(|l| (l.segment.clone(), "base".to_string()))
-            .collect();
-        lay.link_roles = links.iter().map(|l| l.role.clone()).collect();
-        lay.links = links.iter().map(|l| l.name.clone()).collect();
-        lay.planar = Some(crate::planar::replay::layout(p));
     }
-    lay
 }
 
 /// Runs the simulation, calling `observers` for every step from t = 0. The observers' `end` is
 /// not called, so the caller can attach analysis results before completing a recording.
 pub fn run(
-    model: &Model,
+    system: &System,
     excitation: &mut dyn Excitation,
     settings: &Settings,
     observers: &mut [&mut dyn Observer],
@@ -119,9 +101,9 @@ pub fn run(
             ),
         ));
     }
-    let dynamics = Dynamics::new(model);
-    let mut integ = integrator::build(settings.method, &dynamics, model, settings.dt)?;
-    let lay = layout(model, settings);
+    let dynamics = Dynamics::new(system);
+    let mut integ = integrator::build(settings.method, &dynamics, system, settings.dt)?;
+    let lay = layout(system, settings);
     for o in observers.iter_mut() {
         o.begin(&lay)?;
     }

@@ -134,7 +134,7 @@ mod tests {
             fade_in_s: 1.0,
         });
         let model = catalog::resolve("reference").unwrap();
-        let t = crate::response::frf::compute(&model, &[f_hz]).unwrap();
+        let t = crate::response::frf::compute(model.system(), &[f_hz]).unwrap();
         let t = t.get("seat").unwrap().magnitude()[0];
         let f = r.figures(&model).unwrap();
         assert!(

@@ -7,7 +7,8 @@
 //! after the plain ones, so a 2-D sweep of `k` and `zeta@60` keeps ζ fixed while `k` moves.
 
 use crate::error::{Error, Result};
-use crate::model::{Model, file::damping_from_ratio, params};
+use crate::model::Model;
+use crate::model::chain::file::damping_from_ratio;
 
 /// One swept, perturbed or fitted quantity.
 #[derive(Debug, Clone, PartialEq)]
@@ -56,9 +57,9 @@ impl Param {
     /// The parameter's current value in `model` (SI, or the dimensionless ratio).
     pub fn get(&self, model: &Model) -> Result<f64> {
         match &self.kind {
-            Kind::Plain => params::get(model, &self.spec),
+            Kind::Plain => model.get(&self.spec),
             Kind::Zeta { k, c, m_ref } => {
-                let (k, c) = (params::get(model, k)?, params::get(model, c)?);
+                let (k, c) = (model.get(k)?, model.get(c)?);
                 Ok(c / damping_from_ratio(1.0, k, *m_ref))
             }
         }
@@ -67,7 +68,7 @@ impl Param {
     /// Sets the parameter to `value` in `model`.
     pub fn set(&self, model: &mut Model, value: f64) -> Result<()> {
         match &self.kind {
-            Kind::Plain => params::set(model, &self.spec, value),
+            Kind::Plain => model.set(&self.spec, value),
             Kind::Zeta { k, c, m_ref } => {
                 if !(value.is_finite() && value >= 0.0) {
                     return Err(Error::parameter(
@@ -75,8 +76,8 @@ impl Param {
                         format!("{value} is not a damping ratio; expected ≥ 0"),
                     ));
                 }
-                let kv = params::get(model, k)?;
-                params::set(model, c, damping_from_ratio(value, kv, *m_ref))
+                let kv = model.get(k)?;
+                model.set(c, damping_from_ratio(value, kv, *m_ref))
             }
         }
     }
@@ -174,7 +175,7 @@ mod tests {
         let z = Param::parse("link.cushion.zeta@60", &m).unwrap();
         // Order in the list does not matter: ζ is applied after k.
         apply(&mut m, &[z.clone(), k], &[0.1, 20_000.0]).unwrap();
-        let c = params::get(&m, "link.cushion.c").unwrap();
+        let c = m.get("link.cushion.c").unwrap();
         assert!((c - 2.0 * 0.1 * (20_000.0f64 * 60.0).sqrt()).abs() < 1e-9);
         assert!((z.get(&m).unwrap() - 0.1).abs() < 1e-12);
         assert!(Param::parse("link.cushion.zeta@x", &m).is_err());

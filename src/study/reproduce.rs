@@ -4,7 +4,7 @@
 use super::foam::{Foam, FoamPoint, PAPER_TABLE_4, PaperRow, paper_run, thickness_study};
 use crate::error::Result;
 use crate::model::catalog;
-use crate::reproduce::Row;
+use crate::study::table::Row;
 
 fn pct(a: f64, b: f64) -> f64 {
     100.0 * (b - a) / a

@@ -49,7 +49,7 @@ pub fn run(
             format!("{l} %: expected > −100 %"),
         ));
     }
-    let base = Evaluator::new(model, response, freq_hz)?;
+    let base = Evaluator::new(model.system(), response, freq_hz)?;
     let nl = levels_pct.len();
     shard
         .points(params.len() * nl)

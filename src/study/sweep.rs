@@ -85,7 +85,7 @@ pub fn run(
     tick: &(dyn Fn() + Sync),
 ) -> Result<Vec<Point>> {
     let grid = spec.grid();
-    let base = Evaluator::new(model, &spec.response, &spec.freq_hz)?;
+    let base = Evaluator::new(model.system(), &spec.response, &spec.freq_hz)?;
     shard
         .points(grid.len())
         .into_par_iter()
@@ -124,7 +124,7 @@ pub fn evaluate_point(
     scratch.clone_from(model);
     apply(scratch, params, values)?;
     let mut response = vec![Complex64::default(); freq_hz.len()];
-    ev.eval(scratch, &mut response)?;
+    ev.eval(scratch.system(), &mut response)?;
     let mag: Vec<f64> = response.iter().map(|v| v.norm()).collect();
     let peak = global_peak(freq_hz, &mag).unwrap_or(Peak {
         freq_hz: f64::NAN,
@@ -206,7 +206,7 @@ mod tests {
         assert_eq!(pts.len(), 6);
         let mut m = model.clone();
         apply(&mut m, &spec.params, &pts[4].values).unwrap();
-        let direct = frf::compute(&m, &spec.freq_hz).unwrap();
+        let direct = frf::compute(m.system(), &spec.freq_hz).unwrap();
         let r = direct.get("t_head").unwrap();
         for (a, b) in pts[4].response.iter().zip(&r.values) {
             assert!((a - b).norm() < 1e-9);

@@ -139,7 +139,7 @@ impl Problem {
                 return Err(Error::parameter(&p.spec, "bounds must satisfy 0 < lo < hi"));
             }
         }
-        Evaluator::new(&self.model, &self.response, &self.target.freq_hz).map(|_| ())
+        Evaluator::new(self.model.system(), &self.response, &self.target.freq_hz).map(|_| ())
     }
 
     /// Physical values from normalised coordinates (clamped to [0, 1]).
@@ -172,7 +172,7 @@ impl Problem {
     /// A reusable evaluation workspace (one per thread).
     pub fn workspace(&self) -> Result<Workspace> {
         Ok(Workspace {
-            ev: Evaluator::new(&self.model, &self.response, &self.target.freq_hz)?,
+            ev: Evaluator::new(self.model.system(), &self.response, &self.target.freq_hz)?,
             model: self.model.clone(),
             h: vec![Complex64::default(); self.target.freq_hz.len()],
         })
@@ -182,7 +182,7 @@ impl Problem {
     pub fn residuals(&self, ws: &mut Workspace, p: &[f64], r: &mut [f64]) -> Result<()> {
         // Every fitted parameter is overwritten, so the workspace model needs no reset (no allocation).
         apply(&mut ws.model, &self.params, p)?;
-        ws.ev.eval(&ws.model, &mut ws.h)?;
+        ws.ev.eval(ws.model.system(), &mut ws.h)?;
         let t = &self.target;
         match &t.phase_deg {
             None => {

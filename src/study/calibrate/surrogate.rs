@@ -64,7 +64,7 @@ fn peak_features(
 ) -> Result<[f64; 2]> {
     let mut m = problem.model.clone();
     apply(&mut m, &problem.params, p)?;
-    ev.eval(&m, h)?;
+    ev.eval(m.system(), h)?;
     let mag: Vec<f64> = h.iter().map(|v| v.norm()).collect();
     let pk = global_peak(&problem.target.freq_hz, &mag)
         .ok_or_else(|| Error::parameter("surrogate", "no peak"))?;
@@ -78,7 +78,7 @@ pub fn fit(problem: &Problem, s: ga::Settings, levels: usize) -> Result<(Vec<f64
     let meas = global_peak(&t.freq_hz, &t.mag)
         .ok_or_else(|| Error::parameter("--target", "no peak in the target"))?;
     let meas = [meas.value, meas.freq_hz];
-    let mut ev = Evaluator::new(&problem.model, &problem.response, &t.freq_hz)?;
+    let mut ev = Evaluator::new(problem.model.system(), &problem.response, &t.freq_hz)?;
     let mut h = vec![Complex64::default(); t.freq_hz.len()];
     let u0 = problem.to_unit(&problem.start()?);
     let f0 = peak_features(problem, &mut ev, &mut h, &problem.to_physical(&u0))?;

@@ -5,23 +5,18 @@
 //!
 //! Pipeline: [`file`] reads the model ([`Spec`]) → [`equilibrium`] finds the static seated
 //! equilibrium (and the cushion stiffness under its load) → [`linearise`] gives `M`, `C`, `K` and
-//! the base influence vectors in the coordinates of [`posture`] → [`response`] and [`modes`] give
-//! the frequency-domain outputs; the time domain runs the same `M`, `C`, `K` through the shared
-//! integrators ([`crate::dynamics::General`]).
+//! the base influence vectors in the coordinates of [`posture`] → [`system`] builds the
+//! [`crate::system::System`] every solver uses (contacts as links, channels, scene, motions).
 
-pub mod calibrate;
 pub mod contact;
 pub mod equilibrium;
 pub mod file;
 pub mod linearise;
 pub mod links;
-pub mod modes;
 pub mod params;
 pub mod posture;
-pub mod replay;
-pub mod reproduce;
-pub mod response;
 pub mod segment;
+pub mod system;
 
 use crate::error::Result;
 use contact::{Contact, Cushion};
@@ -101,7 +96,7 @@ impl Planar {
     /// Solves the equilibrium and linearises about it.
     pub fn build(spec: Spec) -> Result<Planar> {
         let equilibrium = equilibrium::solve(&spec)?;
-        let linear = linearise::linearise(&spec, &equilibrium);
+        let linear = linearise::linearise(&spec, &equilibrium.q, &equilibrium.coefficients);
         let links = links::contact_links(&spec, &equilibrium);
         Ok(Planar {
             spec,

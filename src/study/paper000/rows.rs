@@ -3,10 +3,10 @@
 //! the calibration of [`super::calibrate`]. Kept here so the table's other rows merge cleanly.
 
 use super::calibrate::{Calibration, Figures, PAPER_MODES, PAPER_TABLE4, calibrate, figures};
-use super::modes::describe;
 use crate::error::Result;
-use crate::model::{Model, catalog, params};
-use crate::reproduce::Row;
+use crate::model::{Model, catalog};
+use crate::response::modes::describe;
+use crate::study::table::Row;
 
 /// Grid points from 1 to 12 Hz for the table's peaks (0.005 Hz steps, parabola-refined).
 const POINTS: usize = 2201;
@@ -18,9 +18,12 @@ fn pct(a: f64, b: f64) -> f64 {
 /// Worded shapes of the lowest four modes on a rigid seat pan.
 fn words(model: &Model) -> Result<Vec<String>> {
     let mut rigid = model.clone();
-    params::set(&mut rigid, "cushion.thickness", 0.0)?;
-    let p = rigid.planar.as_ref().expect("planar");
-    Ok(describe(p)?.iter().take(4).map(|d| d.words()).collect())
+    rigid.set("cushion.thickness", 0.0)?;
+    Ok(describe(rigid.system())?
+        .iter()
+        .take(4)
+        .map(|d| d.words())
+        .collect())
 }
 
 fn rows_of(rows: &mut Vec<Row>, tag: &str, model: &Model, f: &Figures, note: &str) -> Result<()> {

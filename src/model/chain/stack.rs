@@ -5,10 +5,10 @@
 //! the base. The seat surface of the result is the top of the first seat component, and the
 //! occupant's interface links stay the force path of the apparent mass.
 
-use super::{Kind, Link, Measure, Model, Node};
+use super::{Chain, Kind, Link, Measure, Node};
 
 /// Stacks `parts` (an occupant followed by seat components, top to bottom) into one system.
-pub fn stack(parts: &[Model]) -> Result<Model, String> {
+pub fn stack(parts: &[Chain]) -> Result<Chain, String> {
     let (occupant, seats) = parts
         .split_first()
         .ok_or_else(|| "empty stack; expected an occupant and seat components".to_string())?;

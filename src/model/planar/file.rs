@@ -8,8 +8,7 @@ use super::posture::Posture;
 use super::segment::{Segment, lookup};
 use super::{Joint, Planar, Spec};
 use crate::error::{Error, Result};
-use crate::model::{Kind, Mass, Measure, Model, Node, Role};
-use crate::study::foam::Foam;
+use crate::model::material::Foam;
 use serde::Deserialize;
 
 #[derive(Debug, Deserialize)]
@@ -89,15 +88,16 @@ struct MeasureSpec {
     head: Option<String>,
 }
 
-/// Parses a planar model file and builds the model (equilibrium and linearisation included).
-pub fn parse(text: &str, file: &str) -> Result<Model> {
+/// Parses a planar model file and builds the model (equilibrium and linearisation included),
+/// with its `(name, description, source)`.
+pub fn parse(text: &str, file: &str) -> Result<(Planar, (String, String, String))> {
     let (spec, head) = parse_spec(text, file)?;
     let planar = Planar::build(spec).map_err(|e| Error::Model {
         file: file.to_string(),
         key: "(equilibrium)".into(),
         message: e.to_string(),
     })?;
-    Ok(model(planar, head.0, head.1, head.2, text.to_string()))
+    Ok((planar, head))
 }
 
 /// Parses and validates a planar model file into its [`Spec`] and `(name, description, source)`.
@@ -367,56 +367,4 @@ pub fn parse_spec(text: &str, file: &str) -> Result<(Spec, (String, String, Stri
         head,
     };
     Ok((spec, (fs.name, fs.description, fs.source)))
-}
-
-/// Wraps a built planar system as a [`Model`]: one "mass" per generalized coordinate (its diagonal
-/// mass-matrix entry, shown by `wbv models`), no links, the seat at the root's vertical coordinate.
-pub fn model(
-    planar: Planar,
-    name: String,
-    description: String,
-    source: String,
-    text: String,
-) -> Model {
-    let masses = planar
-        .spec
-        .dof_names()
-        .into_iter()
-        .enumerate()
-        .map(|(i, n)| Mass {
-            name: n,
-            m: planar.linear.m[(i, i)],
-            role: Role::Body,
-        })
-        .collect();
-    Model {
-        name,
-        description,
-        source,
-        masses,
-        links: Vec::new(),
-        measure: Measure {
-            seat: Node::Mass(1),
-            head: None,
-            interface: Vec::new(),
-        },
-        kind: Kind::Planar,
-        top: None,
-        text,
-        planar: Some(Box::new(planar)),
-    }
-}
-
-/// Rebuilds the model after its spec changed (parameter paths), keeping name, source and text;
-/// on error the model is left unchanged.
-pub fn rebuild(model: &mut Model, spec: Spec) -> Result<()> {
-    let planar = Planar::build(spec)?;
-    *model = self::model(
-        planar,
-        std::mem::take(&mut model.name),
-        std::mem::take(&mut model.description),
-        std::mem::take(&mut model.source),
-        std::mem::take(&mut model.text),
-    );
-    Ok(())
 }

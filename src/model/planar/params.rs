@@ -4,10 +4,9 @@
 //! `cushion.thickness|area|loss_factor|f_ref|tissue_mu|tissue_loss_factor`. Setting one solves the
 //! equilibrium and linearises again.
 
-use super::Spec;
 use super::contact::Law;
+use super::{Planar, Spec};
 use crate::error::{Error, Result};
-use crate::model::Model;
 
 /// Every path of `spec`.
 pub fn list(spec: &Spec) -> Vec<String> {
@@ -111,24 +110,16 @@ fn slot<'a>(spec: &'a mut Spec, path: &str) -> Result<&'a mut f64> {
     }
 }
 
-fn planar_spec(model: &Model) -> Result<&Spec> {
-    model
-        .planar
-        .as_ref()
-        .map(|p| &p.spec)
-        .ok_or_else(|| Error::parameter("model", format!("`{}` is not a planar model", model.name)))
-}
-
 /// Value of `path`.
-pub fn get(model: &Model, path: &str) -> Result<f64> {
-    let mut spec = planar_spec(model)?.clone();
+pub fn get(p: &Planar, path: &str) -> Result<f64> {
+    let mut spec = p.spec.clone();
     Ok(*slot(&mut spec, path)?)
 }
 
-/// Sets `path` to `value` and rebuilds the model (equilibrium and linearisation). Values must be
+/// The model with `path` set to `value`, rebuilt (equilibrium and linearisation). Values must be
 /// finite and ≥ 0 (masses, inertias, thickness, areas and shares > 0).
-pub fn set(model: &mut Model, path: &str, value: f64) -> Result<()> {
-    let mut spec = planar_spec(model)?.clone();
+pub fn set(p: &Planar, path: &str, value: f64) -> Result<Planar> {
+    let mut spec = p.spec.clone();
     let strictly = [
         ".m",
         ".inertia",
@@ -150,20 +141,5 @@ pub fn set(model: &mut Model, path: &str, value: f64) -> Result<()> {
         ));
     }
     *slot(&mut spec, path)? = value;
-    super::file::rebuild(model, spec)
-}
-
-/// Applies `--foam-thickness` (m) to a planar model; other models have no foam layer of their own.
-pub fn set_foam_thickness(model: &mut Model, thickness_m: f64) -> Result<()> {
-    if model.planar.is_none() {
-        return Err(Error::parameter(
-            "--foam-thickness",
-            format!(
-                "`{}` is not a planar model; for 1-D models set link.cushion.k/c (see wbv sweep)",
-                model.name
-            ),
-        ));
-    }
-    set(model, "cushion.thickness", thickness_m)
-        .map_err(|e| Error::parameter("--foam-thickness", e.to_string()))
+    Planar::build(spec)
 }

@@ -20,11 +20,10 @@
 //! interface = ["k1"]     # links carrying the seat force into the body
 //! ```
 
-use super::{Element, Kind, Law, Link, Mass, Measure, Model, Node, Role};
+use super::{Chain, Element, Kind, Law, Link, Mass, Measure, Node, Role};
 use crate::error::{Error, Result};
 use serde::Deserialize;
 use std::collections::HashSet;
-use std::path::Path;
 
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -99,22 +98,14 @@ pub fn damping_from_ratio(zeta: f64, k: f64, m_ref: f64) -> f64 {
     2.0 * zeta * (k * m_ref).sqrt()
 }
 
-/// Reads and validates a model file; `stack` entries are resolved with [`super::catalog::resolve`].
-pub fn read(path: &Path) -> Result<Model> {
-    let text = std::fs::read_to_string(path).map_err(|e| Error::io(path, e))?;
-    parse(&text, &path.display().to_string())
-}
-
-/// Parses and validates model TOML `text`; `file` names it in errors.
-pub fn parse(text: &str, file: &str) -> Result<Model> {
+/// Parses and validates chain-model TOML `text`; `file` names it in errors; `stack` entries are
+/// resolved by `resolve` (the catalog's, for built-in names and files).
+pub fn parse(text: &str, file: &str, resolve: &dyn Fn(&str) -> Result<Chain>) -> Result<Chain> {
     let err = |key: String, message: String| Error::Model {
         file: file.to_string(),
         key,
         message,
     };
-    if is_planar(text) {
-        return crate::planar::file::parse(text, file);
-    }
     let spec: FileSpec = toml::from_str(text).map_err(|e| {
         let line = e
             .span()
@@ -135,8 +126,7 @@ pub fn parse(text: &str, file: &str) -> Result<Model> {
         let mut models = Vec::new();
         for (i, part) in parts.iter().enumerate() {
             models.push(
-                super::catalog::resolve(part)
-                    .map_err(|e| err(format!("stack[{i}]"), format!("`{part}`: {e}")))?,
+                resolve(part).map_err(|e| err(format!("stack[{i}]"), format!("`{part}`: {e}")))?,
             );
         }
         let mut model = super::stack::stack(&models).map_err(|e| err("stack".into(), e))?;
@@ -153,7 +143,7 @@ pub fn parse(text: &str, file: &str) -> Result<Model> {
         Some(other) => {
             return Err(err(
                 "kind".into(),
-                format!("unknown kind `{other}`; expected system, occupant, seat or planar"),
+                format!("unknown kind `{other}`; expected system, occupant or seat"),
             ));
         }
     };
@@ -417,7 +407,7 @@ pub fn parse(text: &str, file: &str) -> Result<Model> {
     let measure_spec = match (&spec.measure, top) {
         (Some(m), _) => m,
         (None, Some(t)) => {
-            return Ok(Model {
+            return Ok(Chain {
                 name: spec.name,
                 description: spec.description,
                 source: spec.source,
@@ -431,7 +421,6 @@ pub fn parse(text: &str, file: &str) -> Result<Model> {
                 kind,
                 top,
                 text: text.to_string(),
-                planar: None,
             });
         }
         (None, None) => {
@@ -479,7 +468,7 @@ pub fn parse(text: &str, file: &str) -> Result<Model> {
         }
         interface.push(li);
     }
-    Ok(Model {
+    Ok(Chain {
         name: spec.name,
         description: spec.description,
         source: spec.source,
@@ -493,19 +482,7 @@ pub fn parse(text: &str, file: &str) -> Result<Model> {
         kind,
         top,
         text: text.to_string(),
-        planar: None,
     })
-}
-
-/// True when the file says `kind = "planar"` (its own format, [`crate::planar::file`]).
-fn is_planar(text: &str) -> bool {
-    toml::from_str::<toml::Table>(text)
-        .ok()
-        .and_then(|t| {
-            t.get("kind")
-                .and_then(|k| k.as_str().map(|k| k == "planar"))
-        })
-        .unwrap_or(false)
 }
 
 #[cfg(test)]
@@ -542,7 +519,7 @@ interface = ["lower"]
 
     #[test]
     fn parses_and_converts_damping_ratio() {
-        let m = parse(GOOD, "good.toml").unwrap();
+        let m = parse(GOOD, "good.toml", &crate::model::catalog::resolve_chain).unwrap();
         assert_eq!(m.dof(), 2);
         let c = m.links[1].element.parallel_damping();
         assert!((c - 2.0 * 0.1 * (2000.0f64 * 5.0).sqrt()).abs() < 1e-12);
@@ -551,7 +528,9 @@ interface = ["lower"]
 
     fn bad(from: &str, to: &str) -> String {
         let text = GOOD.replacen(from, to, 1);
-        parse(&text, "bad.toml").unwrap_err().to_string()
+        parse(&text, "bad.toml", &crate::model::catalog::resolve_chain)
+            .unwrap_err()
+            .to_string()
     }
 
     #[test]

@@ -11,7 +11,6 @@
 //! ([`super::linearise`]): summed over all contacts, their vertical components equal the body's
 //! vertical momentum rate.
 
-use super::Planar;
 use super::Spec;
 use super::equilibrium::Equilibrium;
 
@@ -58,23 +57,4 @@ pub fn contact_links(spec: &Spec, eq: &Equilibrium) -> Vec<ContactLink> {
         }
     }
     out
-}
-
-/// Indexes into [`contact_links`] whose tensions sum to minus the seat-surface force on the body:
-/// the normal links of the cushion contacts (vertical for a level seat pan).
-pub fn interface(links: &[ContactLink]) -> Vec<usize> {
-    links
-        .iter()
-        .enumerate()
-        .filter(|(_, l)| l.role == "cushion" && l.name.ends_with("_n"))
-        .map(|(i, _)| i)
-        .collect()
-}
-
-/// Rows `∂(x, z)/∂q` of the head's centre of mass at the equilibrium, when a head is defined.
-pub fn head_jacobian(p: &Planar) -> Option<[Vec<f64>; 2]> {
-    let s = p.spec.head?;
-    let pos = &p.spec.posture;
-    let pl = pos.place(&p.equilibrium.q);
-    Some(pos.jacobian(&pl, s, pos.segments[s].com))
 }

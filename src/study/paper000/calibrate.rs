@@ -7,7 +7,7 @@
 //! Residuals are relative errors, so every target weighs the same.
 
 use crate::error::{Error, Result};
-use crate::model::{Model, params};
+use crate::model::Model;
 use crate::response::{frf, peak};
 
 /// Paper 000 §3 mode frequencies, Hz.
@@ -46,8 +46,8 @@ pub struct Figures {
 pub fn figures(model: &Model, points: usize) -> Result<Figures> {
     let grid = frf::grid(1.0, 12.0, points, false)?;
     let mut rigid = model.clone();
-    params::set(&mut rigid, "cushion.thickness", 0.0)?;
-    let modes = crate::response::modes::undamped(&rigid)?
+    rigid.set("cushion.thickness", 0.0)?;
+    let modes = crate::response::modes::undamped(rigid.system())?
         .iter()
         .take(4)
         .map(|m| m.freq_hz)
@@ -55,8 +55,8 @@ pub fn figures(model: &Model, points: usize) -> Result<Figures> {
     let mut peaks = Vec::new();
     for (t, ..) in PAPER_TABLE4 {
         let mut m = model.clone();
-        params::set(&mut m, "cushion.thickness", t)?;
-        let set = frf::compute(&m, &grid)?;
+        m.set("cushion.thickness", t)?;
+        let set = frf::compute(m.system(), &grid)?;
         let pk = |name: &str| {
             set.get(name)
                 .and_then(|r| peak::global_peak(&grid, &r.magnitude()))
@@ -108,7 +108,7 @@ fn to_physical(u: &[f64]) -> Vec<f64> {
 fn apply(model: &Model, p: &[f64]) -> Result<Model> {
     let mut m = model.clone();
     for ((path, ..), v) in PARAMETERS.iter().zip(p) {
-        params::set(&mut m, path, *v)?;
+        m.set(path, *v)?;
     }
     Ok(m)
 }
@@ -118,7 +118,7 @@ pub fn calibrate(model: &Model) -> Result<Calibration> {
     const POINTS: usize = 221;
     let start: Vec<f64> = PARAMETERS
         .iter()
-        .map(|(path, ..)| params::get(model, path))
+        .map(|(path, ..)| model.get(path))
         .collect::<Result<_>>()?;
     let u0: Vec<f64> = start
         .iter()

@@ -7,7 +7,7 @@
 //! cannot pull).
 //!
 //! Cushion layers. The foam's normal stiffness and damping under its static load come from the
-//! hyperfoam of paper 000 eq. 1 via [`crate::study::foam::Foam::cushion`] (thickness dependent,
+//! hyperfoam of paper 000 eq. 1 via [`crate::model::material::Foam::cushion`] (thickness dependent,
 //! `k ∝ A/t`); with `n_i = 0` the foam has zero Poisson's ratio, so its shear modulus is half its
 //! tangent Young's modulus and the shear stiffness is `k/2`. In series with it is the soft tissue
 //! under the bones, the muscle of paper 000 §3 (Mooney–Rivlin `X₁ = 1.65 kPa`, `X₂ = 3.35 kPa`, so
@@ -17,7 +17,7 @@
 //! frequency and written as a Kelvin–Voigt element `k = Re k*`, `c = Im k*/ω_ref`.
 
 use crate::error::{Error, Result};
-use crate::study::foam::Foam;
+use crate::model::material::Foam;
 use num_complex::Complex64;
 use std::f64::consts::PI;
 

@@ -11,7 +11,6 @@
 
 use super::Spec;
 use super::contact::Coefficients;
-use super::equilibrium::Equilibrium;
 use super::posture::{Placement, Posture, pitch_dof};
 use nalgebra::{DMatrix, DVector};
 
@@ -140,17 +139,17 @@ pub fn damping(spec: &Spec, coef: &[Coefficients], q: &[f64]) -> DMatrix<f64> {
     c
 }
 
-/// The linear system about the equilibrium.
-pub fn linearise(spec: &Spec, eq: &Equilibrium) -> Linear {
+/// The linear system about the equilibrium `q` with the contact coefficients `coef` under its loads.
+pub fn linearise(spec: &Spec, q: &[f64], coef: &[Coefficients]) -> Linear {
     let n = spec.posture.dof();
     let mut r_x = DVector::zeros(n);
     let mut r_z = DVector::zeros(n);
     r_x[0] = 1.0;
     r_z[1] = 1.0;
     Linear {
-        m: mass(&spec.posture, &eq.q),
-        c: damping(spec, &eq.coefficients, &eq.q),
-        k: stiffness(spec, &eq.coefficients, &eq.q),
+        m: mass(&spec.posture, q),
+        c: damping(spec, coef, q),
+        k: stiffness(spec, coef, q),
         r_z,
         r_x,
     }

@@ -1,14 +1,11 @@
 //! Named model parameters (`mass.<name>.m`, `link.<name>.k`, …) for sweeps, sensitivity studies,
 //! calibration and the gap diagnosis. Values are SI: kg, N/m, N·s/m, N/m³, m, N, m/s.
 
-use super::{Element, Law, Model};
+use super::{Chain, Element, Law};
 use crate::error::{Error, Result};
 
 /// Every parameter path of `model`, in model order.
-pub fn list(model: &Model) -> Vec<String> {
-    if let Some(p) = &model.planar {
-        return crate::planar::params::list(&p.spec);
-    }
+pub fn list(model: &Chain) -> Vec<String> {
     let mut out: Vec<String> = model
         .masses
         .iter()
@@ -33,7 +30,7 @@ pub fn list(model: &Model) -> Vec<String> {
     out
 }
 
-fn slot<'a>(model: &'a mut Model, path: &str) -> Result<&'a mut f64> {
+fn slot<'a>(model: &'a mut Chain, path: &str) -> Result<&'a mut f64> {
     let unknown = || {
         Error::parameter(
             path,
@@ -78,20 +75,14 @@ fn slot<'a>(model: &'a mut Model, path: &str) -> Result<&'a mut f64> {
 }
 
 /// The value of parameter `path`.
-pub fn get(model: &Model, path: &str) -> Result<f64> {
-    if model.planar.is_some() {
-        return crate::planar::params::get(model, path);
-    }
+pub fn get(model: &Chain, path: &str) -> Result<f64> {
     let mut m = model.clone();
     slot(&mut m, path).map(|v| *v)
 }
 
 /// Sets parameter `path` to `value`, refusing values that make the model unphysical (masses and
 /// Maxwell/Zener arms must stay positive, everything else non-negative).
-pub fn set(model: &mut Model, path: &str, value: f64) -> Result<()> {
-    if model.planar.is_some() {
-        return crate::planar::params::set(model, path, value);
-    }
+pub fn set(model: &mut Chain, path: &str, value: f64) -> Result<()> {
     let must_be_positive = path.starts_with("mass.")
         || path.ends_with(".k_m")
         || path.ends_with(".c_m")
@@ -112,4 +103,16 @@ pub fn set(model: &mut Model, path: &str, value: f64) -> Result<()> {
     }
     *slot(model, path)? = value;
     Ok(())
+}
+
+impl Chain {
+    /// The value of parameter `path` ([`get`]).
+    pub fn get(&self, path: &str) -> Result<f64> {
+        get(self, path)
+    }
+
+    /// Sets parameter `path` to `value` ([`set`]).
+    pub fn set(&mut self, path: &str, value: f64) -> Result<()> {
+        set(self, path, value)
+    }
 }

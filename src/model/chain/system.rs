@@ -1,0 +1,228 @@
+//! A chain model as a [`System`]: one vertical coordinate per mass (base-relative, m), a diagonal
+//! mass matrix, `r = 1`, and each link a row `e_upper − e_lower` (free-body diagram of mass `i`: a
+//! link with tension `t` pulls its upper node down and its lower node up, so
+//! `m_i·z̈_i = Σ_{l: a=i} (−t_l) + Σ_{l: b=i} t_l`; papers 001 eqs. 1–6, 002 eqs. 1–3).
+//!
+//! Channels: `a_base_z`, `a_seat_z` (the seat mass, or the base for a rigid seat), `a_head_z` when a
+//! head is defined, `f_seat_z = −Σ t_interface` (the seat-surface force on the body, static weight
+//! removed) when interface links are defined. Responses: `stht = head/seat`, `seat`,
+//! `apms = f_seat_z/seat` (kg), `dpmi = iω·apms` (N·s/m), `t_<mass>`.
+
+use super::{Chain, Node};
+use crate::system::{
+    Channel, Dof, Link, Output, ResponseDef, Role, Rule, Scene, SceneBody, System, Unit,
+};
+use nalgebra::{DMatrix, DVector};
+
+/// Vertical distance between stacked masses at rest in the 3-D replay, m (display only).
+const LEVEL_SPACING: f64 = 0.2;
+
+/// Box size and colour of a body of `role` in the 3-D replay.
+fn look(role: Role) -> ([f64; 3], [f64; 4]) {
+    match role {
+        Role::Cushion => ([0.45, 0.45, 0.06], [0.2, 0.4, 0.8, 1.0]),
+        Role::Suspension => ([0.5, 0.5, 0.05], [0.5, 0.5, 0.5, 1.0]),
+        Role::Frame => ([0.5, 0.5, 0.05], [0.3, 0.3, 0.3, 1.0]),
+        _ => ([0.3, 0.3, 0.1], [0.9, 0.7, 0.5, 1.0]),
+    }
+}
+
+fn row(a: Node, b: Node) -> Vec<(usize, f64)> {
+    let mut r = Vec::with_capacity(2);
+    if let Node::Mass(i) = a {
+        r.push((i, 1.0));
+    }
+    if let Node::Mass(j) = b {
+        r.push((j, -1.0));
+    }
+    r
+}
+
+impl Chain {
+    /// Builds the chain's [`System`].
+    pub fn system(&self) -> System {
+        let n = self.dof();
+        let node = |nd: Node| self.node_name(nd).to_string();
+        let links: Vec<Link> = self
+            .links
+            .iter()
+            .map(|l| Link {
+                name: l.name.clone(),
+                role: l.role,
+                nodes: (node(l.a), node(l.b)),
+                row: row(l.a, l.b),
+                element: l.element,
+                law: l.law,
+                // A body link's deflection is the difference of two recorded displacements.
+                record_deflection: matches!(l.role, Role::Cushion | Role::Suspension),
+            })
+            .collect();
+        let mut channels = vec![
+            Channel {
+                name: "a_base_z".into(),
+                unit: "m/s²",
+                measured: true,
+                rule: Rule::Kinematic {
+                    row: vec![],
+                    base: 1.0,
+                },
+            },
+            Channel {
+                name: "a_seat_z".into(),
+                unit: "m/s²",
+                measured: true,
+                rule: match self.measure.seat {
+                    Node::Base => Rule::Kinematic {
+                        row: vec![],
+                        base: 1.0,
+                    },
+                    Node::Mass(i) => Rule::Kinematic {
+                        row: vec![(i, 1.0)],
+                        base: 0.0,
+                    },
+                },
+            },
+        ];
+        let seat = Output::Channel(1);
+        let mut responses = Vec::new();
+        if let Some(h) = self.measure.head {
+            channels.push(Channel {
+                name: "a_head_z".into(),
+                unit: "m/s²",
+                measured: true,
+                rule: Rule::Kinematic {
+                    row: vec![(h, 1.0)],
+                    base: 0.0,
+                },
+            });
+            responses.push(ResponseDef {
+                name: "stht".into(),
+                unit: "1",
+                num: Output::Channel(channels.len() - 1),
+                den: Some(seat),
+                times_i_omega: false,
+            });
+        }
+        responses.push(ResponseDef {
+            name: "seat".into(),
+            unit: "1",
+            num: seat,
+            den: None,
+            times_i_omega: false,
+        });
+        if !self.measure.interface.is_empty() {
+            channels.push(Channel {
+                name: "f_seat_z".into(),
+                unit: "N",
+                measured: true,
+                rule: Rule::Force {
+                    links: self.measure.interface.iter().map(|&l| (l, -1.0)).collect(),
+                },
+            });
+            let f = Output::Channel(channels.len() - 1);
+            for (name, unit, times_i_omega) in [("apms", "kg", false), ("dpmi", "N·s/m", true)] {
+                responses.push(ResponseDef {
+                    name: name.into(),
+                    unit,
+                    num: f,
+                    den: Some(seat),
+                    times_i_omega,
+                });
+            }
+        }
+        for (i, m) in self.masses.iter().enumerate() {
+            responses.push(ResponseDef {
+                name: format!("t_{}", m.name),
+                unit: "1",
+                num: Output::Dof(i),
+                den: None,
+                times_i_omega: false,
+            });
+        }
+        System {
+            name: self.name.clone(),
+            dofs: self
+                .masses
+                .iter()
+                .map(|m| Dof {
+                    name: m.name.clone(),
+                    role: m.role,
+                    unit: Unit::Metre,
+                })
+                .collect(),
+            m: DMatrix::from_diagonal(&DVector::from_iterator(n, self.masses.iter().map(|m| m.m))),
+            k0: DMatrix::zeros(n, n),
+            c0: DMatrix::zeros(n, n),
+            r: DVector::from_element(n, 1.0),
+            r_x: DVector::zeros(n),
+            scene: self.scene(),
+            links,
+            channels,
+            responses,
+            motions: Vec::new(),
+            statics: None,
+        }
+    }
+
+    /// The 3-D replay: a base plate and a box per mass stacked at `LEVEL_SPACING · level` (level =
+    /// number of links down to the base), a line per link.
+    fn scene(&self) -> Scene {
+        let n = self.dof();
+        let idx = |nd: Node| match nd {
+            Node::Base => 0,
+            Node::Mass(i) => i + 1,
+        };
+        // Longest path down to the base, by relaxation (at most n rounds for an acyclic chain).
+        let mut level: Vec<usize> = vec![0; n];
+        for _ in 0..n {
+            for l in &self.links {
+                if let Node::Mass(u) = l.a {
+                    let below = match l.b {
+                        Node::Base => 0,
+                        Node::Mass(b) => level[b],
+                    };
+                    level[u] = level[u].max(below + 1);
+                }
+            }
+        }
+        let none = || [Vec::new(), Vec::new(), Vec::new()];
+        let mut bodies = vec![SceneBody {
+            name: "base".into(),
+            rest: [0.0, 0.0],
+            angle: 0.0,
+            size: [0.6, 0.6, 0.02],
+            color: [0.2, 0.2, 0.2, 1.0],
+            jacobian: none(),
+            frame: false,
+        }];
+        for (i, m) in self.masses.iter().enumerate() {
+            let lv = if level[i] == 0 { i + 1 } else { level[i] };
+            let (size, color) = look(m.role);
+            bodies.push(SceneBody {
+                name: m.name.clone(),
+                rest: [0.0, LEVEL_SPACING * lv as f64],
+                angle: 0.0,
+                size,
+                color,
+                jacobian: [Vec::new(), vec![(i, 1.0)], Vec::new()],
+                frame: true,
+            });
+        }
+        let lines = self
+            .links
+            .iter()
+            .map(|l| {
+                let mut color = look(l.role).1;
+                color[3] = 0.8;
+                (idx(l.b), idx(l.a), color)
+            })
+            .collect();
+        let top = bodies.iter().map(|b| b.rest[1]).fold(0.0, f64::max) + 0.25;
+        Scene {
+            bodies,
+            lines,
+            label: "displacements".into(),
+            label_z: top,
+        }
+    }
+}
