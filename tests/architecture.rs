@@ -1,0 +1,294 @@
+//! The dependency graph of `src/` is one-way: no import cycle between modules at any depth, and no
+//! top-level import that points up the layer table of `docs/architecture.md`.
+//!
+//! Edges come from the `crate::…` and `super::…` paths of each file (outside its `#[cfg(test)]`
+//! part and comments). An edge between two modules is lifted to the children of their lowest
+//! common ancestor (`analysis::report → analysis::stream` is an edge between siblings); a module
+//! using its own ancestor's items is containment, not an edge.
+
+use std::collections::{BTreeMap, BTreeSet};
+use std::path::Path;
+
+type Module = Vec<String>;
+
+fn modules() -> BTreeMap<Module, String> {
+    fn walk(dir: &Path, out: &mut BTreeMap<Module, String>) {
+        let mut entries: Vec<_> = std::fs::read_dir(dir)
+            .unwrap()
+            .map(|e| e.unwrap().path())
+            .collect();
+        entries.sort();
+        for p in entries {
+            if p.is_dir() {
+                walk(&p, out);
+            } else if p.extension().is_some_and(|e| e == "rs") {
+                let rel = p.strip_prefix("src").unwrap().with_extension("");
+                let mut parts: Module = rel
+                    .components()
+                    .map(|c| c.as_os_str().to_string_lossy().into_owned())
+                    .collect();
+                if parts.last().is_some_and(|l| l == "mod") {
+                    parts.pop();
+                }
+                if parts == ["lib"] || parts == ["main"] {
+                    continue;
+                }
+                out.insert(parts, std::fs::read_to_string(&p).unwrap());
+            }
+        }
+    }
+    let mut out = BTreeMap::new();
+    walk(Path::new("src"), &mut out);
+    out
+}
+
+/// The code of a file without its test module and comments.
+fn code(text: &str) -> String {
+    let body = text.split("#[cfg(test)]").next().unwrap_or("");
+    body.lines()
+        .map(|l| l.split("//").next().unwrap_or(""))
+        .collect::<Vec<_>>()
+        .join("\n")
+}
+
+/// `crate::a::b::c` or `super::x::y` paths in `code`, as (root, segments).
+fn paths(code: &str) -> Vec<(String, Vec<String>)> {
+    let mut out = Vec::new();
+    for root in ["crate", "super"] {
+        let mut rest = code;
+        while let Some(i) = rest.find(root) {
+            let before = rest[..i].chars().last();
+            rest = &rest[i + root.len()..];
+            if before.is_some_and(|c| c.is_alphanumeric() || c == '_') {
+                continue;
+            }
+            let mut segs = Vec::new();
+            let mut tail = rest;
+            while let Some(t) = tail.strip_prefix("::") {
+                let name: String = t
+                    .chars()
+                    .take_while(|c| c.is_alphanumeric() || *c == '_')
+                    .collect();
+                if name.is_empty() {
+                    break;
+                }
+                tail = &t[name.len()..];
+                segs.push(name);
+            }
+            // A group `…::{a::b, c}`: one path per item.
+            if let Some(group) = tail.strip_prefix("::{") {
+                let mut depth = 1;
+                let end = group
+                    .char_indices()
+                    .find(|&(_, c)| {
+                        depth += match c {
+                            '{' => 1,
+                            '}' => -1,
+                            _ => 0,
+                        };
+                        depth == 0
+                    })
+                    .map_or(group.len(), |(i, _)| i);
+                for item in group[..end].split([',', '{', '}']) {
+                    let item: Vec<String> = item
+                        .trim()
+                        .split("::")
+                        .map(|s| s.trim().to_string())
+                        .filter(|s| {
+                            !s.is_empty() && s.chars().all(|c| c.is_alphanumeric() || c == '_')
+                        })
+                        .collect();
+                    if !item.is_empty() {
+                        out.push((root.to_string(), segs.iter().cloned().chain(item).collect()));
+                    }
+                }
+            } else if !segs.is_empty() {
+                out.push((root.to_string(), segs));
+            }
+        }
+    }
+    out
+}
+
+fn edges(mods: &BTreeMap<Module, String>) -> BTreeSet<(Module, Module)> {
+    let resolve = |parts: &[String]| -> Option<Module> {
+        (1..=parts.len())
+            .rev()
+            .map(|k| parts[..k].to_vec())
+            .find(|m| mods.contains_key(m))
+    };
+    let mut out = BTreeSet::new();
+    for (m, text) in mods {
+        for (root, segs) in paths(&code(text)) {
+            let full: Vec<String> = if root == "crate" {
+                segs
+            } else {
+                m[..m.len() - 1].iter().cloned().chain(segs).collect()
+            };
+            let Some(t) = resolve(&full) else { continue };
+            let common = m.iter().zip(&t).take_while(|(a, b)| a == b).count();
+            if common == m.len() || common == t.len() {
+                continue;
+            }
+            out.insert((m[..=common].to_vec(), t[..=common].to_vec()));
+        }
+    }
+    out
+}
+
+/// Strongly connected components with more than one module (Tarjan).
+fn cycles(edges: &BTreeSet<(Module, Module)>) -> Vec<Vec<Module>> {
+    let nodes: BTreeSet<&Module> = edges.iter().flat_map(|(a, b)| [a, b]).collect();
+    let nodes: Vec<&Module> = nodes.into_iter().collect();
+    let id = |m: &Module| nodes.iter().position(|n| *n == m).unwrap();
+    let mut adj = vec![Vec::new(); nodes.len()];
+    for (a, b) in edges {
+        adj[id(a)].push(id(b));
+    }
+    struct T {
+        index: Vec<Option<usize>>,
+        low: Vec<usize>,
+        stack: Vec<usize>,
+        on: Vec<bool>,
+        next: usize,
+        out: Vec<Vec<usize>>,
+    }
+    fn visit(v: usize, adj: &[Vec<usize>], t: &mut T) {
+        t.index[v] = Some(t.next);
+        t.low[v] = t.next;
+        t.next += 1;
+        t.stack.push(v);
+        t.on[v] = true;
+        for &w in &adj[v] {
+            match t.index[w] {
+                None => {
+                    visit(w, adj, t);
+                    t.low[v] = t.low[v].min(t.low[w]);
+                }
+                Some(iw) if t.on[w] => t.low[v] = t.low[v].min(iw),
+                _ => {}
+            }
+        }
+        if Some(t.low[v]) == t.index[v] {
+            let mut comp = Vec::new();
+            loop {
+                let w = t.stack.pop().unwrap();
+                t.on[w] = false;
+                comp.push(w);
+                if w == v {
+                    break;
+                }
+            }
+            if comp.len() > 1 {
+                t.out.push(comp);
+            }
+        }
+    }
+    let n = nodes.len();
+    let mut t = T {
+        index: vec![None; n],
+        low: vec![0; n],
+        stack: Vec::new(),
+        on: vec![false; n],
+        next: 0,
+        out: Vec::new(),
+    };
+    for v in 0..n {
+        if t.index[v].is_none() {
+            visit(v, &adj, &mut t);
+        }
+    }
+    t.out
+        .into_iter()
+        .map(|c| c.into_iter().map(|i| nodes[i].clone()).collect())
+        .collect()
+}
+
+/// Layer of each top-level module from the table of `docs/architecture.md`.
+fn layers() -> BTreeMap<String, usize> {
+    let doc = std::fs::read_to_string("docs/architecture.md").unwrap();
+    let mut out = BTreeMap::new();
+    for line in doc.lines() {
+        let cells: Vec<&str> = line.split('|').map(str::trim).collect();
+        if cells.len() < 4 {
+            continue;
+        }
+        if let Ok(layer) = cells[1].parse::<usize>() {
+            for m in cells[2].split(',') {
+                assert!(
+                    out.insert(m.trim().to_string(), layer).is_none(),
+                    "{m} listed twice"
+                );
+            }
+        }
+    }
+    out
+}
+
+#[test]
+fn the_module_graph_has_no_cycle() {
+    let mods = modules();
+    let e = edges(&mods);
+    assert!(
+        e.len() > 50,
+        "too few edges found ({}): parser broken?",
+        e.len()
+    );
+    let found = cycles(&e);
+    let text: Vec<String> = found
+        .iter()
+        .map(|c| {
+            c.iter()
+                .map(|m| m.join("::"))
+                .collect::<Vec<_>>()
+                .join(" ⇄ ")
+        })
+        .collect();
+    assert!(found.is_empty(), "import cycles: {text:#?}");
+}
+
+#[test]
+fn top_level_imports_point_down_the_documented_layers() {
+    let mods = modules();
+    let layer = layers();
+    let top: BTreeSet<&String> = mods.keys().map(|m| &m[0]).collect();
+    for m in &top {
+        assert!(
+            layer.contains_key(*m),
+            "module `{m}` is not in the layer table of docs/architecture.md"
+        );
+    }
+    for m in layer.keys() {
+        assert!(
+            top.contains(m),
+            "docs/architecture.md lists `{m}`, which is not a module of src/"
+        );
+    }
+    let mut up = Vec::new();
+    for (a, b) in edges(&mods) {
+        if a.len() == 1 && layer[&a[0]] < layer[&b[0]] {
+            up.push(format!(
+                "{} (layer {}) imports {} (layer {})",
+                a[0], layer[&a[0]], b[0], layer[&b[0]]
+            ));
+        }
+    }
+    assert!(up.is_empty(), "imports up the layers: {up:#?}");
+}
+
+#[test]
+fn the_cycle_finder_finds_a_planted_cycle() {
+    let m = |s: &str| -> Module { s.split("::").map(String::from).collect() };
+    let mut e = BTreeSet::new();
+    e.insert((m("a"), m("b")));
+    e.insert((m("b"), m("c")));
+    assert!(cycles(&e).is_empty());
+    e.insert((m("c"), m("a")));
+    assert_eq!(cycles(&e).len(), 1);
+    let parsed = paths(
+        "use crate::model::catalog::Model; let x = super::stream::f(); use super::{a::B, c};",
+    );
+    assert_eq!(parsed.len(), 4);
+    assert_eq!(parsed[0].1, ["model", "catalog", "Model"]);
+    assert_eq!(parsed[3].1, ["c"]);
+}
