@@ -43,7 +43,7 @@ impl Scenario {
     pub fn simulate(
         &self,
         observers: &mut [&mut dyn Observer],
-        progress: Option<&indicatif::ProgressBar>,
+        progress: Option<&dyn Fn(u64)>,
     ) -> Result<()> {
         self.settings.validate()?;
         let mut exc = self.excitation.build(
@@ -117,7 +117,7 @@ impl Scenario {
     pub fn execute(
         &self,
         outputs: &Outputs,
-        progress: Option<&indicatif::ProgressBar>,
+        progress: Option<&dyn Fn(u64)>,
     ) -> Result<Outcome> {
         let start = std::time::Instant::now();
         let mut recorder = match &outputs.mcap {

@@ -82,7 +82,7 @@ pub fn execute(
         command_line: command_line(),
     };
     let bar = progress(scenario.settings.steps());
-    let outcome = scenario.execute(&outputs, Some(&bar))?;
+    let outcome = scenario.execute(&outputs, Some(&|n| bar.set_position(n)))?;
     bar.finish_and_clear();
     let memory = crate::io::memory::peak_resident_bytes().map_or(String::new(), |b| {
         format!(", peak memory {:.0} MB", b as f64 / 1e6)

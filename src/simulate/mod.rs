@@ -88,7 +88,7 @@ pub fn run(
     excitation: &mut dyn Excitation,
     settings: &Settings,
     observers: &mut [&mut dyn Observer],
-    progress: Option<&indicatif::ProgressBar>,
+    progress: Option<&dyn Fn(u64)>,
 ) -> Result<()> {
     settings.validate()?;
     let h = settings.excitation_step();
@@ -168,7 +168,7 @@ pub fn run(
         buf[0] = buf[block * s];
         done += block as u64;
         if let Some(p) = progress {
-            p.set_position(done);
+            p(done);
         }
     }
     Ok(())
