@@ -114,11 +114,7 @@ impl Scenario {
 
     /// Simulates, records (MCAP and/or CSV, each written atomically) and analyses the run; the
     /// analysis results are stored in the recording before it is completed.
-    pub fn execute(
-        &self,
-        outputs: &Outputs,
-        progress: Option<&dyn Fn(u64)>,
-    ) -> Result<Outcome> {
+    pub fn execute(&self, outputs: &Outputs, progress: Option<&dyn Fn(u64)>) -> Result<Outcome> {
         let start = std::time::Instant::now();
         let mut recorder = match &outputs.mcap {
             Some((path, options)) => Some(crate::record::McapRecorder::create(

@@ -163,7 +163,8 @@ impl Channel {
             Rule::Kinematic { row, base } => row
                 .iter()
                 .fold(base * a_base, |s, &(i, c)| s + c * (a[i] + r[i] * a_base)),
-            Rule::Force { links } => links.iter().fold(0.0, |s, &(l, w)| s + w * tension[l]),
+            // From −0: an all-zero force (the first step) keeps the sign a negated sum has.
+            Rule::Force { links } => links.iter().fold(-0.0, |s, &(l, w)| s + w * tension[l]),
         }
     }
 }
