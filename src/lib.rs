@@ -5,6 +5,8 @@
 //! frequencies are in Hz unless a name says `omega` (rad/s).
 
 pub mod analysis;
+#[cfg(feature = "cli")]
+#[doc(hidden)]
 pub mod cli;
 pub mod diagnosis;
 pub mod error;
@@ -12,6 +14,7 @@ pub mod excitation;
 pub mod integrator;
 pub mod io;
 pub mod model;
+#[cfg(feature = "plot")]
 pub mod plot;
 pub mod record;
 pub mod reproduce;

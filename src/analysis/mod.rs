@@ -6,6 +6,7 @@ pub mod figures;
 pub mod filter;
 pub mod health;
 pub mod octave;
+#[cfg(feature = "plot")]
 pub mod plots;
 pub mod report;
 pub mod seat;

@@ -10,6 +10,7 @@
 pub mod calibrate;
 pub mod evaluate;
 pub mod foam;
+#[cfg(feature = "plot")]
 pub mod heatmap;
 pub mod iso;
 pub mod paper000;
