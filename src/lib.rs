@@ -16,6 +16,7 @@ pub mod model;
 pub mod planar;
 pub mod plot;
 pub mod record;
+pub mod report;
 pub mod reproduce;
 pub mod response;
 pub mod scenario;

@@ -214,7 +214,7 @@ impl Health {
                 self.a_w_max, self.axis
             ),
             format!(
-                "  A(8) = {:.3} m/s²: {} ({A8_ACTION} and {A8_LIMIT} m/s² A(8)); the action value \
+                "  A(8) = {:.3} m/s²: {} (action value {A8_ACTION}, limit value {A8_LIMIT} m/s² A(8)); the action value \
                  is reached after {} a day, the limit value after {}",
                 self.a8,
                 self.a8_status.text(),
@@ -222,7 +222,7 @@ impl Health {
                 t(A8_LIMIT)
             ),
             format!(
-                "  VDV = {:.2} m/s^1.75 over {}: {} ({VDV_ACTION} and {VDV_LIMIT} m/s^1.75); the \
+                "  VDV = {:.2} m/s^1.75 over {}: {} (action value {VDV_ACTION}, limit value {VDV_LIMIT} m/s^1.75); the \
                  action value is reached after {} a day, the limit value after {}",
                 self.vdv_exposure,
                 hours_text(h),
