@@ -137,7 +137,11 @@ fn figures_table(out: &mut String, r: &Report) {
 
 /// The model's section: FRF magnitude and phase over 0.5–80 Hz (log axis) and the modes.
 fn model_html(out: &mut String, p: &Provenance) -> Result<()> {
-    let model = match crate::model::file::parse(&p.model_toml, "the run's stored model") {
+    // The stored text of a built-in model built from parts does not always parse alone; the
+    // catalogue entry of the same name is the same model.
+    let model = match crate::model::file::parse(&p.model_toml, "the run's stored model")
+        .or_else(|e| crate::model::catalog::resolve(&p.model).map_err(|_| e))
+    {
         Ok(m) => m,
         Err(e) => {
             let _ = write!(
