@@ -17,6 +17,8 @@ pub mod model;
 #[cfg(feature = "plot")]
 pub mod plot;
 pub mod record;
+#[cfg(feature = "plot")]
+pub mod report;
 pub mod reproduce;
 pub mod response;
 pub mod scenario;

@@ -10,7 +10,7 @@ fn frf_and_modes_work_on_every_builtin_model() {
     for (name, _) in wbv::model::catalog::BUILTIN {
         assert!(listing.contains(name), "`wbv models` lists {name}");
         let out = dir.path().join(format!("{name}.csv"));
-        let plot = dir.path().join(format!("{name}.svg"));
+        let plot = dir.path().join(name);
         let r = wbv(&[
             "frf",
             "--model",
@@ -21,6 +21,8 @@ fn frf_and_modes_work_on_every_builtin_model() {
             out.to_str().unwrap(),
             "--plot",
             plot.to_str().unwrap(),
+            "--plot-format",
+            "svg",
         ]);
         assert!(
             r.status.success(),
@@ -34,7 +36,7 @@ fn frf_and_modes_work_on_every_builtin_model() {
             "{header}"
         );
         assert_eq!(csv.lines().count(), 51);
-        assert!(plot.exists());
+        assert!(plot.join("frf.svg").exists());
         let r = wbv(&["modes", "--model", name, "--json"]);
         assert!(r.status.success(), "modes {name}");
         let json: serde_json::Value = serde_json::from_slice(&r.stdout).unwrap();
@@ -45,7 +47,7 @@ fn frf_and_modes_work_on_every_builtin_model() {
 #[test]
 fn png_plots_need_no_system_font() {
     let dir = tempfile::tempdir().unwrap();
-    let plot = dir.path().join("ref.png");
+    let plot = dir.path().join("plots");
     let r = wbv(&[
         "frf",
         "--points",
@@ -56,7 +58,7 @@ fn png_plots_need_no_system_font() {
         dir.path().join("a.csv").to_str().unwrap(),
     ]);
     assert!(r.status.success(), "{}", String::from_utf8_lossy(&r.stderr));
-    let bytes = std::fs::read(&plot).unwrap();
+    let bytes = std::fs::read(plot.join("frf.png")).unwrap();
     assert_eq!(&bytes[1..4], b"PNG");
 }
 

@@ -113,7 +113,7 @@ fn sweep_is_deterministic_and_plots_curves_heat_map_and_iso_figures() {
     sweep(&a, None);
     sweep(&b, None);
     assert_eq!(std::fs::read(&a).unwrap(), std::fs::read(&b).unwrap());
-    let plot = dir.path().join("p.svg");
+    let plot = dir.path().join("p");
     wbv(&[
         "sweep",
         "--model",
@@ -128,12 +128,14 @@ fn sweep_is_deterministic_and_plots_curves_heat_map_and_iso_figures() {
         "50",
         "--plot",
         plot.to_str().unwrap(),
+        "--plot-format",
+        "svg",
         "--excitation",
         "sine-4hz",
         "--duration",
         "4",
     ]);
-    for name in ["p.svg", "p-heatmap.svg", "p-iso.svg"] {
-        assert!(dir.path().join(name).exists(), "{name}");
+    for name in ["curves.svg", "heatmap.svg", "iso.svg"] {
+        assert!(plot.join(name).exists(), "{name}");
     }
 }

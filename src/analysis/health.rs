@@ -79,9 +79,89 @@ pub fn a8(a: f64, hours: f64) -> f64 {
 #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum DirectiveStatus {
+    /// At or below the exposure action value.
     BelowAction,
+    /// Above the exposure action value, at or below the exposure limit value.
     AboveAction,
+    /// Above the exposure limit value.
     AboveLimit,
+}
+
+impl DirectiveStatus {
+    /// The Directive's terms: "below the exposure action value", ….
+    pub fn text(self) -> &'static str {
+        match self {
+            DirectiveStatus::BelowAction => "at or below the exposure action value",
+            DirectiveStatus::AboveAction => {
+                "above the exposure action value, at or below the exposure limit value"
+            }
+            DirectiveStatus::AboveLimit => "above the exposure limit value",
+        }
+    }
+}
+
+impl Zone {
+    /// ISO 2631-1 Annex B.3.1 wording of the region.
+    pub fn text(self) -> &'static str {
+        match self {
+            Zone::Below => {
+                "below the health guidance caution zone: health effects have not been clearly \
+                 documented and/or objectively observed"
+            }
+            Zone::Caution => {
+                "in the health guidance caution zone: caution with respect to potential health \
+                 risks is indicated"
+            }
+            Zone::Above => "above the health guidance caution zone: health risks are likely",
+        }
+    }
+}
+
+/// Daily exposure in hours at which a constant `a_w` (m/s²) reaches A(8) = `value`:
+/// T = 8 h · (value / a_w)², from A(8) = a_w (T/8 h)^½ (Directive Annex A.1). Infinite for a_w = 0.
+pub fn hours_to_a8(a_w: f64, value: f64) -> f64 {
+    if a_w > 0.0 {
+        8.0 * (value / a_w).powi(2)
+    } else {
+        f64::INFINITY
+    }
+}
+
+/// Daily exposure in hours at which the dose reaches `value` m/s^1.75, given the dose `vdv` over
+/// `hours`: VDV grows as T^¼ (ISO 2631-1 eq. 5 for a stationary signal), so T = hours·(value/vdv)⁴.
+pub fn hours_to_vdv(vdv: f64, hours: f64, value: f64) -> f64 {
+    if vdv > 0.0 {
+        hours * (value / vdv).powi(4)
+    } else {
+        f64::INFINITY
+    }
+}
+
+/// Daily exposure in hours at which a constant `a_w` reaches the caution-zone boundary that is
+/// `bound_8h` m/s² at 8 h, along eq. B.1 (T ∝ a⁻²) or B.2 (T ∝ a⁻⁴).
+pub fn hours_to_zone(a_w: f64, bound_8h: f64, eq: ZoneEquation) -> f64 {
+    if a_w <= 0.0 {
+        return f64::INFINITY;
+    }
+    let p = match eq {
+        ZoneEquation::B1 => 2,
+        ZoneEquation::B2 => 4,
+    };
+    8.0 * (bound_8h / a_w).powi(p)
+}
+
+/// A duration in hours as a person reads it: `40 min`, `6.2 h`, or `more than 24 h` (a working
+/// day never reaches it).
+pub fn hours_text(h: f64) -> String {
+    if !h.is_finite() || h > 24.0 {
+        "more than 24 h".into()
+    } else if h < 1.0 / 60.0 {
+        "less than 1 min".into()
+    } else if h < 1.0 {
+        format!("{:.0} min", h * 60.0)
+    } else {
+        format!("{h:.1} h")
+    }
 }
 
 /// Status of a value against (action, limit).
@@ -114,6 +194,62 @@ pub struct Health {
     pub zone_b2: Zone,
 }
 
+impl Health {
+    /// The health assessment in the words of ISO 2631-1 (clause 7, Annex B) and Directive
+    /// 2002/44/EC, one line each: the exposure assumed, the basis, A(8) and VDV against the action
+    /// and limit values with the daily time to reach each, and the caution zone.
+    pub fn statement(&self) -> Vec<String> {
+        let h = self.exposure_hours;
+        let t = |v: f64| hours_text(hours_to_a8(self.a_w_max, v));
+        let tv = |v: f64| hours_text(hours_to_vdv(self.vdv_exposure, h, v));
+        let tz = |v: f64, eq| hours_text(hours_to_zone(self.a_w_max, v, eq));
+        vec![
+            format!(
+                "Health (ISO 2631-1 clause 7 and Annex B; Directive 2002/44/EC), assuming {} of \
+                 this vibration a day:",
+                hours_text(h)
+            ),
+            format!(
+                "  basis: the highest of 1.4·a_wx, 1.4·a_wy, a_wz on the seat = {:.3} m/s² ({} axis)",
+                self.a_w_max, self.axis
+            ),
+            format!(
+                "  A(8) = {:.3} m/s²: {} (action value {A8_ACTION}, limit value {A8_LIMIT} m/s² A(8)); the action value \
+                 is reached after {} a day, the limit value after {}",
+                self.a8,
+                self.a8_status.text(),
+                t(A8_ACTION),
+                t(A8_LIMIT)
+            ),
+            format!(
+                "  VDV = {:.2} m/s^1.75 over {}: {} (action value {VDV_ACTION}, limit value {VDV_LIMIT} m/s^1.75); the \
+                 action value is reached after {} a day, the limit value after {}",
+                self.vdv_exposure,
+                hours_text(h),
+                self.vdv_status.text(),
+                tv(VDV_ACTION),
+                tv(VDV_LIMIT)
+            ),
+            format!(
+                "  Figure B.1, eq. (B.1): {}; the zone is entered after {} a day and left after {}",
+                self.zone_b1.text(),
+                tz(CAUTION_8H.0, ZoneEquation::B1),
+                tz(CAUTION_8H.1, ZoneEquation::B1)
+            ),
+            format!(
+                "  Figure B.1, eq. (B.2): {}; the zone is entered after {} a day and left after {}",
+                self.zone_b2.text(),
+                tz(CAUTION_8H.0, ZoneEquation::B2),
+                tz(CAUTION_8H.1, ZoneEquation::B2)
+            ),
+        ]
+    }
+}
+
+/// Default daily exposure in hours when none is given (`wbv run`, `wbv report`): a working day,
+/// the reference duration T0 of A(8).
+pub const DEFAULT_EXPOSURE_HOURS: f64 = 8.0;
+
 /// Health figures from per-axis (axis name, a_w m/s², VDV m/s^1.75) of the seat surface measured
 /// over `run_s` seconds, for a daily exposure of `hours`.
 pub fn assess(axes: &[(String, f64, f64)], run_s: f64, hours: f64) -> Option<Health> {
@@ -139,4 +275,48 @@ pub fn assess(axes: &[(String, f64, f64)], run_s: f64, hours: f64) -> Option<Hea
         zone_b1: zone(a, hours, ZoneEquation::B1),
         zone_b2: zone(a, hours, ZoneEquation::B2),
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn times_to_the_values_invert_the_definitions() {
+        // a_w = 1 m/s²: A(8) = 0.5 after 8·0.25 = 2 h; 1.15 after 8·1.3225 = 10.58 h (hand values).
+        assert!((hours_to_a8(1.0, A8_ACTION) - 2.0).abs() < 1e-12);
+        assert!((hours_to_a8(1.0, A8_LIMIT) - 10.58).abs() < 1e-9);
+        // VDV 10 over 1 h reaches 20 after 16 h (2⁴).
+        assert!((hours_to_vdv(10.0, 1.0, 20.0) - 16.0).abs() < 1e-12);
+        assert_eq!(hours_text(0.5), "30 min");
+        assert_eq!(hours_text(30.0), "more than 24 h");
+        assert_eq!(hours_text(6.25), "6.2 h");
+    }
+
+    #[test]
+    fn the_statement_uses_the_standard_words_not_enum_names() {
+        let axes = vec![("z".to_string(), 0.8, 12.0)];
+        let h = assess(&axes, 60.0, 8.0).unwrap();
+        let text = h.statement().join("\n");
+        for word in [
+            "AboveLimit",
+            "AboveAction",
+            "BelowAction",
+            "Caution,",
+            "Above\n",
+        ] {
+            assert!(!text.contains(word), "{text}");
+        }
+        for word in [
+            "8.0 h",
+            "0.5",
+            "1.15",
+            "9.1",
+            "21",
+            "Directive 2002/44/EC",
+            "caution zone",
+        ] {
+            assert!(text.contains(word), "{word}: {text}");
+        }
+    }
 }

@@ -55,3 +55,49 @@ pub fn third_octave_bands(spectrum: &Spectrum, n_lo: i32, n_hi: i32) -> Vec<Band
         })
         .collect()
 }
+
+/// Frequency-weighted band r.m.s. values: each band's r.m.s. times the weighting's magnitude at
+/// the band's exact centre, W_i·a_i, the band form of ISO 2631-1:1997 eq. (6),
+/// a_w = [Σ (W_i a_i)²]^½, with the factors of ISO 2631-1 Tables 3–4 (ISO 8041-1 Annex B
+/// evaluates them at the exact centres 10^(n/10) Hz, as here). In the unit of the bands.
+pub fn weighted_bands(bands: &[Band], weighting: super::Weighting) -> Vec<Band> {
+    bands
+        .iter()
+        .map(|b| Band {
+            rms: b.rms * weighting.magnitude(b.centre_hz),
+            ..b.clone()
+        })
+        .collect()
+}
+
+/// The band-method weighted r.m.s. [Σ (W_i a_i)²]^½ of `weighted` bands (ISO 2631-1 eq. 6).
+pub fn band_total(weighted: &[Band]) -> f64 {
+    weighted.iter().map(|b| b.rms * b.rms).sum::<f64>().sqrt()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::analysis::Weighting;
+
+    #[test]
+    fn weighted_bands_use_the_standard_factors() {
+        // Wk factors at 1 Hz (0.4825) and 10 Hz (0.9884) from ISO 8041-1 Annex B, as quoted in
+        // shared/research/iso2631.md; Wd at 1 Hz is 1.011.
+        let bands: Vec<Band> = [0, 10]
+            .iter()
+            .map(|&n| Band {
+                n,
+                centre_hz: centre(n),
+                nominal_hz: nominal(n),
+                rms: 2.0,
+            })
+            .collect();
+        let wk = weighted_bands(&bands, Weighting::Wk);
+        assert!((wk[0].rms / 2.0 - 0.4825).abs() < 6e-4, "{}", wk[0].rms);
+        assert!((wk[1].rms / 2.0 - 0.9884).abs() < 6e-4, "{}", wk[1].rms);
+        let wd = weighted_bands(&bands, Weighting::Wd);
+        assert!((wd[0].rms / 2.0 - 1.011).abs() < 1e-3, "{}", wd[0].rms);
+        assert!((band_total(&wk) - (wk[0].rms.powi(2) + wk[1].rms.powi(2)).sqrt()).abs() < 1e-12);
+    }
+}

@@ -5,7 +5,7 @@
 use super::comfort::{self, Comfort};
 use super::figures as fig;
 use super::health::{self, Health};
-use super::octave::Band;
+use super::octave::{self, Band};
 use super::seat;
 use super::spectrum::WelchOptions;
 use super::weighting::Weighting;
@@ -80,6 +80,9 @@ pub struct Report {
     /// SEAT % from a_seat_z over a_base_z with Wk, when both exist.
     pub seat_percent: Option<f64>,
     pub health: Option<Health>,
+    /// Frequency-weighted one-third-octave band r.m.s. 0.5–80 Hz of each channel, m/s²: band
+    /// r.m.s. times the channel's weighting at the band centre (ISO 2631-1 eq. 6, Tables 3–4).
+    pub weighted_bands: BTreeMap<String, Vec<Band>>,
     /// Advice triggered by the figures (crest factor > 9, 6.3.3 ratios).
     pub notes: Vec<String>,
     /// Unit of every numeric key.
@@ -99,6 +102,7 @@ fn units() -> BTreeMap<String, String> {
         ("crest_factor", "1"),
         ("msdv", "m/s^1.5"),
         ("bands.rms", "m/s^2"),
+        ("weighted_bands.rms", "m/s^2"),
         ("total_value", "m/s^2"),
         ("seat_percent", "%"),
         ("health.a8", "m/s^2"),
@@ -175,6 +179,15 @@ impl Report {
             health::assess(&axes, duration_s, h)
         });
         let notes = channels.iter().flat_map(|c| c.notes(duration_s)).collect();
+        let weighted_bands = channels
+            .iter()
+            .map(|c| {
+                (
+                    c.name.clone(),
+                    octave::weighted_bands(&c.bands, c.weighting),
+                )
+            })
+            .collect();
         Report {
             source: source.to_string(),
             sample_rate_hz: fs,
@@ -185,6 +198,7 @@ impl Report {
             comfort_statement: comfort::overlap_statement(total_value),
             seat_percent,
             health,
+            weighted_bands,
             notes,
             channels,
             units: units(),

@@ -11,7 +11,8 @@ pub struct Args {
     /// `comfort`, …; units under `units`).
     #[arg(long)]
     json: bool,
-    /// Write PSD, weighted-PSD and transmissibility plots into this directory.
+    /// Write the run's figures into this directory (time histories, PSDs, weighted bands, running
+    /// r.m.s., transmissibilities, comfort and, with --exposure-hours, health).
     #[arg(long, value_name = "DIR")]
     plot: Option<PathBuf>,
     /// Plot file format.
@@ -32,6 +33,16 @@ pub struct Args {
 }
 
 pub fn run(args: Args) -> crate::Result<()> {
+    let ow = Overwrite::from_force(args.force);
+    // Refuse an overwrite before any work.
+    let plot = match &args.plot {
+        Some(dir) => {
+            let (dir, ext) = crate::plot::plot_dir(dir, &args.plot_format)?;
+            crate::plot::check_targets(&analysis::plots::plot_files(&dir, ext), ow)?;
+            Some((dir, ext))
+        }
+        None => None,
+    };
     let start = std::time::Instant::now();
     let signals = analysis::load_signals(&args.path)?;
     let loaded = start.elapsed().as_secs_f64();
@@ -54,15 +65,8 @@ pub fn run(args: Args) -> crate::Result<()> {
             signals.names.len()
         );
     }
-    if let Some(dir) = &args.plot {
-        let ow = if args.force {
-            Overwrite::Allow
-        } else {
-            Overwrite::Refuse
-        };
-        for p in
-            analysis::plots::write_plots(&signals, &report, &welch, dir, &args.plot_format, ow)?
-        {
+    if let Some((dir, ext)) = &plot {
+        for p in analysis::plots::write_plots(&signals, &report, &welch, dir, ext, ow)? {
             eprintln!("wrote {}", p.display());
         }
     }
@@ -117,18 +121,9 @@ pub(crate) fn print_table(r: &Report) {
         println!("SEAT (a_seat_z / a_base_z, Wk): {s:.1} %");
     }
     if let Some(h) = &r.health {
-        println!(
-            "Health ({} h, axis {}): A(8) = {:.3} m/s² ({:?}), VDV = {:.2} m/s^1.75 ({:?}); \
-             caution zone B.1: {:?}, B.2: {:?}",
-            h.exposure_hours,
-            h.axis,
-            h.a8,
-            h.a8_status,
-            h.vdv_exposure,
-            h.vdv_status,
-            h.zone_b1,
-            h.zone_b2
-        );
+        for line in h.statement() {
+            println!("{line}");
+        }
     }
     for n in &r.notes {
         println!("note: {n}");

@@ -24,9 +24,12 @@ pub struct Args {
     /// Output CSV (`freq_hz`, then `<response>_mag`, `<response>_phase_deg`); stdout if omitted.
     #[arg(long)]
     out: Option<PathBuf>,
-    /// Also draw the magnitudes to a PNG or SVG file.
-    #[arg(long)]
+    /// Also draw magnitude and phase as `DIR/frf.<format>` (log frequency axis with `--log`).
+    #[arg(long, value_name = "DIR")]
     plot: Option<PathBuf>,
+    /// Plot file format.
+    #[arg(long, default_value = "png", value_parser = ["png", "svg"])]
+    plot_format: String,
     /// Replace existing output files.
     #[arg(long)]
     force: bool,
@@ -54,17 +57,26 @@ fn write_csv(set: &frf::FrfSet, out: &mut dyn Write) -> std::io::Result<()> {
 }
 
 pub fn run(args: Args) -> crate::Result<()> {
+    let overwrite = Overwrite::from_force(args.force);
+    // Refuse an overwrite before any work.
+    let plot = match &args.plot {
+        Some(dir) => {
+            let (dir, ext) = crate::plot::plot_dir(dir, &args.plot_format)?;
+            let path = dir.join(format!("frf.{ext}"));
+            crate::plot::check_targets(std::slice::from_ref(&path), overwrite)?;
+            Some(path)
+        }
+        None => None,
+    };
+    if let Some(out) = &args.out {
+        crate::io::atomic::check_overwrite(out, overwrite)?;
+    }
     let mut model = args.model.resolve()?;
     if let Some(t) = args.foam_thickness {
         model.set_foam_thickness(t)?;
     }
     let freqs = frf::grid(args.from, args.to, args.points, args.log)?;
     let set = frf::compute(model.system(), &freqs)?;
-    let overwrite = if args.force {
-        Overwrite::Allow
-    } else {
-        Overwrite::Refuse
-    };
     match &args.out {
         Some(path) => write_atomic(path, overwrite, |w| {
             write_csv(&set, w).map_err(|e| Error::io(path, e))
@@ -73,8 +85,9 @@ pub fn run(args: Args) -> crate::Result<()> {
             write_csv(&set, &mut std::io::stdout().lock()).map_err(|e| Error::io("stdout", e))?
         }
     }
-    if let Some(path) = &args.plot {
-        crate::plot::frf_plot(&set, &model.name, path, overwrite)?;
+    if let Some(path) = &plot {
+        crate::plot::frf_plot(&set, &model.name, args.log, path, overwrite)?;
+        eprintln!("wrote {}", path.display());
     }
     Ok(())
 }

@@ -21,12 +21,25 @@ pub struct Args {
     /// Write the gap-map and before/after plots into this directory.
     #[arg(long, value_name = "DIR")]
     plot: Option<PathBuf>,
+    /// Plot file format.
+    #[arg(long, default_value = "png", value_parser = ["png", "svg"])]
+    plot_format: String,
     /// Replace existing plot files.
     #[arg(long)]
     force: bool,
 }
 
 pub fn run(args: Args) -> crate::Result<()> {
+    let ow = Overwrite::from_force(args.force);
+    let plot = match &args.plot {
+        // Refuse an overwrite before the diagnosis runs.
+        Some(dir) => {
+            let (dir, ext) = crate::plot::plot_dir(dir, &args.plot_format)?;
+            crate::plot::check_targets(&plot::files(&dir, ext), ow)?;
+            Some((dir, ext))
+        }
+        None => None,
+    };
     let model = catalog::resolve(&args.model)?;
     // The candidate effects edit a chain's masses and links (issue 15 brings them onto the system).
     let model = model.chain().cloned().ok_or_else(|| {
@@ -45,13 +58,8 @@ pub fn run(args: Args) -> crate::Result<()> {
         .collect::<crate::Result<Vec<_>>>()?;
     let check = crate::analysis::load_signals(&args.check)?;
     let d = diagnose(&model, &train, &check)?;
-    if let Some(dir) = &args.plot {
-        let ow = if args.force {
-            Overwrite::Allow
-        } else {
-            Overwrite::Refuse
-        };
-        plot::write(&d, dir, ow)?;
+    if let Some((dir, ext)) = &plot {
+        plot::write_as(&d, dir, ext, ow)?;
         eprintln!("wrote {}", dir.display());
     }
     if args.json {

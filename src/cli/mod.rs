@@ -13,6 +13,7 @@ mod inspect;
 mod models;
 mod modes;
 mod replay;
+mod report;
 mod reproduce;
 mod run;
 mod sensitivity;
@@ -42,6 +43,8 @@ enum Command {
     Modes(modes::Args),
     /// The main job: simulate, record and analyse the built-in default scenario.
     Run(run::Args),
+    /// One self-contained HTML report of a run: figures, comfort and health verdicts, charts.
+    Report(report::Args),
     /// Re-read a recorded run's signals and re-run its analysis.
     Replay(replay::Args),
     /// Simulate a model shaken by a base excitation (time domain).
@@ -140,6 +143,7 @@ pub fn main() -> ExitCode {
         Command::Reproduce(a) => reproduce::run(a),
         Command::Simulate(a) => simulate::run(a),
         Command::Run(a) => run::run(a),
+        Command::Report(a) => report::run(a),
         Command::Replay(a) => replay::run(a),
         Command::Excitations(a) => excitations::list(a),
         Command::StateSpace(a) => export::state_space(a),

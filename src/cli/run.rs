@@ -1,3 +1,4 @@
+use crate::analysis::health::{self, DEFAULT_EXPOSURE_HOURS};
 use crate::record::{RUN_FILE, RecordOptions};
 use crate::scenario::default_scenario;
 use std::path::PathBuf;
@@ -8,6 +9,9 @@ pub struct Args {
     /// Run directory (default: the first free `runs/default-s1[-N]`).
     #[arg(long)]
     out: Option<PathBuf>,
+    /// Daily exposure in hours assumed for the health assessment (default: a working day).
+    #[arg(long, default_value_t = DEFAULT_EXPOSURE_HOURS)]
+    exposure_hours: f64,
 }
 
 /// The first run directory under `runs/` whose recording does not exist yet, so an earlier run
@@ -21,12 +25,26 @@ fn free_dir(stem: &str) -> PathBuf {
                 PathBuf::from("runs").join(format!("{stem}-{n}"))
             }
         })
-        .find(|d| !d.join(RUN_FILE).exists())
+        .find(|d| !d.join(RUN_FILE).exists() && !d.join("report.html").exists())
         .expect("an unused name")
 }
 
 pub fn run(args: Args) -> crate::Result<()> {
+    if !(args.exposure_hours.is_finite() && args.exposure_hours > 0.0) {
+        return Err(crate::Error::parameter(
+            "--exposure-hours",
+            "expected a daily exposure in hours > 0",
+        ));
+    }
     let scenario = default_scenario()?;
+    let dir = args
+        .out
+        .unwrap_or_else(|| free_dir(&format!("default-s{}", scenario.seed)));
+    let mcap = dir.join(RUN_FILE);
+    let html = crate::report::default_path(&mcap);
+    // Both outputs are refused before the run if they exist.
+    crate::io::atomic::check_overwrite(&mcap, crate::io::atomic::Overwrite::Refuse)?;
+    crate::io::atomic::check_overwrite(&html, crate::io::atomic::Overwrite::Refuse)?;
     println!(
         "default scenario: `{}` ({}) under {} for {} s, dt {} s, seed {}",
         scenario.model.name,
@@ -36,13 +54,34 @@ pub fn run(args: Args) -> crate::Result<()> {
         scenario.settings.dt,
         scenario.seed
     );
-    let dir = args
-        .out
-        .unwrap_or_else(|| free_dir(&format!("default-s{}", scenario.seed)));
-    super::simulate::execute(&scenario, Some(&dir), RecordOptions::default(), None)?;
+    let outcome = super::simulate::execute(&scenario, Some(&dir), RecordOptions::default(), None)?;
+    if let Some(r) = &outcome.report {
+        let axes: Vec<_> = r
+            .channels
+            .iter()
+            .filter(|c| c.place == "seat")
+            .map(|c| (c.axis.clone(), c.a_w, c.vdv))
+            .collect();
+        if let Some(h) = health::assess(&axes, r.duration_s, args.exposure_hours) {
+            println!();
+            for line in h.statement() {
+                println!("{line}");
+            }
+        }
+    }
+    let settings = crate::report::Settings {
+        exposure_hours: args.exposure_hours,
+    };
+    crate::report::write(
+        &mcap,
+        &html,
+        &settings,
+        crate::io::atomic::Overwrite::Refuse,
+    )?;
+    println!("\nReport: {}", html.display());
     println!(
-        "\nOpen {} in Foxglove or Lichtblick (layout: tools/viewer/wbv-layout.json) or PlotJuggler.",
-        dir.join(RUN_FILE).display()
+        "Open {} in Foxglove or Lichtblick (layout: tools/viewer/wbv-layout.json) or PlotJuggler.",
+        mcap.display()
     );
     Ok(())
 }

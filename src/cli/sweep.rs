@@ -1,7 +1,7 @@
 use crate::error::Error;
 use crate::excitation::ExcitationArgs;
 use crate::io::atomic::{Overwrite, write_atomic};
-use crate::plot::{Chart, Series};
+use crate::plot::{Axis, Chart, Rule, Series, Style};
 use crate::response::frf;
 use crate::study::heatmap::{self, HeatMap};
 use crate::study::iso::IsoRun;
@@ -40,9 +40,13 @@ pub struct Args {
     /// `<stem>-peaks.csv` beside it. Peaks are printed when omitted.
     #[arg(long)]
     out: Option<PathBuf>,
-    /// Plot (.png/.svg): curves per value; the heat map goes to `<stem>-heatmap.<ext>`.
-    #[arg(long)]
+    /// Write plots into this directory: `curves` (every curve, coloured by value), `heatmap` and,
+    /// with an excitation, `iso` (ISO 2631-1 figures with the Annex C comfort ranges).
+    #[arg(long, value_name = "DIR")]
     plot: Option<PathBuf>,
+    /// Plot file format.
+    #[arg(long, default_value = "png", value_parser = ["png", "svg"])]
+    plot_format: String,
     /// Run only shard K of N (`K/N`); merge the outputs with `wbv merge-shards`.
     #[arg(long)]
     shard: Option<String>,
@@ -108,42 +112,109 @@ pub(crate) fn progress(len: usize) -> indicatif::ProgressBar {
     bar
 }
 
-fn plots(spec: &Spec, pts: &[Point], title: &str, path: &Path, ow: Overwrite) -> crate::Result<()> {
-    let label = |p: &Point| {
-        spec.params
-            .iter()
-            .zip(&p.values)
-            .map(|(q, v)| format!("{}={v}", q.spec))
-            .collect::<Vec<_>>()
-            .join(", ")
+/// `spec [unit]` for a swept parameter (units of [`crate::model::params`]; a damping ratio is
+/// dimensionless).
+fn param_axis(spec: &str) -> String {
+    let unit = if spec.contains(".zeta@") {
+        "-"
+    } else {
+        match spec.rsplit('.').next().unwrap_or("") {
+            "m" => "kg",
+            "k" | "k_m" | "k_stop" => "N/m",
+            "c" | "c_m" => "N·s/m",
+            "k3" => "N/m³",
+            "d_ref" | "gap" => "m",
+            "f_c" => "N",
+            "v_ref" => "m/s",
+            _ => "SI",
+        }
     };
-    let step = pts.len().div_ceil(12).max(1);
-    let chart = Chart {
-        title: format!("{title}: |{}|", spec.response),
-        x_label: "frequency [Hz]".into(),
-        y_label: format!("|{}|", spec.response),
-        series: pts
-            .iter()
-            .step_by(step)
-            .map(|p| Series {
-                label: label(p),
-                x: spec.freq_hz.clone(),
-                y: p.response.iter().map(|v| v.norm()).collect(),
-            })
-            .collect(),
-        ..Chart::default()
-    };
-    crate::plot::draw(&[chart], path, ow)?;
+    format!("{spec} [{unit}]")
+}
+
+/// The unit of a response's magnitude.
+fn response_unit(response: &str) -> &'static str {
+    if response.starts_with("apms") {
+        "kg"
+    } else if response.starts_with("dpmi") {
+        "N·s/m"
+    } else {
+        "-"
+    }
+}
+
+/// The plot files of a sweep in `dir`: curves, heat map and, with an excitation and one varying
+/// parameter, the ISO figures.
+fn plot_paths(dir: &Path, ext: &str, iso: bool) -> Vec<PathBuf> {
+    let mut v = vec![
+        dir.join(format!("curves.{ext}")),
+        dir.join(format!("heatmap.{ext}")),
+    ];
+    if iso {
+        v.push(dir.join(format!("iso.{ext}")));
+    }
+    v
+}
+
+fn plots(
+    spec: &Spec,
+    pts: &[Point],
+    title: &str,
+    paths: &[PathBuf],
+    ow: Overwrite,
+) -> crate::Result<()> {
     // Parameters with a single value are fixed settings, not axes.
     let axes: Vec<usize> = (0..spec.values.len())
         .filter(|&i| spec.values[i].len() > 1)
         .collect();
+    let a = axes.first().copied().unwrap_or(0);
+    let unit = response_unit(&spec.response);
+    // Every curve, coloured by the (first) varying parameter on a viridis scale with a colour bar.
+    let (lo, hi) = spec.values[a]
+        .iter()
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), v| {
+            (l.min(*v), h.max(*v))
+        });
+    let bar = crate::plot::ColourBar {
+        label: param_axis(&spec.params[a].spec),
+        lo,
+        hi,
+    };
+    let subtitle = match axes[..] {
+        [_, b, ..] => format!(
+            "all {} curves; colour: {}; {} values overlap at each colour",
+            pts.len(),
+            spec.params[a].spec,
+            spec.params[b].spec
+        ),
+        _ => format!("all {} curves; colour: {}", pts.len(), spec.params[a].spec),
+    };
+    let chart = Chart {
+        title: format!("{title}: |{}|", spec.response),
+        x_label: "frequency [Hz]".into(),
+        y_label: format!("|{}| [{unit}]", spec.response),
+        series: pts
+            .iter()
+            .map(|p| {
+                Series::line(
+                    "",
+                    spec.freq_hz.clone(),
+                    p.response.iter().map(|v| v.norm()).collect(),
+                )
+                .coloured(bar.colour(p.values[a]))
+            })
+            .collect(),
+        subtitle: Some(subtitle),
+        colour_bar: Some(bar),
+        ..Chart::default()
+    };
+    crate::plot::draw(&[chart], &paths[0], ow)?;
     let hm = match axes[..] {
         [a, b, ..] => HeatMap {
             title: format!("{title}: peak of |{}|", spec.response),
-            x_label: spec.params[b].spec.clone(),
-            y_label: spec.params[a].spec.clone(),
-            z_label: "peak".into(),
+            x_label: param_axis(&spec.params[b].spec),
+            y_label: param_axis(&spec.params[a].spec),
+            z_label: format!("peak |{}| [{unit}]", spec.response),
             x: spec.values[b].clone(),
             y: spec.values[a].clone(),
             z: spec.values[a]
@@ -156,26 +227,44 @@ fn plots(spec: &Spec, pts: &[Point], title: &str, path: &Path, ow: Overwrite) ->
                 })
                 .collect(),
         },
-        _ => {
-            let a = axes.first().copied().unwrap_or(0);
-            HeatMap {
-                title: title.into(),
-                x_label: "frequency [Hz]".into(),
-                y_label: spec.params[a].spec.clone(),
-                z_label: format!("|{}|", spec.response),
-                x: spec.freq_hz.clone(),
-                y: pts.iter().map(|p| p.values[a]).collect(),
-                z: pts
-                    .iter()
-                    .map(|p| p.response.iter().map(|v| v.norm()).collect())
-                    .collect(),
-            }
-        }
+        _ => HeatMap {
+            title: format!("{title}: |{}|", spec.response),
+            x_label: "frequency [Hz]".into(),
+            y_label: param_axis(&spec.params[a].spec),
+            z_label: format!("|{}| [{unit}]", spec.response),
+            x: spec.freq_hz.clone(),
+            y: pts.iter().map(|p| p.values[a]).collect(),
+            z: pts
+                .iter()
+                .map(|p| p.response.iter().map(|v| v.norm()).collect())
+                .collect(),
+        },
     };
-    heatmap::draw(&hm, &sibling(path, "-heatmap"), ow)
+    heatmap::draw(&hm, &paths[1], ow)
 }
 
 pub fn run(args: Args) -> crate::Result<()> {
+    let ow = overwrite(args.force);
+    // Every output is checked before the sweep runs, so a refusal costs nothing.
+    let plot_files = match &args.plot {
+        Some(dir) => {
+            let (dir, ext) = crate::plot::plot_dir(dir, &args.plot_format)?;
+            let files = plot_paths(&dir, ext, args.excitation.is_some());
+            crate::plot::check_targets(&files, ow)?;
+            Some(files)
+        }
+        None => None,
+    };
+    if let Some(out) = &args.out {
+        crate::io::atomic::check_overwrite(out, ow)?;
+        crate::io::atomic::check_overwrite(&sibling(out, "-peaks"), ow)?;
+    }
+    if args.plot.is_some() && args.shard.is_some() {
+        return Err(Error::parameter(
+            "--plot",
+            "plot the merged output, not a shard",
+        ));
+    }
     let model = args.model.resolve()?;
     if args.params.len() != args.values.len() {
         return Err(Error::parameter(
@@ -227,7 +316,6 @@ pub fn run(args: Args) -> crate::Result<()> {
     let bar = progress(shard.points(spec.grid().len()).len());
     let pts = sweep::run(&model, &spec, shard, &hooks, &|| bar.inc(1))?;
     bar.finish_and_clear();
-    let ow = overwrite(args.force);
     match &args.out {
         Some(out) => {
             write_atomic(out, ow, |w| {
@@ -241,23 +329,21 @@ pub fn run(args: Args) -> crate::Result<()> {
         None => sweep::write_peaks(&spec, &pts, &hooks, &mut std::io::stdout().lock())
             .map_err(|e| Error::io("stdout", e))?,
     }
-    if let Some(path) = &args.plot {
-        if shard.count > 1 {
-            return Err(Error::parameter(
-                "--plot",
-                "plot the merged output, not a shard",
-            ));
+    if let Some(files) = &plot_files {
+        plots(&spec, &pts, &model.name, files, ow)?;
+        if let (Some(iso), Some(path)) = (&iso, files.get(2)) {
+            iso_plot(&spec, &pts, &model.name, iso, path, ow)?;
         }
-        plots(&spec, &pts, &model.name, path, ow)?;
-        if let Some(iso) = &iso {
-            iso_plot(&spec, &pts, &model.name, iso, &sibling(path, "-iso"), ow)?;
+        for f in files.iter().filter(|f| f.exists()) {
+            eprintln!("wrote {}", f.display());
         }
     }
     Ok(())
 }
 
-/// The ISO figures over the swept parameter, when one parameter varies: weighted r.m.s. values in
-/// one panel, SEAT in the other.
+/// The ISO figures over the swept parameter, when one parameter varies: a_w of the seat (solid)
+/// and the total value a_v (dashed, with markers: the two coincide when only z is measured) over the
+/// shaded ISO 2631-1 Annex C comfort ranges, and SEAT in the other panel.
 fn iso_plot(
     spec: &Spec,
     pts: &[Point],
@@ -273,28 +359,37 @@ fn iso_plot(
         return Ok(());
     };
     let x: Vec<f64> = pts.iter().map(|p| p.values[a]).collect();
-    let series = |label: &str, col: usize| Series {
-        label: label.into(),
-        x: x.clone(),
-        y: pts.iter().map(|p| p.extra[col]).collect(),
+    let series = |label: &str, col: usize| {
+        Series::line(label, x.clone(), pts.iter().map(|p| p.extra[col]).collect())
     };
     let run = format!("{title}: ISO 2631-1 figures ({})", iso.excitation.origin);
+    let x_label = param_axis(&spec.params[a].spec);
     let charts = [
         Chart {
-            title: run.clone(),
-            x_label: spec.params[a].spec.clone(),
+            title: run,
+            x_label: x_label.clone(),
             y_label: "weighted r.m.s. [m/s²]".into(),
             series: vec![
                 series("a_w seat z (Wk)", 0),
-                series("a_v total (comfort, Annex C)", 1),
+                series("a_v total value (Annex C)", 1).styled(Style::Dashed),
+                series("", 1)
+                    .styled(Style::Markers)
+                    .coloured(crate::plot::colour::pick(1)),
             ],
+            spans: crate::analysis::plots::comfort_spans(),
             ..Chart::default()
         },
         Chart {
             title: "SEAT (seat z / base z, Wk)".into(),
-            x_label: spec.params[a].spec.clone(),
+            x_label,
             y_label: "SEAT [%]".into(),
             series: vec![series("SEAT", 2)],
+            rules: vec![Rule {
+                axis: Axis::Y,
+                at: 100.0,
+                label: "100 %: the seat neither attenuates nor amplifies".into(),
+                colour: (90, 90, 90),
+            }],
             ..Chart::default()
         },
     ];

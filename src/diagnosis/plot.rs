@@ -1,61 +1,100 @@
 //! Plots of a diagnosis: the gap map (one curve per path over the bands: the heat map's rows drawn
-//! as lines, greyed bands left out) and the before/after gap curves of the check run.
+//! as lines, untrusted bands left out as gaps) and the before/after gap curves of the check run,
+//! drawn with [`crate::plot`] (log frequency axis labelled 1-2-5, 0 dB marked).
 
 use super::{Diagnosis, Stage};
 use crate::error::Result;
 use crate::io::atomic::Overwrite;
-use crate::plot::{Chart, Series, draw};
-use std::path::Path;
+use crate::plot::{Axis, Chart, Rule, Series, Style, draw};
+use std::path::{Path, PathBuf};
 
+/// A path's gap over the bands; an untrusted band is a gap (NaN) in the curve.
 fn gap_series(label: &str, s: &[super::gapmap::BandCell], path: &str) -> Series {
     let (x, y): (Vec<f64>, Vec<f64>) = s
         .iter()
-        .filter(|c| c.path == path && c.trusted)
-        .map(|c| (c.band_hz, c.gap_db))
+        .filter(|c| c.path == path)
+        .map(|c| (c.band_hz, if c.trusted { c.gap_db } else { f64::NAN }))
         .unzip();
-    Series {
-        label: label.into(),
-        x,
-        y,
-    }
+    Series::line(label, x, y)
 }
 
-fn stage_chart(d: &Diagnosis, path: &str) -> Chart {
-    let mut stages: Vec<(String, &Stage)> = vec![
-        ("nominal".into(), &d.nominal),
-        ("re-fitted".into(), &d.null.check),
-    ];
-    for r in d.candidates.iter().take(2) {
-        stages.push((format!("+ {}", r.id), &r.check));
-    }
-    Chart {
-        title: format!("{path}: gap on the check run"),
-        x_label: "frequency (Hz)".into(),
-        y_label: "measured / model (dB)".into(),
-        log_x: true,
-        log_y: false,
-        series: stages
-            .iter()
-            .map(|(l, s)| gap_series(l, &s.cells, path))
-            .collect(),
-    }
+fn zero_db() -> Vec<Rule> {
+    vec![Rule {
+        axis: Axis::Y,
+        at: 0.0,
+        label: "0 dB: model = measurement".into(),
+        colour: (90, 90, 90),
+    }]
 }
 
-/// Writes `gap_map.png` (nominal replay gap per path) and `gap_stages.png` (before/after per path)
-/// into `dir`.
-pub fn write(d: &Diagnosis, dir: &Path, overwrite: Overwrite) -> Result<()> {
-    std::fs::create_dir_all(dir).map_err(|e| crate::error::Error::io(dir, e))?;
+/// The gap-map chart and the before/after charts (one per path).
+pub fn charts(d: &Diagnosis) -> (Chart, Vec<Chart>) {
     let mut paths: Vec<&str> = d.gap_map.iter().map(|c| c.path).collect();
     paths.dedup();
     let map = Chart {
         title: "gap map, nominal model replayed (trusted bands)".into(),
-        x_label: "frequency (Hz)".into(),
-        y_label: "measured / model (dB)".into(),
+        x_label: "frequency [Hz]".into(),
+        y_label: "measured / model [dB]".into(),
         log_x: true,
-        log_y: false,
-        series: paths.iter().map(|p| gap_series(p, &d.gap_map, p)).collect(),
+        series: paths
+            .iter()
+            .map(|p| gap_series(p, &d.gap_map, p).styled(Style::Line))
+            .collect(),
+        rules: zero_db(),
+        ..Chart::default()
     };
-    draw(&[map], &dir.join("gap_map.png"), overwrite)?;
-    let charts: Vec<Chart> = paths.iter().map(|p| stage_chart(d, p)).collect();
-    draw(&charts, &dir.join("gap_stages.png"), overwrite)
+    let stages = paths
+        .iter()
+        .map(|path| {
+            let mut stages: Vec<(String, &Stage)> = vec![
+                ("nominal".into(), &d.nominal),
+                ("re-fitted".into(), &d.null.check),
+            ];
+            for r in d.candidates.iter().take(2) {
+                stages.push((format!("+ {}", r.id), &r.check));
+            }
+            Chart {
+                title: format!("{path}: gap on the check run"),
+                x_label: "frequency [Hz]".into(),
+                y_label: "measured / model [dB]".into(),
+                log_x: true,
+                series: stages
+                    .iter()
+                    .enumerate()
+                    .map(|(i, (l, s))| {
+                        let s = gap_series(l, &s.cells, path);
+                        if i == 0 { s } else { s.styled(Style::Dashed) }
+                    })
+                    .collect(),
+                rules: zero_db(),
+                ..Chart::default()
+            }
+        })
+        .collect();
+    (map, stages)
+}
+
+/// The files [`write_as`] writes into `dir`.
+pub fn files(dir: &Path, ext: &str) -> Vec<PathBuf> {
+    ["gap_map", "gap_stages"]
+        .iter()
+        .map(|n| dir.join(format!("{n}.{ext}")))
+        .collect()
+}
+
+/// Writes `gap_map.<ext>` (nominal replay gap per path) and `gap_stages.<ext>` (before/after per
+/// path) into `dir`.
+pub fn write_as(d: &Diagnosis, dir: &Path, ext: &str, overwrite: Overwrite) -> Result<()> {
+    let [map_path, stages_path] = &files(dir, ext)[..] else {
+        unreachable!("two files")
+    };
+    crate::plot::check_targets(&[map_path.clone(), stages_path.clone()], overwrite)?;
+    let (map, stages) = charts(d);
+    draw(&[map], map_path, overwrite)?;
+    draw(&stages, stages_path, overwrite)
+}
+
+/// [`write_as`] in PNG.
+pub fn write(d: &Diagnosis, dir: &Path, overwrite: Overwrite) -> Result<()> {
+    write_as(d, dir, "png", overwrite)
 }

@@ -1,16 +1,17 @@
 //! Heat maps (a value over two axes, e.g. |T| over frequency × swept parameter), PNG or SVG, drawn
-//! with plotters and the same embedded DejaVu font as [`crate::plot`]. Colour runs from blue (lowest)
-//! to red (highest); the caption states the range.
+//! with [`crate::plot`]: viridis from dark purple (lowest) to yellow (highest), with a colour bar
+//! labelled with the quantity and its unit, and clean tick labels.
 
 use crate::error::{Error, Result};
 use crate::io::atomic::Overwrite;
+use crate::plot::{ColourBar, axis};
 use plotters::prelude::*;
 use std::path::Path;
 
 /// A value `z[iy][ix]` on the cell centres `x[ix]`, `y[iy]` (increasing, possibly uneven).
 #[derive(Debug, Clone, Default)]
 pub struct HeatMap {
-    /// Title; the colour range is appended.
+    /// Title.
     pub title: String,
     /// X-axis label with unit.
     pub x_label: String,
@@ -53,33 +54,47 @@ fn render<DB: DrawingBackend>(
     let (lo, hi) = finite.fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), v| {
         (a.min(v), b.max(v))
     });
-    let span = if hi > lo { hi - lo } else { 1.0 };
-    let caption = format!(
-        "{} — {}: {lo:.3} (blue) … {hi:.3} (red)",
-        h.title, h.z_label
-    );
-    let mut ctx = ChartBuilder::on(&root)
-        .caption(caption, ("sans-serif", 18))
+    let bar = ColourBar {
+        label: h.z_label.clone(),
+        lo: if lo.is_finite() { lo } else { 0.0 },
+        hi: if hi.is_finite() { hi } else { 1.0 },
+    };
+    let (w, _) = root.dim_in_pixel();
+    let (main, strip) = root.split_horizontally(w.saturating_sub(120));
+    bar.draw(&strip)?;
+    let (x0, x1, y0, y1) = (xe[0], xe[xe.len() - 1], ye[0], ye[ye.len() - 1]);
+    let mut ctx = ChartBuilder::on(&main)
+        .caption(&h.title, ("sans-serif", 17))
         .margin(12)
-        .x_label_area_size(40)
+        .x_label_area_size(42)
         .y_label_area_size(80)
-        .build_cartesian_2d(xe[0]..xe[xe.len() - 1], ye[0]..ye[ye.len() - 1])
+        .build_cartesian_2d(
+            axis::ticked(x0..x1, axis::linear_ticks(x0, x1), vec![]),
+            axis::ticked(y0..y1, axis::linear_ticks(y0, y1), vec![]),
+        )
         .map_err(e)?;
     ctx.configure_mesh()
         .disable_mesh()
         .x_desc(h.x_label.as_str())
         .y_desc(h.y_label.as_str())
-        .label_style(("sans-serif", 14))
+        .x_label_formatter(&|v| axis::label(*v))
+        .y_label_formatter(&|v| axis::label(*v))
+        .label_style(("sans-serif", 13))
+        .axis_desc_style(("sans-serif", 14))
         .draw()
         .map_err(e)?;
     let cells = h.z.iter().enumerate().flat_map(|(iy, row)| {
-        let (xe, ye) = (&xe, &ye);
+        let (xe, ye, bar) = (&xe, &ye, &bar);
         row.iter().enumerate().map(move |(ix, v)| {
-            let t = if v.is_finite() { (v - lo) / span } else { 0.0 };
-            let colour = HSLColor(0.66 * (1.0 - t), 0.85, 0.5);
+            // A cell without a value is grey, not the low end of the scale.
+            let (r, g, b) = if v.is_finite() {
+                bar.colour(*v)
+            } else {
+                (200, 200, 200)
+            };
             Rectangle::new(
                 [(xe[ix], ye[iy]), (xe[ix + 1], ye[iy + 1])],
-                colour.filled(),
+                RGBColor(r, g, b).filled(),
             )
         })
     });
@@ -96,7 +111,7 @@ pub fn draw(h: &HeatMap, path: &Path, overwrite: Overwrite) -> Result<()> {
     {
         return Err(Error::parameter("heat map", "empty or ragged grid"));
     }
-    crate::plot::write_figure(&Drawing(h), (900, 560), path, overwrite)
+    crate::plot::write_figure(&Drawing(h), (960, 560), path, overwrite)
 }
 
 struct Drawing<'a>(&'a HeatMap);

@@ -1,0 +1,334 @@
+//! `wbv report RUN`: one self-contained HTML page of a run (inline SVG figures and CSS, no script,
+//! no network): scenario and provenance, the ISO 2631-1 figures with units, the comfort and health
+//! verdicts in the words of ISO 2631-1 and Directive 2002/44/EC, every chart of
+//! [`crate::analysis::plots`], and for a simulated run the model's frequency responses and modes.
+//!
+//! The page holds no date or absolute time, so the same run gives the same bytes.
+
+use crate::analysis::health::{self, Health};
+use crate::analysis::plots::{self, RunFigure};
+use crate::analysis::{Options, Report, WelchOptions};
+use crate::error::{Error, Result};
+use crate::io::atomic::{Overwrite, write_atomic};
+use crate::plot::svg_string;
+use crate::record::Provenance;
+use std::fmt::Write as _;
+use std::path::{Path, PathBuf};
+
+/// Settings of a report.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Settings {
+    /// Daily exposure assumed for the health assessment, h.
+    pub exposure_hours: f64,
+}
+
+impl Default for Settings {
+    /// A working day ([`health::DEFAULT_EXPOSURE_HOURS`]).
+    fn default() -> Self {
+        Settings {
+            exposure_hours: health::DEFAULT_EXPOSURE_HOURS,
+        }
+    }
+}
+
+/// What a report was built from, for the command's summary.
+#[derive(Debug, Clone)]
+pub struct Built {
+    pub html: String,
+    pub report: Report,
+    pub health: Option<Health>,
+}
+
+/// The default report file of a run: `report.html` beside its `run.mcap` (a run directory stands
+/// for its recording), or `<stem>-report.html` beside a CSV.
+pub fn default_path(run: &Path) -> PathBuf {
+    let file = crate::record::run_file(run);
+    let is_mcap = file
+        .extension()
+        .is_some_and(|e| e.eq_ignore_ascii_case("mcap"));
+    if is_mcap {
+        file.with_file_name("report.html")
+    } else {
+        let stem = file.file_stem().unwrap_or_default().to_string_lossy();
+        file.with_file_name(format!("{stem}-report.html"))
+    }
+}
+
+/// Text for HTML: `&`, `<`, `>`, `"` and `'` escaped (the five characters that matter; a crate
+/// for this would be larger than the function).
+fn esc(s: &str) -> String {
+    let mut out = String::with_capacity(s.len());
+    for c in s.chars() {
+        match c {
+            '&' => out.push_str("&amp;"),
+            '<' => out.push_str("&lt;"),
+            '>' => out.push_str("&gt;"),
+            '"' => out.push_str("&quot;"),
+            '\'' => out.push_str("&#39;"),
+            c => out.push(c),
+        }
+    }
+    out
+}
+
+const STYLE: &str = "body{font-family:sans-serif;max-width:1320px;margin:2em auto;padding:0 1em;\
+color:#222;background:#fff}h1{font-size:1.6em}h2{border-bottom:1px solid #ccc;padding-bottom:.2em;\
+margin-top:1.6em}table{border-collapse:collapse;margin:.6em 0}td,th{border:1px solid #ccc;\
+padding:.25em .6em;text-align:right}th{background:#f2f2f2}td:first-child,th:first-child{text-align:left}\
+figure{margin:1em 0}figure svg{max-width:100%;height:auto}figcaption{color:#555;font-size:.9em}\
+.verdict{font-size:1.1em;padding:.6em;border-left:4px solid #0072b2;background:#f5f9fc}\
+table.kv td{text-align:left}";
+
+fn figure_html(out: &mut String, fig: &RunFigure) -> Result<()> {
+    let p = fig.panels();
+    let svg = svg_string(&p, p.size())?;
+    let _ = write!(
+        out,
+        "<figure id=\"{}\">{svg}<figcaption>{}</figcaption></figure>\n",
+        fig.name,
+        esc(&fig.caption)
+    );
+    Ok(())
+}
+
+fn provenance_html(out: &mut String, p: &Provenance) {
+    let rows = [
+        ("model", p.model.clone()),
+        ("excitation", p.excitation.clone()),
+        ("integrator", p.integrator.clone()),
+        ("time step [s]", p.dt.to_string()),
+        ("duration [s]", p.duration.to_string()),
+        ("seed", p.seed.map_or("-".into(), |s| s.to_string())),
+        ("wbv version", p.version.clone()),
+        ("command line", p.command_line.clone()),
+    ];
+    out.push_str("<table class=\"kv\">");
+    for (k, v) in rows {
+        let _ = write!(out, "<tr><th>{}</th><td>{}</td></tr>", esc(k), esc(&v));
+    }
+    out.push_str("</table>\n");
+}
+
+fn figures_table(out: &mut String, r: &Report) {
+    out.push_str(
+        "<table><tr><th>channel</th><th>weighting</th><th>k</th><th>r.m.s. [m/s²]</th>\
+         <th>a_w [m/s²]</th><th>VDV [m/s^1.75]</th><th>MTVV [m/s²]</th><th>MTVV/a_w</th>\
+         <th>crest factor</th><th>MSDV [m/s^1.5]</th></tr>",
+    );
+    for c in &r.channels {
+        let ratio = if c.a_w > 0.0 { c.mtvv / c.a_w } else { 0.0 };
+        let _ = write!(
+            out,
+            "<tr><td>{}</td><td>{}</td><td>{:.2}</td><td>{:.4}</td><td>{:.4}</td><td>{:.4}</td>\
+             <td>{:.4}</td><td>{ratio:.2}</td><td>{:.2}</td><td>{}</td></tr>",
+            esc(&c.name),
+            c.weighting.name(),
+            c.k,
+            c.rms,
+            c.a_w,
+            c.vdv,
+            c.mtvv,
+            c.crest_factor,
+            c.msdv.map_or("-".into(), |m| format!("{m:.4}"))
+        );
+    }
+    out.push_str("</table>\n");
+}
+
+/// The model's section: FRF magnitude and phase over 0.5–80 Hz (log axis) and the modes.
+fn model_html(out: &mut String, p: &Provenance) -> Result<()> {
+    // The stored text of a built-in model built from parts does not always parse alone; the
+    // catalogue entry of the same name is the same model.
+    let model = match crate::model::catalog::parse(&p.model_toml, "the run's stored model")
+        .or_else(|e| crate::model::catalog::resolve(&p.model).map_err(|_| e))
+    {
+        Ok(m) => m,
+        Err(e) => {
+            let _ = write!(
+                out,
+                "<p>The stored model could not be rebuilt for its responses: {}</p>",
+                esc(&e.to_string())
+            );
+            return Ok(());
+        }
+    };
+    let freqs = crate::response::frf::grid(0.5, 80.0, 300, true)?;
+    let set = crate::response::frf::compute(model.system(), &freqs)?;
+    let charts = crate::plot::frf_charts(&set, &model.name, true);
+    let panels = crate::plot::Panels {
+        charts: &charts,
+        cols: 2,
+    };
+    let svg = svg_string(&panels, panels.size())?;
+    let _ = write!(
+        out,
+        "<figure id=\"model_frf\">{svg}<figcaption>Frequency responses of the simulated model \
+         `{}` (linearised, magnitude and phase)</figcaption></figure>\n",
+        esc(&model.name)
+    );
+    if let Ok(modes) = crate::response::modes::damped(model.system()) {
+        out.push_str(
+            "<table><tr><th>mode</th><th>natural frequency [Hz]</th><th>damped frequency [Hz]</th>\
+             <th>damping ratio ζ [-]</th></tr>",
+        );
+        for (i, m) in modes.iter().enumerate() {
+            let _ = write!(
+                out,
+                "<tr><td>{}</td><td>{:.3}</td><td>{}</td><td>{:.3}</td></tr>",
+                i + 1,
+                m.natural_hz,
+                if m.overdamped {
+                    "overdamped".into()
+                } else {
+                    format!("{:.3}", m.damped_hz)
+                },
+                m.zeta
+            );
+        }
+        out.push_str("</table>\n");
+    }
+    Ok(())
+}
+
+/// Builds the report page of the run at `run` (an MCAP run, a run directory or a measured-run CSV).
+pub fn build(run: &Path, settings: &Settings) -> Result<Built> {
+    if !(settings.exposure_hours.is_finite() && settings.exposure_hours > 0.0) {
+        return Err(Error::parameter(
+            "--exposure-hours",
+            "expected a daily exposure in hours > 0",
+        ));
+    }
+    let file = crate::record::run_file(run);
+    let signals = crate::analysis::load_signals(&file)?;
+    let provenance = if file
+        .extension()
+        .is_some_and(|e| e.eq_ignore_ascii_case("mcap"))
+    {
+        Some(crate::record::read_run(&file)?.provenance)
+    } else {
+        None
+    };
+    let opts = Options {
+        exposure_hours: Some(settings.exposure_hours),
+        ..Options::default()
+    };
+    let report = Report::from_signals(&signals, &opts)?;
+    let welch = WelchOptions {
+        segment: crate::analysis::Segment::ResolutionHz(0.125),
+        ..WelchOptions::default()
+    };
+    let figs = plots::figures(
+        &signals,
+        &report,
+        &welch,
+        opts.tau_s,
+        report.health.as_ref(),
+    )?;
+
+    let name = file.display().to_string();
+    let mut out = String::new();
+    let _ = write!(
+        out,
+        "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">\
+         <meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\
+         <title>wbv report: {}</title><style>{STYLE}</style></head><body>\n\
+         <h1>Whole-body vibration report</h1><p>Run <code>{}</code>: {:.1} s at {} Hz, \
+         channels {}.</p>\n",
+        esc(&name),
+        esc(&name),
+        report.duration_s,
+        report.sample_rate_hz,
+        esc(&signals.names.join(", "))
+    );
+    out.push_str("<h2>Verdict</h2>\n");
+    let _ = write!(
+        out,
+        "<p class=\"verdict\">Comfort (ISO 2631-1 Annex C, public transport): the vibration total \
+         value over the {} is a<sub>v</sub> = {:.3} m/s², <b>{}</b>. {}</p>\n",
+        esc(&report.comfort_place),
+        report.total_value,
+        report.comfort,
+        esc(&report.comfort_statement)
+    );
+    match &report.health {
+        Some(h) => {
+            let lines = h.statement();
+            let _ = write!(out, "<div class=\"verdict\"><p>{}</p><ul>", esc(&lines[0]));
+            for l in &lines[1..] {
+                let _ = write!(out, "<li>{}</li>", esc(l.trim()));
+            }
+            out.push_str("</ul></div>\n");
+        }
+        None => out.push_str("<p>No seat channel: no health assessment.</p>\n"),
+    }
+    if let Some(s) = report.seat_percent {
+        let _ = write!(
+            out,
+            "<p>SEAT (ISO 10326-1, a_w seat z / a_w base z, Wk): {s:.1} %.</p>\n"
+        );
+    }
+    for n in &report.notes {
+        let _ = write!(out, "<p>Note: {}</p>\n", esc(n));
+    }
+    out.push_str("<h2>Scenario and provenance</h2>\n");
+    match &provenance {
+        Some(p) => provenance_html(&mut out, p),
+        None => out.push_str("<p>A measured run: no simulation provenance.</p>\n"),
+    }
+    out.push_str("<h2>ISO 2631-1 figures</h2>\n");
+    figures_table(&mut out, &report);
+    out.push_str("<h2>Charts</h2>\n");
+    for f in &figs {
+        figure_html(&mut out, f)?;
+    }
+    if let Some(p) = &provenance {
+        out.push_str("<h2>Model</h2>\n");
+        model_html(&mut out, p)?;
+    }
+    let _ = write!(
+        out,
+        "<p><small>Written by wbv {}. Health: ISO 2631-1:1997 clause 7 and Annex B, \
+         Directive 2002/44/EC Article 3; comfort: ISO 2631-1 Annex C.</small></p>\
+         </body></html>\n",
+        env!("CARGO_PKG_VERSION")
+    );
+    let health = report.health.clone();
+    Ok(Built {
+        html: out,
+        report,
+        health,
+    })
+}
+
+/// Builds the report of `run` and writes it atomically to `out`; refuses an existing `out`
+/// (unless `overwrite` allows it) before any work.
+pub fn write(run: &Path, out: &Path, settings: &Settings, overwrite: Overwrite) -> Result<Built> {
+    crate::io::atomic::check_overwrite(out, overwrite)?;
+    let built = build(run, settings)?;
+    write_atomic(out, overwrite, |w| {
+        std::io::Write::write_all(w, built.html.as_bytes()).map_err(|e| Error::io(out, e))
+    })?;
+    Ok(built)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn escapes_markup() {
+        assert_eq!(esc("a<b & 'c'>\""), "a&lt;b &amp; &#39;c&#39;&gt;&quot;");
+    }
+
+    #[test]
+    fn default_path_sits_beside_the_run() {
+        assert_eq!(
+            default_path(Path::new("runs/x/run.mcap")),
+            Path::new("runs/x/report.html")
+        );
+        assert_eq!(
+            default_path(Path::new("data/s5.csv")),
+            Path::new("data/s5-report.html")
+        );
+    }
+}
