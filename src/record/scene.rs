@@ -246,6 +246,214 @@ impl Scene {
     }
 }
 
+/// The same scene as protobuf: `foxglove.SceneUpdate` and `foxglove.FrameTransforms` built with
+/// the Foxglove SDK's generated types (`foxglove::schemas`, from the published `.proto` files) and
+/// encoded by `prost`; the geometry is the JSON scene's, field for field.
+pub mod pb {
+    use super::{Scene, plot_key};
+    use crate::simulate::observer::Step;
+    use foxglove::Encode;
+    use foxglove::schemas::{
+        Color, CubePrimitive, Duration, FrameTransform, FrameTransforms, KeyValuePair,
+        LinePrimitive, Point3, Pose, Quaternion, SceneEntity, SceneUpdate, TextPrimitive,
+        Timestamp, Vector3, line_primitive,
+    };
+
+    /// Schema name, encoding and serialized `FileDescriptorSet` of `foxglove.SceneUpdate`.
+    pub fn scene_update_schema() -> foxglove::Schema {
+        SceneUpdate::get_schema().expect("the SDK ships the SceneUpdate descriptor")
+    }
+
+    /// Schema of `foxglove.FrameTransforms`.
+    pub fn frame_transforms_schema() -> foxglove::Schema {
+        FrameTransforms::get_schema().expect("the SDK ships the FrameTransforms descriptor")
+    }
+
+    fn stamp(t: f64) -> Timestamp {
+        let ns = (t * 1e9).round().max(0.0) as u64;
+        Timestamp::new_checked((ns / 1_000_000_000) as u32, (ns % 1_000_000_000) as u32)
+            .unwrap_or(Timestamp::MAX)
+    }
+
+    fn color(c: [f64; 4]) -> Option<Color> {
+        Some(Color {
+            r: c[0],
+            g: c[1],
+            b: c[2],
+            a: c[3],
+        })
+    }
+
+    fn v3(x: f64, y: f64, z: f64) -> Option<Vector3> {
+        Some(Vector3 { x, y, z })
+    }
+
+    /// Rotation by `theta` (rad) about y.
+    fn quat_y(theta: f64) -> Option<Quaternion> {
+        Some(Quaternion {
+            x: 0.0,
+            y: (0.5 * theta).sin(),
+            z: 0.0,
+            w: (0.5 * theta).cos(),
+        })
+    }
+
+    fn pose(c: [f64; 2], theta: f64) -> Option<Pose> {
+        Some(Pose {
+            position: v3(c[0], 0.0, c[1]),
+            orientation: quat_y(theta),
+        })
+    }
+
+    fn cube(c: [f64; 2], theta: f64, size: [f64; 3], rgba: [f64; 4]) -> CubePrimitive {
+        CubePrimitive {
+            pose: pose(c, theta),
+            size: v3(size[0], size[1], size[2]),
+            color: color(rgba),
+        }
+    }
+
+    fn text(z: f64, text: String) -> TextPrimitive {
+        TextPrimitive {
+            pose: pose([0.0, z], 0.0),
+            billboard: true,
+            font_size: 0.05,
+            scale_invariant: false,
+            color: color([1.0, 1.0, 1.0, 1.0]),
+            text,
+        }
+    }
+
+    impl Scene {
+        fn entity(&self, t: f64) -> SceneEntity {
+            SceneEntity {
+                timestamp: Some(stamp(t)),
+                frame_id: "world".into(),
+                id: "wbv".into(),
+                lifetime: Some(Duration::new_checked(0, 0).expect("zero is a duration")),
+                frame_locked: false,
+                metadata: vec![KeyValuePair {
+                    key: "display_magnification".into(),
+                    value: self.magnification.to_string(),
+                }],
+                ..Default::default()
+            }
+        }
+
+        /// Appends the protobuf `foxglove.SceneUpdate` of step `s` to `out`.
+        pub fn scene_update_pb(&self, s: &Step<'_>, out: &mut Vec<u8>) {
+            let mut e = self.entity(s.t);
+            if let Some(bodies) = &self.planar {
+                let zb = self.magnification * s.x_base;
+                e.cubes.push(cube(
+                    [0.4, zb - 0.30],
+                    0.0,
+                    [1.2, 0.6, 0.02],
+                    [0.3, 0.3, 0.3, 1.0],
+                ));
+                e.cubes.push(cube(
+                    [0.12, zb - 0.04],
+                    0.0,
+                    [0.5, 0.5, 0.06],
+                    [0.2, 0.4, 0.8, 1.0],
+                ));
+                for b in bodies {
+                    let (c, theta) = self.planar_pose(b, s);
+                    e.cubes.push(cube(
+                        c,
+                        theta,
+                        [b.length, 0.3, 0.12],
+                        [0.9, 0.7, 0.5, 1.0],
+                    ));
+                }
+                e.texts.push(text(
+                    1.2,
+                    format!(
+                        "displacements and pitch ×{} (t = {:.3} s)",
+                        self.magnification, s.t
+                    ),
+                ));
+            } else {
+                let z = |node| self.z(node, s);
+                e.cubes.push(cube(
+                    [0.0, z(None)],
+                    0.0,
+                    [0.6, 0.6, 0.02],
+                    [0.2, 0.2, 0.2, 1.0],
+                ));
+                for (i, b) in self.bodies.iter().enumerate() {
+                    e.cubes.push(cube([0.0, z(Some(i))], 0.0, b.size, b.color));
+                }
+                for &(up, low, rgba) in &self.links {
+                    e.lines.push(LinePrimitive {
+                        r#type: line_primitive::Type::LineList as i32,
+                        pose: pose([0.0, 0.0], 0.0),
+                        thickness: 0.01,
+                        scale_invariant: false,
+                        points: vec![
+                            Point3 {
+                                x: 0.1,
+                                y: 0.0,
+                                z: z(low),
+                            },
+                            Point3 {
+                                x: 0.1,
+                                y: 0.0,
+                                z: z(up),
+                            },
+                        ],
+                        color: color(rgba),
+                        colors: Vec::new(),
+                        indices: Vec::new(),
+                    });
+                }
+                let top = self.bodies.iter().map(|b| b.rest_z).fold(0.0, f64::max) + 0.25;
+                e.texts.push(text(
+                    top,
+                    format!(
+                        "displacements ×{} (t = {:.3} s)",
+                        self.magnification, s.t
+                    ),
+                ));
+            }
+            let update = SceneUpdate {
+                deletions: Vec::new(),
+                entities: vec![e],
+            };
+            update.encode(out).expect("a Vec grows as needed");
+        }
+
+        /// Appends the protobuf `foxglove.FrameTransforms` of step `s` to `out`.
+        pub fn frame_transforms_pb(&self, s: &Step<'_>, out: &mut Vec<u8>) {
+            let ts = Some(stamp(s.t));
+            let tf = |child: &str, c: [f64; 2], theta: f64| FrameTransform {
+                timestamp: ts,
+                parent_frame_id: "world".into(),
+                child_frame_id: child.into(),
+                translation: v3(c[0], 0.0, c[1]),
+                rotation: quat_y(theta),
+            };
+            let mut transforms = vec![tf("base", [0.0, self.z(None, s)], 0.0)];
+            match &self.planar {
+                Some(bodies) => {
+                    for b in bodies {
+                        let (c, theta) = self.planar_pose(b, s);
+                        transforms.push(tf(&plot_key(&b.name), c, theta));
+                    }
+                }
+                None => {
+                    for (i, b) in self.bodies.iter().enumerate() {
+                        transforms.push(tf(&b.key, [0.0, self.z(Some(i), s)], 0.0));
+                    }
+                }
+            }
+            FrameTransforms { transforms }
+                .encode(out)
+                .expect("a Vec grows as needed");
+        }
+    }
+}
+
 fn vec3(out: &mut Vec<u8>, c: [f64; 2]) {
     out.extend_from_slice(br#"{"x":"#);
     write_num(out, c[0]);
