@@ -144,7 +144,7 @@ fn existing_file_is_refused_unless_overwrite_is_allowed() {
 fn truncated_file_gives_one_clear_error_at_every_offset() {
     let dir = tempfile::tempdir().unwrap();
     let path = dir.path().join("run.mcap");
-    record(&path, opts(Compression::Zstd), 3000).unwrap();
+    record(&path, opts(Compression::Zstd, Encoding::Protobuf), 3000).unwrap();
     let bytes = std::fs::read(&path).unwrap();
     let cut = dir.path().join("cut.mcap");
     let n = bytes.len();
@@ -166,7 +166,7 @@ fn truncated_file_gives_one_clear_error_at_every_offset() {
 fn corrupt_bytes_never_panic() {
     let dir = tempfile::tempdir().unwrap();
     let path = dir.path().join("run.mcap");
-    record(&path, opts(Compression::Lz4), 1500).unwrap();
+    record(&path, opts(Compression::Lz4, Encoding::Protobuf), 1500).unwrap();
     let bytes = std::fs::read(&path).unwrap();
     let bad = dir.path().join("bad.mcap");
     // deterministic positions over the whole file, including header, chunks and summary

@@ -143,8 +143,28 @@ pub fn from_run(run: &Path) -> crate::Result<(Scenario, RecordOptions, String)> 
     };
     let get = |key: &str| meta.get(key).ok_or_else(|| bad(key));
     let num = |key: &str| get(key)?.parse::<f64>().map_err(|_| bad(key));
-    let mut model = crate::model::file::parse(&p.model_toml, &p.model)?;
-    model.name = p.model.clone();
+    // A single model file is its TOML; a stack (`stack = [...]`) stores the texts of its parts,
+    // which load again through the catalogue name, checked to give the same text.
+    let model = match crate::model::file::parse(&p.model_toml, &p.model) {
+        Ok(mut m) => {
+            m.name = p.model.clone();
+            m
+        }
+        Err(e) => match crate::model::catalog::resolve(&p.model) {
+            Ok(m) if m.text == p.model_toml => m,
+            _ => {
+                return Err(crate::Error::data(
+                    &path,
+                    None,
+                    format!(
+                        "the stored model TOML does not load again ({e}) and `{}` no longer \
+                         resolves to the same text: cannot re-run exactly",
+                        p.model
+                    ),
+                ));
+            }
+        },
+    };
     let excitation = crate::record::load_excitation(&p.excitation_origin, &p.excitation_definition)?;
     let settings = crate::simulate::Settings {
         dt: p.dt,
