@@ -62,7 +62,9 @@ fn the_same_run_is_byte_identical_from_any_directory_and_from_its_recording() {
     );
     assert_eq!(first, std::fs::read(again.join("run.mcap")).unwrap());
 
-    let meta = wbv::record::inspect(&again.join("run.mcap")).unwrap().metadata;
+    let meta = wbv::record::inspect(&again.join("run.mcap"))
+        .unwrap()
+        .metadata;
     assert_eq!(
         meta["wbv.run"]["command_line"],
         "wbv simulate --model reference --excitation random --rms 0.8 --duration 3 --seed 7"

@@ -165,7 +165,8 @@ pub fn from_run(run: &Path) -> crate::Result<(Scenario, RecordOptions, String)> 
             }
         },
     };
-    let excitation = crate::record::load_excitation(&p.excitation_origin, &p.excitation_definition)?;
+    let excitation =
+        crate::record::load_excitation(&p.excitation_origin, &p.excitation_definition)?;
     let settings = crate::simulate::Settings {
         dt: p.dt,
         duration_s: p.duration,
@@ -325,13 +326,24 @@ mod tests {
 
     #[test]
     fn the_command_line_leaves_out_where_outputs_go() {
-        let args = |s: &str| s.split(' ').map(String::from).collect::<Vec<_>>().into_iter();
+        let args = |s: &str| {
+            s.split(' ')
+                .map(String::from)
+                .collect::<Vec<_>>()
+                .into_iter()
+        };
         assert_eq!(
-            normalise(args("simulate --out /tmp/a --model reference --force --csv=x.csv --seed 2")),
+            normalise(args(
+                "simulate --out /tmp/a --model reference --force --csv=x.csv --seed 2"
+            )),
             "wbv simulate --model reference --seed 2"
         );
         assert!(check_from_alone(args("simulate --from r --out x --force --timing")).is_ok());
         let e = check_from_alone(args("simulate --from r --out x --seed 3")).unwrap_err();
-        assert!(e.to_string().starts_with("--seed: cannot be given with --from"), "{e}");
+        assert!(
+            e.to_string()
+                .starts_with("--seed: cannot be given with --from"),
+            "{e}"
+        );
     }
 }

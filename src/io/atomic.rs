@@ -199,8 +199,8 @@ impl AtomicFile {
 
     /// Flushes, syncs and moves the partial file to its final name.
     pub fn commit(self) -> Result<()> {
-        let file = (self.out.into_inner())
-            .map_err(|e| Error::io(self.partial.tmp(), e.into_error()))?;
+        let file =
+            (self.out.into_inner()).map_err(|e| Error::io(self.partial.tmp(), e.into_error()))?;
         self.partial.commit(file, self.overwrite)
     }
 }

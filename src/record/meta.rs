@@ -209,7 +209,10 @@ pub fn excitation_definition(spec: &crate::excitation::ExcitationSpec) -> String
 
 /// Loads the excitation stored with [`excitation_definition`] under its original `origin`, so
 /// that it describes itself as the original did.
-pub fn load_excitation(origin: &str, definition: &str) -> Result<crate::excitation::ExcitationSpec> {
+pub fn load_excitation(
+    origin: &str,
+    definition: &str,
+) -> Result<crate::excitation::ExcitationSpec> {
     let dir = Path::new(origin).parent().filter(|d| d.is_dir());
     crate::excitation::ExcitationSpec::parse(definition, origin, dir)
 }

@@ -49,7 +49,6 @@ pub use meta::{excitation_definition, load_excitation};
 pub use reader::{RecordedRun, RunSummary, TopicSummary, inspect, read_provenance, read_run};
 pub use writer::McapRecorder;
 
-
 pub use crate::io::atomic::Overwrite;
 
 /// File name of the recording inside a run directory (`runs/<name>/run.mcap`).

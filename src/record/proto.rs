@@ -100,7 +100,8 @@ fn field_number(fds: &FileDescriptorSet, full_name: &str, name: &str) -> Option<
 /// A protobuf identifier: a letter or `_`, then letters, digits or `_`.
 fn is_identifier(s: &str) -> bool {
     let mut c = s.chars();
-    c.next().is_some_and(|c| c.is_ascii_alphabetic() || c == '_')
+    c.next()
+        .is_some_and(|c| c.is_ascii_alphabetic() || c == '_')
         && c.all(|c| c.is_ascii_alphanumeric() || c == '_')
 }
 
@@ -122,7 +123,10 @@ pub fn run_descriptor(masses: &[String], links: &[String]) -> Result<FileDescrip
         for (i, key) in keys.iter().enumerate() {
             if !is_identifier(key) {
                 return Err(Error::parameter(
-                    format!("{} name `{key}`", if shell == "State" { "mass" } else { "link" }),
+                    format!(
+                        "{} name `{key}`",
+                        if shell == "State" { "mass" } else { "link" }
+                    ),
                     "is not a protobuf field name (it must start with a letter or `_`); rename it \
                      or record with --encoding json",
                 ));
@@ -323,9 +327,7 @@ impl ProtoTable {
             let (tag, wire) = decode_key(buf).map_err(e)?;
             match (fields.iter().find(|(n, _)| *n == tag), wire) {
                 (Some((_, Node::Leaf(col))), WireType::SixtyFourBit) => {
-                    let (v, rest) = buf
-                        .split_first_chunk::<8>()
-                        .ok_or("truncated double")?;
+                    let (v, rest) = buf.split_first_chunk::<8>().ok_or("truncated double")?;
                     columns[*col].push(f64::from_le_bytes(*v));
                     *buf = rest;
                 }
@@ -385,7 +387,9 @@ mod tests {
         };
         expect(
             "wbv.Measured",
-            &["t", "a_base_z", "a_seat_z", "a_head_z", "f_seat_z", "a_seat_x", "a_head_x"],
+            &[
+                "t", "a_base_z", "a_seat_z", "a_head_z", "f_seat_z", "a_seat_x", "a_head_x",
+            ],
         );
         expect("wbv.MassState", &["x", "v", "a", "x_abs", "v_abs", "a_abs"]);
         expect("wbv.LinkState", &["deflection", "force"]);

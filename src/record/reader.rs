@@ -284,7 +284,10 @@ impl Decoded {
                 let schema = (channel.schema.as_ref())
                     .filter(|s| s.encoding == "protobuf")
                     .ok_or("protobuf channel without a protobuf schema")?;
-                Ok(Decoded::Protobuf(ProtoTable::new(&schema.data, &schema.name)?))
+                Ok(Decoded::Protobuf(ProtoTable::new(
+                    &schema.data,
+                    &schema.name,
+                )?))
             }
             other => Err(format!(
                 "message encoding `{other}`: expected protobuf or json"

@@ -359,12 +359,8 @@ pub mod pb {
                 ));
                 for b in bodies {
                     let (c, theta) = self.planar_pose(b, s);
-                    e.cubes.push(cube(
-                        c,
-                        theta,
-                        [b.length, 0.3, 0.12],
-                        [0.9, 0.7, 0.5, 1.0],
-                    ));
+                    e.cubes
+                        .push(cube(c, theta, [b.length, 0.3, 0.12], [0.9, 0.7, 0.5, 1.0]));
                 }
                 e.texts.push(text(
                     1.2,
@@ -410,10 +406,7 @@ pub mod pb {
                 let top = self.bodies.iter().map(|b| b.rest_z).fold(0.0, f64::max) + 0.25;
                 e.texts.push(text(
                     top,
-                    format!(
-                        "displacements ×{} (t = {:.3} s)",
-                        self.magnification, s.t
-                    ),
+                    format!("displacements ×{} (t = {:.3} s)", self.magnification, s.t),
                 ));
             }
             let update = SceneUpdate {

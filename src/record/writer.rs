@@ -7,7 +7,8 @@
 use super::lowpass::{LowPass, decimation};
 use super::meta;
 use super::pipeline::{
-    self, BLOCK_STEPS, Block, Channel, Encoder, McapWriter, Pipeline, json_channel, protobuf_channel,
+    self, BLOCK_STEPS, Block, Channel, Encoder, McapWriter, Pipeline, json_channel,
+    protobuf_channel,
 };
 use super::proto::{self, ProtoTemplate};
 use super::scene::{self, FRAME_TRANSFORMS_SCHEMA, SCENE_UPDATE_SCHEMA, Scene};
@@ -18,9 +19,9 @@ use crate::io::atomic::{Overwrite, Partial};
 use crate::simulate::observer::{Layout, Observer, Step};
 use mcap::records::{MessageHeader, Metadata};
 use std::collections::BTreeMap;
+use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::{Arc, OnceLock};
-use std::path::{Path, PathBuf};
 
 /// Formatter threads and zstd workers: [`RecordOptions::threads`], else one per core (at most 4).
 /// The file is the same for any count: blocks are written in step order, and zstd's output does
@@ -41,7 +42,8 @@ fn interrupt_flag() -> &'static Arc<AtomicBool> {
         let flag = Arc::new(AtomicBool::new(false));
         for signal in [signal_hook::consts::SIGINT, signal_hook::consts::SIGTERM] {
             // Registration fails only for forbidden signals; without it the default applies.
-            let _ = signal_hook::flag::register_conditional_shutdown(signal, 130, Arc::clone(&flag));
+            let _ =
+                signal_hook::flag::register_conditional_shutdown(signal, 130, Arc::clone(&flag));
             let _ = signal_hook::flag::register(signal, Arc::clone(&flag));
         }
         flag
@@ -465,7 +467,10 @@ impl McapRecorder {
             .into_inner()
             .into_inner()
             .map_err(|e| Error::io(&self.partial, e.into_error()))?;
-        let guard = self.guard.take().expect("the partial file is held until finished");
+        let guard = self
+            .guard
+            .take()
+            .expect("the partial file is held until finished");
         let dest = match interrupted_at {
             None => self.path.clone(),
             Some(_) => interrupted_path(&self.path),
