@@ -153,6 +153,10 @@ pub fn run_descriptor(masses: &[String], links: &[String]) -> Result<FileDescrip
 #[derive(Debug, Clone, PartialEq)]
 pub struct ProtoTemplate {
     /// Before each value: the sub-message header where a group starts, and the field key.
+    /// Fields go out in leaf order, which is the field-number order prost writes except for the
+    /// planar measured channels (`a_seat_x` before `a_head_z`): protobuf readers take fields in
+    /// any order, and [`ProtoTable`] keeps the order of the bytes so that a run reads back with
+    /// its channels in the same order in both encodings.
     fragments: Vec<Vec<u8>>,
 }
 
@@ -170,8 +174,8 @@ impl ProtoTemplate {
         };
         let msg = message(fds, full_name).ok_or_else(|| missing(String::new()))?;
         // (parent field number, [(leaf field number)]) per run of leaves sharing a parent
-        let mut groups: Vec<(Option<&str>, Option<u32>, Vec<u32>)> = Vec::new();
-        for leaf in leaves {
+        let mut groups: Vec<(Option<&str>, Option<u32>, Vec<(u32, usize)>)> = Vec::new();
+        for (index, leaf) in leaves.iter().enumerate() {
             let (parent, name, inner_type) = match leaf.path.as_slice() {
                 [name] => (None, name.as_str(), full_name.to_string()),
                 [parent, name] => {
@@ -186,7 +190,7 @@ impl ProtoTemplate {
             let number = field_number(fds, &inner_type, name)
                 .ok_or_else(|| missing(format!("`{}`", leaf.path.join("."))))?;
             match groups.last_mut() {
-                Some((p, _, fields)) if *p == parent => fields.push(number),
+                Some((p, _, fields)) if *p == parent => fields.push((number, index)),
                 _ => {
                     let outer = match parent {
                         None => None,
@@ -195,20 +199,21 @@ impl ProtoTemplate {
                                 .ok_or_else(|| missing(format!("`{p}`")))?,
                         ),
                     };
-                    groups.push((parent, outer, vec![number]));
+                    groups.push((parent, outer, vec![(number, index)]));
                 }
             }
         }
         let mut fragments = Vec::with_capacity(leaves.len());
         for (_, outer, fields) in groups {
-            for (k, &f) in fields.iter().enumerate() {
+            for (k, &(f, index)) in fields.iter().enumerate() {
                 let mut frag = Vec::new();
                 if let (0, Some(outer)) = (k, outer) {
                     encode_key(outer, WireType::LengthDelimited, &mut frag);
-                    let body: usize = fields.iter().map(|&f| key_len(f) + 8).sum();
+                    let body: usize = fields.iter().map(|&(f, _)| key_len(f) + 8).sum();
                     encode_varint(body as u64, &mut frag);
                 }
                 encode_key(f, WireType::SixtyFourBit, &mut frag);
+                debug_assert_eq!(index, fragments.len());
                 fragments.push(frag);
             }
         }
@@ -248,6 +253,8 @@ pub struct ProtoTable {
     /// Field paths, in descriptor order.
     pub names: Vec<Vec<String>>,
     pub columns: Vec<Vec<f64>>,
+    /// Columns in the order their fields come in the first message.
+    first: Vec<usize>,
     messages: usize,
 }
 
@@ -263,6 +270,7 @@ impl ProtoTable {
             root,
             names,
             columns,
+            first: Vec::new(),
             messages: 0,
         })
     }
@@ -301,7 +309,7 @@ impl ProtoTable {
 
     /// Adds one message.
     pub fn add(&mut self, mut data: &[u8]) -> std::result::Result<(), String> {
-        Self::walk(&self.root, &mut data, &mut self.columns)?;
+        Self::walk(&self.root, &mut data, &mut self.columns, &mut self.first)?;
         self.messages += 1;
         for (name, col) in self.names.iter().zip(&self.columns) {
             if !col.is_empty() && col.len() != self.messages {
@@ -320,6 +328,7 @@ impl ProtoTable {
         fields: &[(u32, Node)],
         buf: &mut &[u8],
         columns: &mut [Vec<f64>],
+        first: &mut Vec<usize>,
     ) -> std::result::Result<(), String> {
         use prost::encoding::{DecodeContext, decode_key, decode_varint, skip_field};
         let e = |e: prost::DecodeError| e.to_string();
@@ -328,6 +337,9 @@ impl ProtoTable {
             match (fields.iter().find(|(n, _)| *n == tag), wire) {
                 (Some((_, Node::Leaf(col))), WireType::SixtyFourBit) => {
                     let (v, rest) = buf.split_first_chunk::<8>().ok_or("truncated double")?;
+                    if columns[*col].is_empty() {
+                        first.push(*col);
+                    }
                     columns[*col].push(f64::from_le_bytes(*v));
                     *buf = rest;
                 }
@@ -337,7 +349,7 @@ impl ProtoTable {
                         return Err("truncated sub-message".into());
                     }
                     let (mut inner, rest) = buf.split_at(len as usize);
-                    Self::walk(sub, &mut inner, columns)?;
+                    Self::walk(sub, &mut inner, columns, first)?;
                     *buf = rest;
                 }
                 (Some(_), _) => return Err(format!("field {tag}: unexpected wire type")),
@@ -347,10 +359,12 @@ impl ProtoTable {
         Ok(())
     }
 
-    /// The columns present in every message, with their names.
+    /// The columns present in every message, with their names, in the order of the bytes.
     pub fn into_columns(self) -> (Vec<Vec<String>>, Vec<Vec<f64>>) {
         let messages = self.messages;
-        (self.names.into_iter().zip(self.columns))
+        let (mut names, mut columns) = (self.names, self.columns);
+        (self.first.iter())
+            .map(|&k| (std::mem::take(&mut names[k]), std::mem::take(&mut columns[k])))
             .filter(|(_, c)| messages > 0 && c.len() == messages)
             .unzip()
     }
@@ -437,22 +451,32 @@ mod tests {
         let links = vec!["k1".to_string()];
         let fds = run_descriptor(&masses, &links).unwrap();
         let v = [-0.0, 1e-300, -2.5, f64::MAX, 3.0, 0.1];
-        // Measured: t, a_base_z, a_seat_z, f_seat_z
-        let leaves: Vec<Leaf> = ["t", "a_base_z", "a_seat_z", "f_seat_z"]
+        // Measured in a planar run's leaf order (not field-number order)
+        let leaves: Vec<Leaf> = ["t", "a_base_z", "a_seat_z", "a_seat_x", "a_head_z", "f_seat_z"]
             .iter()
             .map(|n| Leaf::new(&[n], ""))
             .collect();
         let t = ProtoTemplate::new(&fds, "wbv.Measured", &leaves).unwrap();
         let mut out = Vec::new();
-        t.render(&v[..4], &mut out);
+        t.render(&v, &mut out);
+        // the reader keeps the order of the bytes
+        let mut table = ProtoTable::new(&fds.encode_to_vec(), "wbv.Measured").unwrap();
+        table.add(&out).unwrap();
+        let names: Vec<String> = table.into_columns().0.concat();
+        assert_eq!(names, ["t", "a_base_z", "a_seat_z", "a_seat_x", "a_head_z", "f_seat_z"]);
         let m = Measured {
             t: Some(v[0]),
             a_base_z: Some(v[1]),
             a_seat_z: Some(v[2]),
-            f_seat_z: Some(v[3]),
+            a_seat_x: Some(v[3]),
+            a_head_z: Some(v[4]),
+            f_seat_z: Some(v[5]),
             ..Default::default()
         };
-        assert_eq!(out, m.encode_to_vec());
+        // same fields and bits as prost's encoding (which writes in field-number order)
+        let back = Measured::decode(out.as_slice()).unwrap();
+        assert_eq!(format!("{back:?}"), format!("{m:?}"));
+        assert_eq!(out.len(), m.encode_to_vec().len());
         // State: head and seat_1, all six fields each
         let fields = ["x", "v", "a", "x_abs", "v_abs", "a_abs"];
         let leaves: Vec<Leaf> = (masses.iter())

@@ -7,7 +7,7 @@
 // pass with McapStreamReader (validateCrcs) parses every record to the end.
 // Protobuf channels (the default): schema encoding `protobuf` with a fully qualified name and a
 // FileDescriptorSet, loaded with protobufjs (its own descriptor reader); every message decoded and
-// re-checked (every double finite; a decoded message re-encodes to the same bytes); `foxglove.*`
+// re-checked (every double finite; a decoded message round-trips through protobufjs); `foxglove.*`
 // schemas compared field by field (name, number, type, label) with the `.proto` that
 // @foxglove/schemas' own generator (`generateProto`) writes for the published schema.
 // Usage: node validate.js FILE.mcap   (exit status 1 on any failure)
@@ -145,9 +145,10 @@ async function main(path) {
           continue;
         }
         finiteDoubles(type, msg, `${ch.topic} #${m.sequence}`, fail);
-        const again = type.encode(msg).finish();
-        if (Buffer.compare(Buffer.from(again), Buffer.from(m.data)) !== 0)
-          fail(`${ch.topic} #${m.sequence}: does not re-encode to the same bytes`);
+        // Re-encoded (protobufjs writes field-number order), it decodes to the same message.
+        const again = type.decode(type.encode(msg).finish());
+        if (!isDeepStrictEqual(type.toObject(again), type.toObject(msg)))
+          fail(`${ch.topic} #${m.sequence}: does not round-trip through protobufjs`);
         continue;
       }
       let obj;
