@@ -1,7 +1,7 @@
-//! Recording throughput of `McapRecorder` for the synthetic 5-mass layout at 1 kHz (3 JSON
-//! messages per step + the 30 Hz scene), and what it is made of: formatting the floats alone and
-//! framing + compressing the rendered messages alone (through the mcap writer, as the recorder
-//! does). Every figure is also printed per simulated hour (3.6 M steps), with the CPU time, so
+//! Recording throughput of `McapRecorder` for the synthetic 5-mass layout at 1 kHz (3 messages
+//! per step + the 30 Hz scene), protobuf (the default) and JSON, and what it is made of:
+//! formatting the JSON floats alone and framing + compressing the rendered messages alone
+//! (through the mcap writer, as the recorder does). Every figure is also printed per simulated hour (3.6 M steps), with the CPU time, so
 //! that the cost on an idle machine (wall ≈ CPU / cores) can be told from a loaded one.
 //!
 //! `cargo bench --bench record`
@@ -9,7 +9,9 @@
 use criterion::{Criterion, Throughput, criterion_group, criterion_main};
 use std::hint::black_box;
 use std::time::Instant;
-use wbv::record::{Compression, McapRecorder, Overwrite, Provenance, RecordOptions, demo};
+use wbv::record::{
+    Compression, Encoding, McapRecorder, Overwrite, Provenance, RecordOptions, demo,
+};
 
 const FS: f64 = 1000.0;
 /// Simulated seconds per criterion sample.
@@ -18,9 +20,11 @@ const SECONDS: u64 = 10;
 const LONG: u64 = 60;
 const HOUR: f64 = 3600.0 / LONG as f64;
 const COMPRESSIONS: [Compression; 3] = [Compression::Zstd, Compression::Lz4, Compression::None];
+const ENCODINGS: [Encoding; 2] = [Encoding::Protobuf, Encoding::Json];
 
-fn record(path: &std::path::Path, compression: Compression, seconds: u64) {
+fn record(path: &std::path::Path, encoding: Encoding, compression: Compression, seconds: u64) {
     let options = RecordOptions {
+        encoding,
         compression,
         overwrite: Overwrite::Allow,
         ..RecordOptions::default()
@@ -114,15 +118,20 @@ fn write_messages(path: &std::path::Path, msgs: &[(String, u64, Vec<u8>)], c: Co
 
 fn bench_record(c: &mut Criterion) {
     let dir = tempfile::tempdir().expect("temp dir");
-    let path = |c: Compression| dir.path().join(format!("{}.mcap", c.as_str()));
+    let path = |e: Encoding, c: Compression| {
+        dir.path()
+            .join(format!("{}-{}.mcap", e.as_str(), c.as_str()))
+    };
     let mut g = c.benchmark_group("record_10s_at_1kHz_5_masses");
     g.sample_size(10);
     g.throughput(Throughput::Elements(SECONDS * 1000 + 1));
-    for compression in COMPRESSIONS {
-        let p = path(compression);
-        g.bench_function(compression.as_str(), |b| {
-            b.iter(|| record(&p, compression, SECONDS))
-        });
+    for e in ENCODINGS {
+        for compression in COMPRESSIONS {
+            let p = path(e, compression);
+            g.bench_function(format!("{}_{}", e.as_str(), compression.as_str()), |b| {
+                b.iter(|| record(&p, e, compression, SECONDS))
+            });
+        }
     }
     g.finish();
 
@@ -140,13 +149,19 @@ fn bench_record(c: &mut Criterion) {
 
     // Per simulated hour, and its parts. The floats of the run, formatted alone.
     println!("\nper simulated hour at 1 kHz (best of 3; load {})", load());
-    for compression in COMPRESSIONS {
-        let p = path(compression);
-        let t = best_of(3, || record(&p, compression, LONG));
-        let size = std::fs::metadata(&p).map_or(0, |m| m.len());
-        per_hour(&format!("record, {}", compression.as_str()), t, size);
+    for e in ENCODINGS {
+        for compression in COMPRESSIONS {
+            let p = path(e, compression);
+            let t = best_of(3, || record(&p, e, compression, LONG));
+            let size = std::fs::metadata(&p).map_or(0, |m| m.len());
+            per_hour(
+                &format!("record, {}, {}", e.as_str(), compression.as_str()),
+                t,
+                size,
+            );
+        }
     }
-    let msgs = messages(&path(Compression::None));
+    let msgs = messages(&path(Encoding::Json, Compression::None));
     let floats: Vec<f64> = msgs
         .iter()
         .filter(|(t, _, _)| !matches!(t.as_str(), "/wbv/scene" | "/tf"))
@@ -173,15 +188,18 @@ fn bench_record(c: &mut Criterion) {
         }
     });
     per_hour("synthetic steps (subtract)", synthetic, 0);
-    for compression in COMPRESSIONS {
-        let p = dir.path().join("framing.mcap");
-        let t = best_of(3, || write_messages(&p, &msgs, compression));
-        let size = std::fs::metadata(&p).map_or(0, |m| m.len());
-        per_hour(
-            &format!("mcap writer only, {}", compression.as_str()),
-            t,
-            size,
-        );
+    let proto = messages(&path(Encoding::Protobuf, Compression::None));
+    for (e, msgs) in [("json", &msgs), ("protobuf", &proto)] {
+        for compression in COMPRESSIONS {
+            let p = dir.path().join("framing.mcap");
+            let t = best_of(3, || write_messages(&p, msgs, compression));
+            let size = std::fs::metadata(&p).map_or(0, |m| m.len());
+            per_hour(
+                &format!("mcap writer only, {e}, {}", compression.as_str()),
+                t,
+                size,
+            );
+        }
     }
 }
 

@@ -99,10 +99,8 @@ impl Scenario {
             model: self.model.name.clone(),
             model_toml: self.model.text.clone(),
             excitation: self.excitation.summary(),
-            excitation_definition: format!(
-                "origin: {}\n{:#?}",
-                self.excitation.origin, self.excitation.kind
-            ),
+            excitation_definition: crate::record::excitation_definition(&self.excitation),
+            excitation_origin: self.excitation.origin.clone(),
             integrator: self.settings.method.name(),
             dt: self.settings.dt,
             seed: Some(self.seed),

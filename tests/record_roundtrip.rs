@@ -4,8 +4,8 @@
 use std::path::Path;
 use wbv::record::demo::{self, State};
 use wbv::record::{
-    Compression, McapRecorder, Overwrite, Provenance, RecordOptions, check_lichtblick_subset,
-    inspect, read_run,
+    Compression, Encoding, McapRecorder, Overwrite, Provenance, RecordOptions,
+    check_lichtblick_subset, inspect, read_run,
 };
 use wbv::simulate::observer::Observer;
 
@@ -35,9 +35,10 @@ fn record(path: &Path, options: RecordOptions, steps: u64) -> wbv::Result<()> {
     demo::drive(&mut rec, FS, steps)
 }
 
-fn opts(compression: Compression) -> RecordOptions {
+fn opts(compression: Compression, encoding: Encoding) -> RecordOptions {
     RecordOptions {
         compression,
+        encoding,
         ..RecordOptions::default()
     }
 }
@@ -45,9 +46,17 @@ fn opts(compression: Compression) -> RecordOptions {
 #[test]
 fn recorded_signals_read_back_bit_identically() {
     let dir = tempfile::tempdir().unwrap();
-    for c in [Compression::Zstd, Compression::Lz4, Compression::None] {
-        let path = dir.path().join(format!("run-{}.mcap", c.as_str()));
-        record(&path, opts(c), 2001).unwrap();
+    let cases = [
+        (Compression::Zstd, Encoding::Protobuf),
+        (Compression::Lz4, Encoding::Protobuf),
+        (Compression::None, Encoding::Protobuf),
+        (Compression::Zstd, Encoding::Json),
+        (Compression::None, Encoding::Json),
+    ];
+    for (c, e) in cases {
+        let name = format!("run-{}-{}", c.as_str(), e.as_str());
+        let path = dir.path().join(format!("{name}.mcap"));
+        record(&path, opts(c, e), 2001).unwrap();
         let run = read_run(&path).unwrap();
         let s = &run.signals;
         assert_eq!(s.len(), 2001);
@@ -94,11 +103,7 @@ fn recorded_signals_read_back_bit_identically() {
         }
         assert_eq!(run.provenance, provenance());
         assert_eq!(run.results["iso2631"]["vdv_z"][1], 2.5);
-        assert!(
-            !dir.path()
-                .join(format!("run-{}.mcap.partial", c.as_str()))
-                .exists()
-        );
+        assert!(!dir.path().join(format!("{name}.mcap.partial")).exists());
     }
 }
 
@@ -107,9 +112,13 @@ fn same_inputs_give_a_byte_identical_file() {
     let dir = tempfile::tempdir().unwrap();
     let a = dir.path().join("a.mcap");
     let b = dir.path().join("b.mcap");
-    record(&a, opts(Compression::Zstd), 5000).unwrap();
-    record(&b, opts(Compression::Zstd), 5000).unwrap();
-    assert_eq!(std::fs::read(&a).unwrap(), std::fs::read(&b).unwrap());
+    for e in [Encoding::Protobuf, Encoding::Json] {
+        record(&a, opts(Compression::Zstd, e), 5000).unwrap();
+        record(&b, opts(Compression::Zstd, e), 5000).unwrap();
+        assert_eq!(std::fs::read(&a).unwrap(), std::fs::read(&b).unwrap());
+        std::fs::remove_file(&a).unwrap();
+        std::fs::remove_file(&b).unwrap();
+    }
 }
 
 #[test]
@@ -135,7 +144,7 @@ fn existing_file_is_refused_unless_overwrite_is_allowed() {
 fn truncated_file_gives_one_clear_error_at_every_offset() {
     let dir = tempfile::tempdir().unwrap();
     let path = dir.path().join("run.mcap");
-    record(&path, opts(Compression::Zstd), 3000).unwrap();
+    record(&path, opts(Compression::Zstd, Encoding::Protobuf), 3000).unwrap();
     let bytes = std::fs::read(&path).unwrap();
     let cut = dir.path().join("cut.mcap");
     let n = bytes.len();
@@ -157,7 +166,7 @@ fn truncated_file_gives_one_clear_error_at_every_offset() {
 fn corrupt_bytes_never_panic() {
     let dir = tempfile::tempdir().unwrap();
     let path = dir.path().join("run.mcap");
-    record(&path, opts(Compression::Lz4), 1500).unwrap();
+    record(&path, opts(Compression::Lz4, Encoding::Protobuf), 1500).unwrap();
     let bytes = std::fs::read(&path).unwrap();
     let bad = dir.path().join("bad.mcap");
     // deterministic positions over the whole file, including header, chunks and summary
@@ -228,7 +237,7 @@ fn decimated_record_is_low_passed_and_at_the_record_rate() {
 fn every_channel_schema_is_in_the_lichtblick_subset() {
     let dir = tempfile::tempdir().unwrap();
     let path = dir.path().join("run.mcap");
-    record(&path, RecordOptions::default(), 50).unwrap();
+    record(&path, opts(Compression::Zstd, Encoding::Json), 50).unwrap();
     let bytes = std::fs::read(&path).unwrap();
     let summary = mcap::Summary::read(&bytes).unwrap().unwrap();
     assert_eq!(

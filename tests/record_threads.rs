@@ -24,9 +24,9 @@ fn record(path: &Path, compression: Compression, rate: Option<f64>, threads: usi
 #[test]
 fn the_file_is_byte_identical_for_any_thread_count() {
     let dir = tempfile::tempdir().unwrap();
-    // 12 001 steps: 12 blocks, and more than one 8 MiB chunk of JSON.
+    // 20 001 steps: 20 blocks, and more than one 8 MiB chunk of protobuf (≈ 0.5 kB per step).
     for (compression, rate, steps) in [
-        (Compression::Zstd, None, 12_001),
+        (Compression::Zstd, None, 20_001),
         (Compression::Lz4, None, 3_001),
         (Compression::None, Some(250.0), 5_001),
     ] {
@@ -45,7 +45,7 @@ fn the_file_is_byte_identical_for_any_thread_count() {
         assert!(files[0] == files[2], "{name}: 1 and 3 threads differ");
     }
     let run = read_run(&dir.path().join("zstd-2.mcap")).unwrap();
-    assert_eq!(run.signals.len(), 12_001);
+    assert_eq!(run.signals.len(), 20_001);
     let chunks = mcap::Summary::read(&std::fs::read(dir.path().join("zstd-2.mcap")).unwrap())
         .unwrap()
         .unwrap()

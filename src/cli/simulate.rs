@@ -1,6 +1,6 @@
 use crate::excitation::{ExcitationArgs, args::resolve};
 use crate::io::atomic::Overwrite;
-use crate::record::{Compression, RUN_FILE, RecordOptions};
+use crate::record::{Compression, Encoding, RUN_FILE, RecordOptions};
 use crate::scenario::{Outcome, Outputs, Scenario};
 use std::path::{Path, PathBuf};
 
@@ -14,6 +14,11 @@ pub struct Args {
     pub excitation: ExcitationArgs,
     #[command(flatten)]
     pub time: super::TimeArgs,
+    /// Re-run a recorded run exactly (an MCAP file or run directory): its model TOML, excitation
+    /// definition, integrator, step, duration, seed and recording options; only --out, --force,
+    /// --csv and --timing may be given with it. The new recording is byte-identical.
+    #[arg(long)]
+    pub from: Option<PathBuf>,
     /// Run directory; the recording is `<DIR>/run.mcap` (default `runs/<model>-s<seed>`).
     #[arg(long)]
     pub out: Option<PathBuf>,
@@ -23,6 +28,10 @@ pub struct Args {
     /// Record the time series at this rate in Hz (low-pass filtered first); default: every step.
     #[arg(long)]
     pub record_rate: Option<f64>,
+    /// Message encoding of every recorded channel: protobuf (compact, plotted by Foxglove,
+    /// Lichtblick, PlotJuggler and Rerun) or json (text).
+    #[arg(long, default_value = "protobuf")]
+    pub encoding: String,
     /// MCAP chunk compression: zstd, lz4 or none.
     #[arg(long, default_value = "zstd")]
     pub compression: String,
@@ -63,9 +72,122 @@ pub fn progress(steps: u64) -> indicatif::ProgressBar {
     bar
 }
 
-/// The command line as typed, for provenance.
+/// The command line for provenance, normalised so that the same run gives the same bytes
+/// wherever it is written and whichever binary ran it: program name `wbv`, and without the
+/// output options `--out`, `--csv` (their values are paths of this machine) and `--force`.
 pub fn command_line() -> String {
-    std::env::args().collect::<Vec<_>>().join(" ")
+    normalise(std::env::args().skip(1))
+}
+
+/// Options that say where outputs go, not what is simulated or recorded; with their value.
+const OUTPUT_OPTIONS: [&str; 2] = ["--out", "--csv"];
+
+fn normalise(args: impl Iterator<Item = String>) -> String {
+    let mut out = vec!["wbv".to_string()];
+    let mut args = args.peekable();
+    while let Some(a) = args.next() {
+        let name = a.split('=').next().unwrap_or_default();
+        if OUTPUT_OPTIONS.contains(&name) {
+            if !a.contains('=') {
+                args.next();
+            }
+        } else if a != "--force" {
+            out.push(a);
+        }
+    }
+    out.join(" ")
+}
+
+/// The options `--from` accepts beside itself: outputs and timing, nothing that changes the run.
+fn check_from_alone(args: impl Iterator<Item = String>) -> crate::Result<()> {
+    let mut args = args.peekable();
+    while let Some(a) = args.next() {
+        let name = a.split('=').next().unwrap_or_default();
+        let takes_value = OUTPUT_OPTIONS.contains(&name) || name == "--from";
+        if takes_value {
+            if !a.contains('=') {
+                args.next();
+            }
+        } else if !["simulate", "--force", "--timing"].contains(&a.as_str()) {
+            return Err(crate::Error::parameter(
+                a,
+                "cannot be given with --from, which re-runs the recorded run exactly (only --out, \
+                 --force, --csv and --timing may be added)",
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// The integrator option value of a provenance's integrator name (`Method::name`).
+fn integrator_option(name: &str) -> &str {
+    if name.starts_with("newmark (linear") {
+        "newmark-linear"
+    } else if name.starts_with("rk4") {
+        "rk4"
+    } else {
+        "newmark"
+    }
+}
+
+/// The scenario, recording options and command line of a recorded run, for `--from`.
+pub fn from_run(run: &Path) -> crate::Result<(Scenario, RecordOptions, String)> {
+    let path = crate::record::run_file(run);
+    let (p, meta) = crate::record::read_provenance(&path)?;
+    let bad = |key: &str| {
+        crate::Error::data(
+            &path,
+            None,
+            format!("metadata `wbv.run.{key}` missing or invalid: cannot re-run"),
+        )
+    };
+    let get = |key: &str| meta.get(key).ok_or_else(|| bad(key));
+    let num = |key: &str| get(key)?.parse::<f64>().map_err(|_| bad(key));
+    // A single model file is its TOML; a stack (`stack = [...]`) stores the texts of its parts,
+    // which load again through the catalogue name, checked to give the same text.
+    let model = match crate::model::catalog::parse(&p.model_toml, &p.model) {
+        Ok(mut m) => {
+            m.name = p.model.clone();
+            m
+        }
+        Err(e) => match crate::model::catalog::resolve(&p.model) {
+            Ok(m) if m.text == p.model_toml => m,
+            _ => {
+                return Err(crate::Error::data(
+                    &path,
+                    None,
+                    format!(
+                        "the stored model TOML does not load again ({e}) and `{}` no longer \
+                         resolves to the same text: cannot re-run exactly",
+                        p.model
+                    ),
+                ));
+            }
+        },
+    };
+    let excitation =
+        crate::record::load_excitation(&p.excitation_origin, &p.excitation_definition)?;
+    let settings = crate::simulate::Settings {
+        dt: p.dt,
+        duration_s: p.duration,
+        method: crate::integrator::Method::parse(integrator_option(&p.integrator))?,
+    };
+    let (fs, rate) = (num("simulation_rate_hz")?, num("sample_rate_hz")?);
+    let options = RecordOptions {
+        encoding: Encoding::parse(get("encoding").map_or("json", |s| s.as_str()))?,
+        compression: Compression::parse(get("compression")?)?,
+        record_rate_hz: (rate != fs).then_some(rate),
+        scene_rate_hz: num("scene_rate_hz")?,
+        magnification: num("display_magnification")?,
+        ..RecordOptions::default()
+    };
+    let scenario = Scenario {
+        model,
+        excitation,
+        settings,
+        seed: p.seed.ok_or_else(|| bad("seed"))?,
+    };
+    Ok((scenario, options, p.command_line))
 }
 
 /// Runs `scenario` into `dir` (unless `record` is false) and prints what it produced.
@@ -75,11 +197,22 @@ pub fn execute(
     options: RecordOptions,
     csv: Option<PathBuf>,
 ) -> crate::Result<Outcome> {
+    execute_as(scenario, dir, options, csv, command_line())
+}
+
+/// [`execute`] with the command line stored in the provenance given.
+fn execute_as(
+    scenario: &Scenario,
+    dir: Option<&Path>,
+    options: RecordOptions,
+    csv: Option<PathBuf>,
+    command_line: String,
+) -> crate::Result<Outcome> {
     let outputs = Outputs {
         overwrite: options.overwrite,
         mcap: dir.map(|d| (d.join(RUN_FILE), options)),
         csv,
-        command_line: command_line(),
+        command_line,
     };
     let bar = progress(scenario.settings.steps());
     let outcome = scenario.execute(&outputs, Some(&|n| bar.set_position(n)))?;
@@ -135,6 +268,19 @@ fn time_core(scenario: &Scenario) -> crate::Result<(f64, f64)> {
 }
 
 pub fn run(args: Args) -> crate::Result<()> {
+    if let Some(run) = &args.from {
+        check_from_alone(std::env::args().skip(1))?;
+        let (scenario, options, line) = from_run(run)?;
+        let options = RecordOptions {
+            overwrite: Overwrite::from_force(args.force),
+            ..options
+        };
+        let dir = args.out.clone().ok_or_else(|| {
+            crate::Error::parameter("--out", "required with --from (a new run directory)")
+        })?;
+        execute_as(&scenario, Some(&dir), options, args.csv.clone(), line)?;
+        return Ok(());
+    }
     let scenario = args.scenario()?;
     let core = if args.timing {
         Some(time_core(&scenario)?)
@@ -142,6 +288,7 @@ pub fn run(args: Args) -> crate::Result<()> {
         None
     };
     let options = RecordOptions {
+        encoding: Encoding::parse(&args.encoding)?,
         compression: Compression::parse(&args.compression)?,
         record_rate_hz: args.record_rate,
         overwrite: Overwrite::from_force(args.force),
@@ -171,4 +318,32 @@ pub fn run(args: Args) -> crate::Result<()> {
         );
     }
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_command_line_leaves_out_where_outputs_go() {
+        let args = |s: &str| {
+            s.split(' ')
+                .map(String::from)
+                .collect::<Vec<_>>()
+                .into_iter()
+        };
+        assert_eq!(
+            normalise(args(
+                "simulate --out /tmp/a --model reference --force --csv=x.csv --seed 2"
+            )),
+            "wbv simulate --model reference --seed 2"
+        );
+        assert!(check_from_alone(args("simulate --from r --out x --force --timing")).is_ok());
+        let e = check_from_alone(args("simulate --from r --out x --seed 3")).unwrap_err();
+        assert!(
+            e.to_string()
+                .starts_with("--seed: cannot be given with --from"),
+            "{e}"
+        );
+    }
 }

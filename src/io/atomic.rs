@@ -44,34 +44,79 @@ pub fn check_overwrite(path: &Path, overwrite: Overwrite) -> Result<()> {
     Ok(())
 }
 
-/// A file being written under its `.partial` name; [`AtomicFile::commit`] renames it into place.
-/// Dropped without a commit (an error on the way), it removes the partial file.
-pub struct AtomicFile {
+/// `<path>.partial`, created and locked by this process until it is moved into place.
+///
+/// - Created with `create_new` and held with an exclusive lock (`File::try_lock`), so two
+///   processes writing the same output cannot both proceed: the second one is refused at once.
+/// - A `.partial` that exists but is not locked is the leftover of a process that was killed
+///   (`kill -9`, power loss): it is reported on stderr and removed.
+/// - [`Partial::commit`] syncs and moves the file to its final name without replacing a file
+///   that appeared meanwhile (hard link, then unlink) unless overwriting is allowed.
+/// - Dropped without a commit (an error on the way), the partial file is removed.
+#[derive(Debug)]
+pub struct Partial {
     path: PathBuf,
     tmp: PathBuf,
-    out: Option<BufWriter<fs::File>>,
+    done: bool,
 }
 
-impl AtomicFile {
-    /// Creates `<path>.partial` (and the parent directory), refusing an existing `path` unless
-    /// allowed.
-    pub fn create(path: &Path, overwrite: Overwrite) -> Result<Self> {
+impl Partial {
+    /// Creates and locks `<path>.partial` (and the parent directory), refusing an existing
+    /// `path` unless allowed; returns the guard and the open file.
+    pub fn create(path: &Path, overwrite: Overwrite) -> Result<(Self, fs::File)> {
         check_overwrite(path, overwrite)?;
         if let Some(dir) = path.parent().filter(|d| !d.as_os_str().is_empty()) {
             fs::create_dir_all(dir).map_err(|e| Error::io(dir, e))?;
         }
         let tmp = partial_path(path);
-        let file = fs::File::create(&tmp).map_err(|e| Error::io(&tmp, e))?;
-        Ok(AtomicFile {
-            path: path.to_path_buf(),
-            tmp,
-            out: Some(BufWriter::new(file)),
-        })
-    }
-
-    /// The writer of the partial file.
-    pub fn writer(&mut self) -> &mut BufWriter<fs::File> {
-        self.out.as_mut().expect("not committed")
+        let busy = || {
+            Error::parameter(
+                path.display().to_string(),
+                format!(
+                    "another process is writing it ({} is locked); refusing to write it twice",
+                    tmp.display()
+                ),
+            )
+        };
+        // Two rounds: a stale leftover is removed once, then the file must be ours.
+        for _ in 0..2 {
+            match fs::OpenOptions::new()
+                .read(true)
+                .write(true)
+                .create_new(true)
+                .open(&tmp)
+            {
+                Ok(file) => {
+                    // Locked by nobody else yet: only a process that opened the same new file
+                    // between our create and lock could hold it, and then it is theirs.
+                    file.try_lock().map_err(|_| busy())?;
+                    let guard = Partial {
+                        path: path.to_path_buf(),
+                        tmp,
+                        done: false,
+                    };
+                    return Ok((guard, file));
+                }
+                Err(e) if e.kind() == std::io::ErrorKind::AlreadyExists => {
+                    let old = fs::OpenOptions::new()
+                        .read(true)
+                        .write(true)
+                        .open(&tmp)
+                        .map_err(|e| Error::io(&tmp, e))?;
+                    if old.try_lock().is_err() {
+                        return Err(busy());
+                    }
+                    let bytes = old.metadata().map_or(0, |m| m.len());
+                    eprintln!(
+                        "removed {} ({bytes} bytes), left by an earlier run that was killed",
+                        tmp.display()
+                    );
+                    fs::remove_file(&tmp).map_err(|e| Error::io(&tmp, e))?;
+                }
+                Err(e) => return Err(Error::io(&tmp, e)),
+            }
+        }
+        Err(busy())
     }
 
     /// The final path.
@@ -79,22 +124,84 @@ impl AtomicFile {
         &self.path
     }
 
-    /// Flushes, syncs and renames the partial file to its final name.
-    pub fn commit(mut self) -> Result<()> {
-        let out = self.out.take().expect("not committed");
-        let file = out
-            .into_inner()
-            .map_err(|e| Error::io(&self.tmp, e.into_error()))?;
+    /// The `.partial` path being written.
+    pub fn tmp(&self) -> &Path {
+        &self.tmp
+    }
+
+    /// Syncs `file` (the one [`Partial::create`] returned) and moves it to the final path.
+    pub fn commit(self, file: fs::File, overwrite: Overwrite) -> Result<()> {
+        let dest = self.path.clone();
+        self.commit_as(file, &dest, overwrite)
+    }
+
+    /// Like [`Partial::commit`], under another name (e.g. `run.interrupted.mcap`).
+    pub fn commit_as(mut self, file: fs::File, dest: &Path, overwrite: Overwrite) -> Result<()> {
         file.sync_all().map_err(|e| Error::io(&self.tmp, e))?;
-        fs::rename(&self.tmp, &self.path).map_err(|e| Error::io(&self.path, e))
+        match overwrite {
+            Overwrite::Allow => fs::rename(&self.tmp, dest).map_err(|e| Error::io(dest, e))?,
+            Overwrite::Refuse => match fs::hard_link(&self.tmp, dest) {
+                Ok(()) => {
+                    let _ = fs::remove_file(&self.tmp);
+                }
+                Err(e) if e.kind() == std::io::ErrorKind::AlreadyExists => {
+                    return Err(Error::parameter(
+                        dest.display().to_string(),
+                        "appeared while writing; refusing to overwrite it",
+                    ));
+                }
+                Err(e) => return Err(Error::io(dest, e)),
+            },
+        }
+        self.done = true;
+        drop(file); // releases the lock
+        Ok(())
     }
 }
 
-impl Drop for AtomicFile {
+impl Drop for Partial {
     fn drop(&mut self) {
-        if self.out.take().is_some() {
+        if !self.done {
             let _ = fs::remove_file(&self.tmp);
         }
+    }
+}
+
+/// A file being written under its `.partial` name (see [`Partial`]); [`AtomicFile::commit`]
+/// moves it into place.
+pub struct AtomicFile {
+    partial: Partial,
+    overwrite: Overwrite,
+    out: BufWriter<fs::File>,
+}
+
+impl AtomicFile {
+    /// Creates `<path>.partial` (and the parent directory), refusing an existing `path` unless
+    /// allowed.
+    pub fn create(path: &Path, overwrite: Overwrite) -> Result<Self> {
+        let (partial, file) = Partial::create(path, overwrite)?;
+        Ok(AtomicFile {
+            partial,
+            overwrite,
+            out: BufWriter::new(file),
+        })
+    }
+
+    /// The writer of the partial file.
+    pub fn writer(&mut self) -> &mut BufWriter<fs::File> {
+        &mut self.out
+    }
+
+    /// The final path.
+    pub fn path(&self) -> &Path {
+        self.partial.path()
+    }
+
+    /// Flushes, syncs and moves the partial file to its final name.
+    pub fn commit(self) -> Result<()> {
+        let file =
+            (self.out.into_inner()).map_err(|e| Error::io(self.partial.tmp(), e.into_error()))?;
+        self.partial.commit(file, self.overwrite)
     }
 }
 

@@ -10,6 +10,8 @@ pub const RUN: &str = "wbv.run";
 pub const MODEL: &str = "wbv.model";
 pub const EXCITATION: &str = "wbv.excitation";
 pub const RESULTS: &str = "wbv.results";
+/// Written only when a run was interrupted: `interrupted_at_s`, `reason`.
+pub const INTERRUPTED: &str = "wbv.interrupted";
 
 pub type Map = BTreeMap<String, String>;
 
@@ -29,6 +31,7 @@ pub fn records(p: &Provenance) -> Vec<(&'static str, Map)> {
             map([
                 ("description", p.excitation.clone()),
                 ("definition", p.excitation_definition.clone()),
+                ("origin", p.excitation_origin.clone()),
             ]),
         ),
     ]
@@ -90,6 +93,8 @@ pub fn provenance(file: &Path, records: &BTreeMap<String, Map>) -> Result<Proven
         model_toml: get(MODEL, "toml")?,
         excitation: get(EXCITATION, "description")?,
         excitation_definition: get(EXCITATION, "definition")?,
+        // Runs recorded before the origin was stored have none.
+        excitation_origin: get(EXCITATION, "origin").unwrap_or_default(),
         integrator: get(RUN, "integrator")?,
         dt: num("dt_s")?,
         seed,
@@ -97,4 +102,117 @@ pub fn provenance(file: &Path, records: &BTreeMap<String, Map>) -> Result<Proven
         version: get(RUN, "wbv_version")?,
         command_line: get(RUN, "command_line")?,
     })
+}
+
+/// The excitation as a definition that loads again with [`load_excitation`]: the TOML text of
+/// a built-in or file excitation as it is, and for one built from command-line options
+/// (`--excitation random --rms 0.8`, origin `command line`) the same definition in the file
+/// format of `excitations/*.toml`. Files it refers to (PSD or recorded CSV) stay paths.
+pub fn excitation_definition(spec: &crate::excitation::ExcitationSpec) -> String {
+    use crate::excitation::{Kind, builtin};
+    if let Some(text) = builtin::text(&spec.origin) {
+        return text.to_string();
+    }
+    if spec.origin != "command line"
+        && let Ok(text) = std::fs::read_to_string(&spec.origin)
+    {
+        return text;
+    }
+    let mut t = toml::Table::new();
+    let num = |v: f64| toml::Value::Float(v);
+    let pair = |p: [f64; 2]| toml::Value::Array(vec![num(p[0]), num(p[1])]);
+    let path = |p: &Path| toml::Value::String(p.display().to_string());
+    let mut put = |k: &str, v: toml::Value| {
+        t.insert(k.to_string(), v);
+    };
+    let kind = match &spec.kind {
+        Kind::Random { rms_m_s2, band_hz } => {
+            put("rms_m_s2", num(*rms_m_s2));
+            put("band_hz", pair(*band_hz));
+            "random"
+        }
+        Kind::Psd { points, csv, .. } => {
+            if let Some(c) = csv {
+                put("csv", path(c));
+            } else {
+                put(
+                    "points",
+                    toml::Value::Array(points.iter().map(|p| pair(*p)).collect()),
+                );
+            }
+            "psd"
+        }
+        Kind::Road {
+            class,
+            gd_n0_m3,
+            speed_m_s,
+            vehicle: None,
+        } => {
+            if let Some(c) = class {
+                put("class", toml::Value::String(c.clone()));
+            }
+            if let Some(g) = gd_n0_m3 {
+                put("gd_n0_m3", num(*g));
+            }
+            put("speed_m_s", num(*speed_m_s));
+            "road"
+        }
+        Kind::Recorded { csv } => {
+            put("csv", path(csv));
+            "recorded"
+        }
+        Kind::Sine {
+            frequency_hz,
+            amplitude_m_s2,
+            phase_deg,
+            fade_in_s,
+        } => {
+            put("frequency_hz", num(*frequency_hz));
+            put("amplitude_m_s2", num(*amplitude_m_s2));
+            put("phase_deg", num(*phase_deg));
+            put("fade_in_s", num(*fade_in_s));
+            "sine"
+        }
+        Kind::Sweep {
+            from_hz,
+            to_hz,
+            amplitude_m_s2,
+            law,
+            duration_s,
+            fade_in_s,
+        } => {
+            put("from_hz", num(*from_hz));
+            put("to_hz", num(*to_hz));
+            put("amplitude_m_s2", num(*amplitude_m_s2));
+            put(
+                "law",
+                toml::Value::String(format!("{law:?}").to_ascii_lowercase()),
+            );
+            if let Some(d) = duration_s {
+                put("duration_s", num(*d));
+            }
+            put("fade_in_s", num(*fade_in_s));
+            "sweep"
+        }
+        // Only files and built-ins define these; a file that went away leaves its description.
+        other => return format!("# not loadable: the file it came from is gone\n# {other:?}\n"),
+    };
+    t.insert("type".into(), toml::Value::String(kind.into()));
+    let mut doc = toml::Table::new();
+    doc.insert(
+        "description".into(),
+        toml::Value::String(spec.description.clone()),
+    );
+    doc.insert("excitation".into(), toml::Value::Table(t));
+    toml::to_string(&doc).expect("a TOML table serialises")
+}
+
+/// Loads the excitation stored with [`excitation_definition`] under its original `origin`, so
+/// that it describes itself as the original did.
+pub fn load_excitation(
+    origin: &str,
+    definition: &str,
+) -> Result<crate::excitation::ExcitationSpec> {
+    let dir = Path::new(origin).parent().filter(|d| d.is_dir());
+    crate::excitation::ExcitationSpec::parse(definition, origin, dir)
 }

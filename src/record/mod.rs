@@ -1,8 +1,14 @@
-//! Every simulation run recorded to MCAP (<https://mcap.dev/spec>), readable by Foxglove, Lichtblick
-//! and PlotJuggler, and read back by [`read_run`] so that a recorded run stands in for a measurement.
+//! Every simulation run recorded to MCAP (<https://mcap.dev/spec>), readable by Foxglove, Lichtblick,
+//! PlotJuggler and Rerun, and read back by [`read_run`] so that a recorded run stands in for a
+//! measurement.
 //!
-//! File layout (all channels `json` messages with a `jsonschema` schema, because PlotJuggler skips
-//! schemaless channels and Lichtblick only parses single-`type` JSON-schema properties):
+//! Encoding ([`Encoding`]): **protobuf** by default — schema encoding `protobuf`, a serialized
+//! `FileDescriptorSet` in each schema record, fully qualified names: `wbv.Measured`, `wbv.State`,
+//! `wbv.Links` of `proto/wbv.proto` (see [`proto`]) and the Foxglove SDK's `foxglove.SceneUpdate`
+//! / `foxglove.FrameTransforms`; 8 bytes per f64, so a run reads back bit-identically at a fraction
+//! of the JSON cost. `--encoding json`: `json` messages with a `jsonschema` schema (PlotJuggler skips
+//! schemaless channels and Lichtblick only parses single-`type` JSON-schema properties), as before.
+//! The field paths are the same in both (`/wbv/state.head.a_abs`).
 //!
 //! | topic | content (SI units) |
 //! |---|---|
@@ -14,14 +20,17 @@
 //! Every value is recorded once (but the measured-run names, see `topics.rs`): the
 //! base motion is `a_base_z` (its integrals are `x_abs − x` of any mass), a body link's
 //! deflection is the difference of two `/wbv/state` displacements, and only `/wbv/measured`
-//! carries `t`. Floats are written at full precision (shortest round-trip text), so a run reads
-//! back bit-identically; that text is what costs: see `benches/record.rs`.
+//! carries `t`. Floats are written at full precision (protobuf `double`, or the shortest round-trip
+//! text in JSON), so a run reads back bit-identically; see `benches/record.rs` for the costs.
 //!
 //! Time: `log_time = publish_time = round(t·1e9)` ns from 0 (Foxglove plays by log time, PlotJuggler
 //! plots publish time), `sequence` = step index. No wall-clock time is written anywhere, so the same
-//! inputs give a byte-identical file. Provenance is stored in metadata records (`wbv.run`,
-//! `wbv.model`, `wbv.excitation`) and the exact model TOML as an attachment; analysis results given
+//! inputs give a byte-identical file, wherever it is written: the stored command line is normalised
+//! (program `wbv`, no `--out`/`--csv`/`--force`). Provenance is stored in metadata records
+//! (`wbv.run`, `wbv.model`, `wbv.excitation` with a definition that loads again) and the exact model
+//! TOML as an attachment; `wbv simulate --from RUN` re-runs it byte for byte. Analysis results given
 //! to [`McapRecorder::attach_results`] go to `wbv.results` metadata and `<name>.json` attachments.
+//! SIGINT/SIGTERM close what was simulated as `run.interrupted.mcap` (metadata `wbv.interrupted`).
 
 pub mod csv;
 pub mod demo;
@@ -29,6 +38,7 @@ mod json;
 mod lowpass;
 mod meta;
 mod pipeline;
+pub mod proto;
 mod reader;
 mod scene;
 mod topics;
@@ -36,7 +46,8 @@ mod writer;
 
 pub use json::check_lichtblick_subset;
 pub use lowpass::LowPass;
-pub use reader::{RecordedRun, RunSummary, TopicSummary, inspect, read_run};
+pub use meta::{excitation_definition, load_excitation};
+pub use reader::{RecordedRun, RunSummary, TopicSummary, inspect, read_provenance, read_run};
 pub use writer::McapRecorder;
 
 pub use crate::io::atomic::Overwrite;
@@ -89,9 +100,46 @@ impl Compression {
     }
 }
 
+/// Message encoding of every channel.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Encoding {
+    /// Protobuf (`proto/wbv.proto`; the scene as the Foxglove SDK's `foxglove.*` types): schema
+    /// encoding `protobuf` with a serialized `FileDescriptorSet`, fully qualified names. The
+    /// default: 8 bytes per f64 instead of ≈ 20 characters, decoded without plug-ins by
+    /// Foxglove, Lichtblick, PlotJuggler and Rerun.
+    #[default]
+    Protobuf,
+    /// JSON messages with a `jsonschema` schema: text, readable anywhere.
+    Json,
+}
+
+impl Encoding {
+    /// Parses `protobuf` or `json`.
+    pub fn parse(s: &str) -> crate::Result<Self> {
+        match s {
+            "protobuf" => Ok(Encoding::Protobuf),
+            "json" => Ok(Encoding::Json),
+            _ => Err(crate::Error::parameter(
+                "encoding",
+                format!("`{s}` is not one of protobuf, json"),
+            )),
+        }
+    }
+
+    /// The name used on the command line and in the metadata (= the MCAP message encoding).
+    pub fn as_str(&self) -> &'static str {
+        match self {
+            Encoding::Protobuf => "protobuf",
+            Encoding::Json => "json",
+        }
+    }
+}
+
 /// How a run is recorded.
 #[derive(Debug, Clone, PartialEq)]
 pub struct RecordOptions {
+    /// Message encoding of every channel.
+    pub encoding: Encoding,
     /// Chunk compression.
     pub compression: Compression,
     /// Rate of the time-series topics in Hz; `None` records every step. A lower rate must divide
@@ -115,6 +163,7 @@ pub struct RecordOptions {
 impl Default for RecordOptions {
     fn default() -> Self {
         RecordOptions {
+            encoding: Encoding::Protobuf,
             compression: Compression::Zstd,
             record_rate_hz: None,
             scene_rate_hz: 30.0,
@@ -134,8 +183,11 @@ pub struct Provenance {
     pub model_toml: String,
     /// One-line description of the excitation.
     pub excitation: String,
-    /// The excitation definition (TOML/JSON/CLI text) from which it can be regenerated.
+    /// The excitation definition in the TOML format of `excitations/*.toml`
+    /// ([`excitation_definition`]), loaded again by [`load_excitation`].
     pub excitation_definition: String,
+    /// Where the excitation came from: a built-in name, a file path or `command line`.
+    pub excitation_origin: String,
     /// Integrator name, e.g. `newmark`.
     pub integrator: String,
     /// Integration step in s.
@@ -146,7 +198,9 @@ pub struct Provenance {
     pub duration: f64,
     /// wbv version that wrote the run (`env!("CARGO_PKG_VERSION")`).
     pub version: String,
-    /// The command line that produced the run.
+    /// The command line that produced the run, normalised so that it does not depend on where
+    /// the run was written or from where wbv was started: program name `wbv`, no `--out` and
+    /// no `--force` (see `cli::simulate::command_line`).
     pub command_line: String,
 }
 

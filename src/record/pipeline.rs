@@ -10,6 +10,7 @@
 
 use super::Compression;
 use super::json::Template;
+use super::proto::ProtoTemplate;
 use mcap::records::MessageHeader;
 use std::collections::BTreeMap;
 use std::fs::File;
@@ -66,13 +67,50 @@ pub fn json_channel(
     w.add_channel(sid, topic, "json", &BTreeMap::new())
 }
 
+/// Adds a `protobuf` channel on `topic` whose schema is the message `schema_name` (fully
+/// qualified) of the serialized `FileDescriptorSet` `descriptor`; returns the channel id.
+pub fn protobuf_channel(
+    w: &mut McapWriter,
+    topic: &str,
+    schema_name: &str,
+    descriptor: &[u8],
+) -> mcap::McapResult<u16> {
+    let sid = w.add_schema(schema_name, "protobuf", descriptor)?;
+    w.add_channel(sid, topic, "protobuf", &BTreeMap::new())
+}
+
+/// How a time-series message is written from its values.
+#[derive(Debug, Clone)]
+pub enum Encoder {
+    Json(Template),
+    Protobuf(ProtoTemplate),
+}
+
+impl Encoder {
+    /// Number of values a message takes.
+    pub fn len(&self) -> usize {
+        match self {
+            Encoder::Json(t) => t.len(),
+            Encoder::Protobuf(t) => t.len(),
+        }
+    }
+
+    /// Appends the message of finite `values`.
+    fn render(&self, values: &[f64], out: &mut Vec<u8>) {
+        match self {
+            Encoder::Json(t) => t.render_finite(values, out),
+            Encoder::Protobuf(t) => t.render(values, out),
+        }
+    }
+}
+
 /// Steps per block: about 1.5 MB of JSON for a 6-mass model, enough to amortise the hand-overs.
 pub const BLOCK_STEPS: usize = 1024;
 
 /// One time-series topic as the formatters see it.
 #[derive(Debug, Clone)]
 pub struct Channel {
-    pub template: Template,
+    pub template: Encoder,
     pub id: u16,
 }
 
@@ -143,7 +181,7 @@ impl Batch {
             let mut values = &block.values[k * per_step..(k + 1) * per_step];
             for c in channels {
                 let (v, rest) = values.split_at(c.template.len());
-                c.template.render_finite(v, &mut self.data);
+                c.template.render(v, &mut self.data);
                 self.push(c.id, sequence, time_ns);
                 values = rest;
             }

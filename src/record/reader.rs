@@ -4,6 +4,7 @@
 
 use super::Provenance;
 use super::meta::{self, Map};
+use super::proto::ProtoTable;
 use super::topics::channel_name;
 use crate::error::{Error, Result};
 use crate::signals::Signals;
@@ -147,7 +148,7 @@ fn for_each_message(
     path: &Path,
     buf: &[u8],
     s: &mcap::Summary,
-    mut f: impl FnMut(&str, u32, &[u8]) -> Result<()>,
+    mut f: impl FnMut(&mcap::Channel<'_>, u32, &[u8]) -> Result<()>,
 ) -> Result<()> {
     use mcap::sans_io::{LinearReadEvent, LinearReader, LinearReaderOptions};
     let mut reader = LinearReader::new_with_options(
@@ -174,7 +175,7 @@ fn for_each_message(
                         let channel = s.channels.get(&header.channel_id).ok_or_else(|| {
                             corrupt(path, format!("unknown channel {}", header.channel_id))
                         })?;
-                        f(&channel.topic, header.sequence, &data)?;
+                        f(channel, header.sequence, &data)?;
                     }
                     _ => return Err(corrupt(path, "message record expected")),
                 }
@@ -195,6 +196,14 @@ pub fn inspect(path: &Path) -> Result<RunSummary> {
     summarize(path, &buf, &s)
 }
 
+/// The provenance of a recorded run and its `wbv.run` metadata record, from the summary only.
+pub fn read_provenance(path: &Path) -> Result<(Provenance, Map)> {
+    let s = inspect(path)?;
+    let p = meta::provenance(path, &s.metadata)?;
+    let run = s.metadata.get(meta::RUN).cloned().unwrap_or_default();
+    Ok((p, run))
+}
+
 /// Reads a run recorded by [`McapRecorder`](super::McapRecorder): every time-series message (CRCs
 /// checked), its provenance and its stored results.
 pub fn read_run(path: &Path) -> Result<RecordedRun> {
@@ -209,18 +218,24 @@ pub fn read_run(path: &Path) -> Result<RecordedRun> {
         .filter(|r: &f64| r.is_finite() && *r > 0.0)
         .ok_or_else(|| corrupt(path, "metadata `wbv.run.sample_rate_hz` missing or invalid"))?;
 
-    let mut tables: Vec<Table> = SIGNAL_TOPICS.iter().map(|_| Table::default()).collect();
-    for_each_message(path, &buf, &s, |topic, sequence, data| {
+    // Per signal topic: its table, made from the channel's encoding (and descriptor) on first use.
+    let mut tables: Vec<Option<Decoded>> = SIGNAL_TOPICS.iter().map(|_| None).collect();
+    for_each_message(path, &buf, &s, |channel, sequence, data| {
+        let topic = channel.topic.as_str();
         let Some(k) = SIGNAL_TOPICS.iter().position(|t| *t == topic) else {
             return Ok(());
         };
-        tables[k]
-            .add(data)
-            .map_err(|e| Error::data(path, None, format!("{topic} message {sequence}: {e}")))
+        let err = |e: String| Error::data(path, None, format!("{topic} message {sequence}: {e}"));
+        let table = match &mut tables[k] {
+            Some(t) => t,
+            empty => empty.insert(Decoded::new(channel).map_err(err)?),
+        };
+        table.add(data).map_err(err)
     })?;
 
     let mut signals = Signals::new(fs, path.display().to_string());
     for (topic, table) in SIGNAL_TOPICS.iter().zip(tables) {
+        let table = table.map(Decoded::into_table).unwrap_or_default();
         if table.names.is_empty() {
             if *topic == SIGNAL_TOPICS[0] {
                 return Err(Error::data(
@@ -252,6 +267,50 @@ pub fn read_run(path: &Path) -> Result<RecordedRun> {
         results,
         summary,
     })
+}
+
+/// A signal topic being decoded: JSON (field names learnt from the first message) or protobuf
+/// (field names from the channel's descriptor).
+enum Decoded {
+    Json(Table),
+    Protobuf(ProtoTable),
+}
+
+impl Decoded {
+    fn new(channel: &mcap::Channel<'_>) -> std::result::Result<Self, String> {
+        match channel.message_encoding.as_str() {
+            "json" => Ok(Decoded::Json(Table::default())),
+            "protobuf" => {
+                let schema = (channel.schema.as_ref())
+                    .filter(|s| s.encoding == "protobuf")
+                    .ok_or("protobuf channel without a protobuf schema")?;
+                Ok(Decoded::Protobuf(ProtoTable::new(
+                    &schema.data,
+                    &schema.name,
+                )?))
+            }
+            other => Err(format!(
+                "message encoding `{other}`: expected protobuf or json"
+            )),
+        }
+    }
+
+    fn add(&mut self, data: &[u8]) -> std::result::Result<(), String> {
+        match self {
+            Decoded::Json(t) => t.add(data),
+            Decoded::Protobuf(t) => t.add(data),
+        }
+    }
+
+    fn into_table(self) -> Table {
+        match self {
+            Decoded::Json(t) => t,
+            Decoded::Protobuf(t) => {
+                let (names, columns) = t.into_columns();
+                Table { names, columns }
+            }
+        }
+    }
 }
 
 /// The numeric fields of one topic's messages, flattened in document order.

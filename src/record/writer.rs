@@ -6,17 +6,22 @@
 
 use super::lowpass::{LowPass, decimation};
 use super::meta;
-use super::pipeline::{self, BLOCK_STEPS, Block, Channel, McapWriter, Pipeline, json_channel};
-use super::scene::{FRAME_TRANSFORMS_SCHEMA, SCENE_UPDATE_SCHEMA, Scene};
-use super::topics::{Quantity, Topic, channel_name, eval, topics};
-use super::{Provenance, RecordOptions};
+use super::pipeline::{
+    self, BLOCK_STEPS, Block, Channel, Encoder, McapWriter, Pipeline, json_channel,
+    protobuf_channel,
+};
+use super::proto::{self, ProtoTemplate};
+use super::scene::{self, FRAME_TRANSFORMS_SCHEMA, SCENE_UPDATE_SCHEMA, Scene};
+use super::topics::{Quantity, Topic, channel_name, eval, plot_key, topics};
+use super::{Encoding, Provenance, RecordOptions};
 use crate::error::{Error, Result};
-use crate::io::atomic::{Overwrite, partial_path};
+use crate::io::atomic::{Overwrite, Partial};
 use crate::simulate::observer::{Layout, Observer, Step};
 use mcap::records::{MessageHeader, Metadata};
 use std::collections::BTreeMap;
-use std::fs::{self, File};
 use std::path::{Path, PathBuf};
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::{Arc, OnceLock};
 
 /// Formatter threads and zstd workers: [`RecordOptions::threads`], else one per core (at most 4).
 /// The file is the same for any count: blocks are written in step order, and zstd's output does
@@ -28,10 +33,40 @@ fn threads(options: &RecordOptions) -> usize {
         .max(1)
 }
 
-/// Records a run to `<path>` (through `<path>.partial`, renamed only once complete).
+/// Set by SIGINT or SIGTERM once a recorder exists: the recorder then closes what it has as
+/// [`interrupted_path`] and stops the run with an error. A second signal ends the process at
+/// once (exit status 130), leaving only the `.partial` that the next run removes.
+fn interrupt_flag() -> &'static Arc<AtomicBool> {
+    static FLAG: OnceLock<Arc<AtomicBool>> = OnceLock::new();
+    FLAG.get_or_init(|| {
+        let flag = Arc::new(AtomicBool::new(false));
+        for signal in [signal_hook::consts::SIGINT, signal_hook::consts::SIGTERM] {
+            // Registration fails only for forbidden signals; without it the default applies.
+            let _ =
+                signal_hook::flag::register_conditional_shutdown(signal, 130, Arc::clone(&flag));
+            let _ = signal_hook::flag::register(signal, Arc::clone(&flag));
+        }
+        flag
+    })
+}
+
+/// Steps between two looks at the interrupt flag (≈ 1 ms of simulation at 1 kHz, far less in
+/// wall time).
+const INTERRUPT_CHECK_STEPS: u64 = 1024;
+
+/// Where an interrupted recording of `path` is closed: `run.mcap` → `run.interrupted.mcap`, a
+/// name no reader of complete runs takes for one.
+pub fn interrupted_path(path: &Path) -> PathBuf {
+    let stem = path.file_stem().unwrap_or_default().to_string_lossy();
+    path.with_file_name(format!("{stem}.interrupted.mcap"))
+}
+
+/// Records a run to `<path>` (through `<path>.partial`, moved into place only once complete;
+/// see [`Partial`]).
 pub struct McapRecorder {
     path: PathBuf,
     partial: PathBuf,
+    guard: Option<Partial>,
     provenance: Provenance,
     options: RecordOptions,
     /// The MCAP writer before `begin` (then owned by the pipeline).
@@ -40,6 +75,8 @@ pub struct McapRecorder {
     /// The block being filled on the simulation thread.
     block: Block,
     topics: Vec<(Topic, u16)>,
+    /// How each topic's messages are written, in `topics` order.
+    encoders: Vec<Encoder>,
     scene: Option<(Scene, u16, u16)>,
     /// The run's layout (measured channels) and the scratch for them.
     layout: Option<Layout>,
@@ -87,23 +124,23 @@ impl McapRecorder {
                 format!("{}: expected a positive factor", options.magnification),
             ));
         }
-        if let Some(dir) = path.parent().filter(|d| !d.as_os_str().is_empty()) {
-            fs::create_dir_all(dir).map_err(|e| Error::io(dir, e))?;
-        }
-        let partial = partial_path(path);
-        let file = File::create(&partial).map_err(|e| Error::io(&partial, e))?;
+        interrupt_flag();
+        let (guard, file) = Partial::create(path, options.overwrite)?;
+        let partial = guard.tmp().to_path_buf();
         let library = format!("wbv/{} mcap-rust/0.26", provenance.version);
         let writer = pipeline::open(file, options.compression, threads(&options), library)
             .map_err(mcap_err(&partial))?;
         Ok(McapRecorder {
             path: path.to_path_buf(),
             partial,
+            guard: Some(guard),
             provenance,
             options,
             writer: Some(writer),
             pipeline: None,
             block: Block::default(),
             topics: Vec::new(),
+            encoders: Vec::new(),
             scene: None,
             layout: None,
             measured: Vec::new(),
@@ -188,6 +225,7 @@ impl McapRecorder {
             ),
             ("scene_rate_hz", o.scene_rate_hz.to_string()),
             ("display_magnification", o.magnification.to_string()),
+            ("encoding", o.encoding.as_str().to_string()),
             ("compression", o.compression.as_str().to_string()),
             ("steps", layout.steps.to_string()),
             ("masses", layout.masses.join(",")),
@@ -213,27 +251,56 @@ impl McapRecorder {
         })
         .map_err(&err)?;
 
-        for t in topics {
-            let schema = serde_json::to_vec(&t.schema).expect("schema serialises");
-            let cid = json_channel(w, t.topic, t.schema_name, &schema).map_err(&err)?;
-            self.topics.push((t, cid));
-        }
         let scene = Scene::new(layout, self.options.magnification);
-        let (scene_schema, tf_schema) = (SCENE_UPDATE_SCHEMA, FRAME_TRANSFORMS_SCHEMA);
-        let scene_id = json_channel(
-            w,
-            "/wbv/scene",
-            "foxglove.SceneUpdate",
-            scene_schema.as_bytes(),
-        )
-        .map_err(&err)?;
-        let tf_id = json_channel(w, "/tf", "foxglove.FrameTransforms", tf_schema.as_bytes())
-            .map_err(&err)?;
+        let (scene_id, tf_id) = match self.options.encoding {
+            Encoding::Json => {
+                for t in topics {
+                    let schema = serde_json::to_vec(&t.schema).expect("schema serialises");
+                    let cid = json_channel(w, t.topic, t.schema_name, &schema).map_err(&err)?;
+                    self.encoders.push(Encoder::Json(t.template.clone()));
+                    self.topics.push((t, cid));
+                }
+                let scene_id = json_channel(
+                    w,
+                    "/wbv/scene",
+                    "foxglove.SceneUpdate",
+                    SCENE_UPDATE_SCHEMA.as_bytes(),
+                )
+                .map_err(&err)?;
+                let tf_id = json_channel(
+                    w,
+                    "/tf",
+                    "foxglove.FrameTransforms",
+                    FRAME_TRANSFORMS_SCHEMA.as_bytes(),
+                )
+                .map_err(&err)?;
+                (scene_id, tf_id)
+            }
+            Encoding::Protobuf => {
+                let keys = |names: &[String]| names.iter().map(|n| plot_key(n)).collect::<Vec<_>>();
+                let fds = proto::run_descriptor(&keys(&layout.masses), &keys(&layout.links))?;
+                let bytes = prost::Message::encode_to_vec(&fds);
+                for t in topics {
+                    let cid = protobuf_channel(w, t.topic, t.schema_name, &bytes).map_err(&err)?;
+                    let template = ProtoTemplate::new(&fds, t.schema_name, &t.leaves)?;
+                    self.encoders.push(Encoder::Protobuf(template));
+                    self.topics.push((t, cid));
+                }
+                let mut ids = [0; 2];
+                for (id, (topic, schema)) in ids.iter_mut().zip([
+                    ("/wbv/scene", scene::pb::scene_update_schema()),
+                    ("/tf", scene::pb::frame_transforms_schema()),
+                ]) {
+                    *id = protobuf_channel(w, topic, &schema.name, &schema.data).map_err(&err)?;
+                }
+                (ids[0], ids[1])
+            }
+        };
         self.scene = Some((scene, scene_id, tf_id));
         let writer = self.writer.take().expect("checked above");
-        let channels = (self.topics.iter())
-            .map(|(t, id)| Channel {
-                template: t.template.clone(),
+        let channels = (self.topics.iter().zip(&self.encoders))
+            .map(|((_, id), template)| Channel {
+                template: template.clone(),
                 id: *id,
             })
             .collect();
@@ -331,13 +398,12 @@ impl McapRecorder {
         let time_ns = (s.t * 1e9).round() as u64;
         let (scene, scene_id, tf_id) = self.scene.as_ref().expect("recording");
         let b = &mut self.block;
-        for (channel_id, render) in [
-            (
-                *scene_id,
-                Scene::scene_update as fn(&Scene, &Step<'_>, &mut Vec<u8>),
-            ),
-            (*tf_id, Scene::frame_transforms),
-        ] {
+        type Render = fn(&Scene, &Step<'_>, &mut Vec<u8>);
+        let (update, transforms): (Render, Render) = match self.options.encoding {
+            Encoding::Json => (Scene::scene_update, Scene::frame_transforms),
+            Encoding::Protobuf => (Scene::scene_update_pb, Scene::frame_transforms_pb),
+        };
+        for (channel_id, render) in [(*scene_id, update), (*tf_id, transforms)] {
             render(scene, s, &mut b.extra);
             let header = MessageHeader {
                 channel_id,
@@ -352,7 +418,9 @@ impl McapRecorder {
         Ok(())
     }
 
-    fn finish(&mut self) -> Result<()> {
+    /// Completes the file and moves it into place: at `path`, or, for a run interrupted after
+    /// the step at `interrupted_at` s, at [`interrupted_path`] with a `wbv.interrupted` record.
+    fn finish(&mut self, interrupted_at: Option<f64>) -> Result<PathBuf> {
         if !self.block.is_empty() {
             self.send_block()?;
         }
@@ -378,22 +446,56 @@ impl McapRecorder {
             })
             .map_err(&err)?;
         }
+        if let Some(t) = interrupted_at {
+            let record = [
+                ("interrupted_at_s".to_string(), t.to_string()),
+                (
+                    "reason".to_string(),
+                    "SIGINT or SIGTERM: the run stopped after this step; the file holds every \
+                     step up to it and no analysis results"
+                        .to_string(),
+                ),
+            ];
+            w.write_metadata(&Metadata {
+                name: meta::INTERRUPTED.into(),
+                metadata: record.into_iter().collect(),
+            })
+            .map_err(&err)?;
+        }
         w.finish().map_err(&err)?;
         let file = w
             .into_inner()
             .into_inner()
             .map_err(|e| Error::io(&self.partial, e.into_error()))?;
-        file.sync_all().map_err(|e| Error::io(&self.partial, e))?;
-        drop(file);
-        if self.options.overwrite == Overwrite::Refuse && self.path.exists() {
-            return Err(Error::parameter(
-                self.path.display().to_string(),
-                "appeared while recording; refusing to overwrite it",
-            ));
-        }
-        fs::rename(&self.partial, &self.path).map_err(|e| Error::io(&self.path, e))?;
+        let guard = self
+            .guard
+            .take()
+            .expect("the partial file is held until finished");
+        let dest = match interrupted_at {
+            None => self.path.clone(),
+            Some(_) => interrupted_path(&self.path),
+        };
+        // An interrupted recording replaces an earlier interrupted one: it is the latest state.
+        let overwrite = match interrupted_at {
+            None => self.options.overwrite,
+            Some(_) => Overwrite::Allow,
+        };
+        guard.commit_as(file, &dest, overwrite)?;
         self.completed = true;
-        Ok(())
+        Ok(dest)
+    }
+
+    /// Closes the recording of an interrupted run; the error that stops the run.
+    fn interrupt(&mut self, t: f64) -> Error {
+        self.ended = true;
+        let what = match self.finish(Some(t)) {
+            Ok(p) => format!("the run up to then is recorded in {}", p.display()),
+            Err(e) => format!("the recording could not be closed: {e}"),
+        };
+        Error::parameter(
+            "run",
+            format!("interrupted by a signal at t = {t} s; {what}"),
+        )
     }
 }
 
@@ -408,6 +510,11 @@ impl Observer for McapRecorder {
         }
         self.record(step)?;
         self.record_scene(step)?;
+        if step.index.is_multiple_of(INTERRUPT_CHECK_STEPS)
+            && interrupt_flag().load(Ordering::Relaxed)
+        {
+            return Err(self.interrupt(step.t));
+        }
         if self.block.steps.len() >= BLOCK_STEPS {
             self.send_block()?;
         }
@@ -422,7 +529,7 @@ impl Observer for McapRecorder {
             ));
         }
         self.ended = true;
-        self.finish()
+        self.finish(None).map(|_| ())
     }
 }
 
@@ -441,6 +548,7 @@ impl Drop for McapRecorder {
         if let Some(w) = self.writer.take() {
             drop(w.into_inner());
         }
-        let _ = fs::remove_file(&self.partial);
+        // Dropping the guard removes the partial file.
+        self.guard.take();
     }
 }

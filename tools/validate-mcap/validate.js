@@ -5,6 +5,11 @@
 // schema is `foxglove.X` carry exactly the published @foxglove/schemas JSON schema and every message
 // validates against it; counts equal the statistics; metadata and attachments readable; a second
 // pass with McapStreamReader (validateCrcs) parses every record to the end.
+// Protobuf channels (the default): schema encoding `protobuf` with a fully qualified name and a
+// FileDescriptorSet, loaded with protobufjs (its own descriptor reader); every message decoded and
+// re-checked (every double finite; a decoded message round-trips through protobufjs); `foxglove.*`
+// schemas compared field by field (name, number, type, label) with the `.proto` that
+// @foxglove/schemas' own generator (`generateProto`) writes for the published schema.
 // Usage: node validate.js FILE.mcap   (exit status 1 on any failure)
 "use strict";
 const fs = require("node:fs/promises");
@@ -14,6 +19,62 @@ const { loadDecompressHandlers } = require("@mcap/support");
 const foxglove = require("@foxglove/schemas/jsonschema");
 const Ajv = require("ajv");
 const { isDeepStrictEqual } = require("node:util");
+const protobuf = require("protobufjs");
+const descriptor = require("protobufjs/ext/descriptor");
+const internal = require("@foxglove/schemas/internal");
+
+// The published Foxglove schemas as protobufjs types, from @foxglove/schemas' generated `.proto`.
+function publishedFoxglove() {
+  const root = new protobuf.Root();
+  const enums = Object.values(internal.foxgloveEnumSchemas);
+  for (const schema of Object.values(internal.foxgloveMessageSchemas)) {
+    const nested = enums.filter((e) => e.parentSchemaName === schema.name);
+    const text = internal.generateProto(schema, nested);
+    protobuf.parse(text, root); // camelCase names, as Root.fromDescriptor gives them
+  }
+  // google.protobuf.Timestamp / Duration, imported by the generated files
+  protobuf.parse(
+    `syntax = "proto3"; package google.protobuf;
+     message Timestamp { int64 seconds = 1; int32 nanos = 2; }
+     message Duration { int64 seconds = 1; int32 nanos = 2; }`,
+    root,
+  );
+  root.resolveAll();
+  return root;
+}
+
+// Field-by-field difference of two protobufjs message types and the types they use.
+function compareTypes(ours, theirs, at, seen, fail) {
+  if (seen.has(at)) return;
+  seen.add(at);
+  const names = new Set([...Object.keys(ours.fields), ...Object.keys(theirs.fields)]);
+  for (const n of names) {
+    const a = ours.fields[n];
+    const b = theirs.fields[n];
+    if (!a || !b) {
+      fail(`${at}.${n}: ${a ? "not in" : "missing from the file, but in"} @foxglove/schemas`);
+      continue;
+    }
+    const ta = a.resolvedType ? a.resolvedType.fullName : a.type;
+    const tb = b.resolvedType ? b.resolvedType.fullName : b.type;
+    if (a.id !== b.id || ta !== tb || a.repeated !== b.repeated)
+      fail(`${at}.${n}: ${a.id} ${ta}${a.repeated ? "[]" : ""} vs published ${b.id} ${tb}${b.repeated ? "[]" : ""}`);
+    else if (a.resolvedType instanceof protobuf.Type)
+      compareTypes(a.resolvedType, b.resolvedType, ta.replace(/^\./, ""), seen, fail);
+  }
+}
+
+function finiteDoubles(type, msg, at, fail) {
+  for (const f of type.fieldsArray) {
+    const v = msg[f.name];
+    if (v === undefined || v === null) continue;
+    const values = f.repeated ? v : [v];
+    for (const x of values) {
+      if (f.type === "double" && !Number.isFinite(x)) fail(`${at}.${f.name}: not finite`);
+      if (f.resolvedType instanceof protobuf.Type) finiteDoubles(f.resolvedType, x, `${at}.${f.name}`, fail);
+    }
+  }
+}
 
 async function main(path) {
   const problems = [];
@@ -30,8 +91,28 @@ async function main(path) {
     });
     const ajv = new Ajv({ strict: false, allErrors: false });
     const validators = new Map();
+    const types = new Map();
+    let published;
     for (const [id, ch] of reader.channelsById) {
       const schema = reader.schemasById.get(ch.schemaId);
+      if (ch.messageEncoding === "protobuf") {
+        if (!schema || schema.encoding !== "protobuf") {
+          fail(`${ch.topic}: protobuf channel without a protobuf schema`);
+          continue;
+        }
+        if (!/^[A-Za-z_][\w]*(\.[A-Za-z_][\w]*)+$/.test(schema.name))
+          fail(`${ch.topic}: schema name ${schema.name} is not fully qualified`);
+        const fds = descriptor.FileDescriptorSet.decode(schema.data);
+        const root = protobuf.Root.fromDescriptor(fds);
+        root.resolveAll();
+        const type = root.lookupType(schema.name);
+        types.set(id, type);
+        if (schema.name.startsWith("foxglove.")) {
+          published ??= publishedFoxglove();
+          compareTypes(type, published.lookupType(schema.name), schema.name, new Set(), fail);
+        }
+        continue;
+      }
       if (ch.messageEncoding !== "json") fail(`${ch.topic}: message encoding ${ch.messageEncoding}`);
       if (!schema || schema.encoding !== "jsonschema") {
         fail(`${ch.topic}: no jsonschema schema`);
@@ -54,6 +135,22 @@ async function main(path) {
     for await (const m of reader.readMessages({ validateCrcs: true })) {
       counts.set(m.channelId, (counts.get(m.channelId) ?? 0) + 1);
       const ch = reader.channelsById.get(m.channelId);
+      const type = types.get(m.channelId);
+      if (type) {
+        let msg;
+        try {
+          msg = type.decode(m.data);
+        } catch (e) {
+          fail(`${ch.topic} #${m.sequence}: protobuf decode: ${e.message}`);
+          continue;
+        }
+        finiteDoubles(type, msg, `${ch.topic} #${m.sequence}`, fail);
+        // Re-encoded (protobufjs writes field-number order), it decodes to the same message.
+        const again = type.decode(type.encode(msg).finish());
+        if (!isDeepStrictEqual(type.toObject(again), type.toObject(msg)))
+          fail(`${ch.topic} #${m.sequence}: does not round-trip through protobufjs`);
+        continue;
+      }
       let obj;
       try {
         obj = JSON.parse(new TextDecoder().decode(m.data));
@@ -93,8 +190,8 @@ async function main(path) {
       return 1;
     }
     console.log(
-      `@mcap/core ${path}: ok — ${total} messages on ${counts.size} channels, all schema-valid` +
-        ` (foxglove.* against @foxglove/schemas); ${metadata} metadata, ${attachments} attachments,` +
+      `@mcap/core ${path}: ok — ${total} messages on ${counts.size} channels, all decoded and` +
+        ` schema-valid (foxglove.* against @foxglove/schemas); ${metadata} metadata, ${attachments} attachments,` +
         ` ${records} records streamed`,
     );
     return 0;

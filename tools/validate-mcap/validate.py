@@ -5,6 +5,10 @@ every channel `json` + `jsonschema`; every message a JSON object without NaN/Inf
 against its channel schema; log_time == publish_time, non-decreasing per channel; message counts
 equal the statistics; wbv metadata records present; attachments readable; a second pass with the
 non-seeking stream reader (data-section CRC) reads every record.
+Protobuf channels (the default encoding): schema encoding `protobuf`, fully qualified name, every
+message decoded by `mcap-protobuf-support` (DecoderFactory: builds the message classes from the
+file's FileDescriptorSet with Google's `protobuf` runtime) and every double field finite; the wbv
+signal topics carry the fields `proto/wbv.proto` names.
 Usage: validate.py FILE.mcap  (exit status 1 on any failure)
 """
 
@@ -12,13 +16,44 @@ import json
 import sys
 from collections import Counter
 
+import math
+
 import jsonschema
+from google.protobuf.descriptor import FieldDescriptor
 from mcap.reader import make_reader
+from mcap_protobuf.decoder import DecoderFactory
 from mcap.stream_reader import StreamReader
 
 
 def reject_constant(name):
     raise ValueError(f"non-finite number {name} in JSON")
+
+
+# Fields of the per-step wbv messages (proto/wbv.proto); State/Links hold one of these per mass/link.
+WBV_FIELDS = {
+    "wbv.Measured": {"t", "a_base_z", "a_seat_z", "a_head_z", "f_seat_z", "a_seat_x", "a_head_x"},
+    "wbv.MassState": {"x", "v", "a", "x_abs", "v_abs", "a_abs"},
+    "wbv.LinkState": {"deflection", "force"},
+}
+
+
+def check_protobuf(msg, at, fail):
+    """Every double finite; wbv messages only use their .proto fields."""
+    name = msg.DESCRIPTOR.full_name
+    for field, value in msg.ListFields():
+        if name in WBV_FIELDS and field.name not in WBV_FIELDS[name]:
+            fail(f"{at}: {name} has an unexpected field {field.name}")
+        repeated = (
+            field.is_repeated
+            if hasattr(field, "is_repeated")
+            else field.label == FieldDescriptor.LABEL_REPEATED
+        )
+        values = value if repeated else [value]
+        for v in values:
+            if field.type == FieldDescriptor.TYPE_DOUBLE and not math.isfinite(v):
+                fail(f"{at}.{field.name}: not finite")
+            elif field.type == FieldDescriptor.TYPE_MESSAGE:
+                check_protobuf(v, f"{at}.{field.name}", fail)
 
 
 def main(path):
@@ -31,6 +66,8 @@ def main(path):
 
     with open(path, "rb") as f:
         reader = make_reader(f, validate_crcs=True)
+        factory = DecoderFactory()
+        decoders = {}
         header = reader.get_header()
         summary = reader.get_summary()
         if summary is None or summary.statistics is None:
@@ -44,6 +81,12 @@ def main(path):
         validators = {}
         for cid, ch in summary.channels.items():
             schema = summary.schemas.get(ch.schema_id)
+            if ch.message_encoding == "protobuf":
+                if schema is None or schema.encoding != "protobuf":
+                    fail(f"{ch.topic}: protobuf channel without a protobuf schema")
+                elif "." not in schema.name:
+                    fail(f"{ch.topic}: schema name {schema.name!r} is not fully qualified")
+                continue
             if ch.message_encoding != "json":
                 fail(f"{ch.topic}: message encoding {ch.message_encoding!r}, expected json")
             if schema is None or schema.encoding != "jsonschema":
@@ -54,6 +97,7 @@ def main(path):
             validators[cid] = jsonschema.Draft202012Validator(doc)
         counts = Counter()
         last = {}
+        decoded = 0
         for schema, channel, message in reader.iter_messages(log_time_order=False):
             counts[channel.id] += 1
             if message.log_time != message.publish_time:
@@ -61,6 +105,15 @@ def main(path):
             if message.log_time < last.get(channel.id, 0):
                 fail(f"{channel.topic} #{message.sequence}: log_time goes backwards")
             last[channel.id] = message.log_time
+            if channel.message_encoding == "protobuf":
+                if channel.id not in decoders:
+                    decoders[channel.id] = factory.decoder_for("protobuf", schema)
+                proto = decoders[channel.id](message.data)
+                if proto.DESCRIPTOR.full_name != schema.name:
+                    fail(f"{channel.topic}: decoded as {proto.DESCRIPTOR.full_name}")
+                check_protobuf(proto, f"{channel.topic} #{message.sequence}", fail)
+                decoded += 1
+                continue
             try:
                 obj = json.loads(message.data, parse_constant=reject_constant)
             except ValueError as e:
@@ -91,7 +144,8 @@ def main(path):
         print(f"python-mcap: {path}: FAILED ({len(errors)} problems)", file=sys.stderr)
         return 1
     print(
-        f"python-mcap {path}: ok — {total} messages on {len(counts)} channels, all schema-valid; "
+        f"python-mcap {path}: ok — {total} messages on {len(counts)} channels, all schema-valid "
+        f"({decoded} protobuf-decoded); "
         f"{len(metadata)} metadata, {len(attachments)} attachments, {records} records streamed "
         f"({header.library})"
     )

@@ -1,0 +1,549 @@
+//! Protobuf encoding of the time-series topics (`--encoding protobuf`, the default): the messages
+//! of `proto/wbv.proto`, its `FileDescriptorSet` (compiled by `protox` in `build.rs`) completed
+//! per run with one field per mass / link, and the per-step encoder.
+//!
+//! The typed messages ([`Measured`], [`MassState`], [`LinkState`]) are `prost` derives that mirror
+//! the `.proto` (a test checks them field by field against the compiled descriptor). The recorder
+//! does not build a struct per step: [`ProtoTemplate`] writes the same bytes straight from the
+//! value slice with `prost::encoding` (a test checks them equal to the derives' encoding), which
+//! keeps a step at a few nanoseconds per value.
+
+use super::json::Leaf;
+use crate::error::{Error, Result};
+use prost::Message;
+use prost::encoding::{WireType, encode_key, encode_varint, key_len};
+use prost_types::field_descriptor_proto::{Label, Type};
+use prost_types::{DescriptorProto, FieldDescriptorProto, FileDescriptorSet};
+
+/// `proto/wbv.proto` compiled to a serialized `FileDescriptorSet` (see `build.rs`).
+const WBV_FDS: &[u8] = include_bytes!(concat!(env!("OUT_DIR"), "/wbv.fds"));
+
+/// The `.proto` text itself, for the docs and the validation tooling.
+pub const WBV_PROTO: &str = include_str!("../../proto/wbv.proto");
+
+/// `wbv.Measured` of `proto/wbv.proto`.
+#[derive(Clone, PartialEq, Message)]
+pub struct Measured {
+    #[prost(double, optional, tag = "1")]
+    pub t: Option<f64>,
+    #[prost(double, optional, tag = "2")]
+    pub a_base_z: Option<f64>,
+    #[prost(double, optional, tag = "3")]
+    pub a_seat_z: Option<f64>,
+    #[prost(double, optional, tag = "4")]
+    pub a_head_z: Option<f64>,
+    #[prost(double, optional, tag = "5")]
+    pub f_seat_z: Option<f64>,
+    #[prost(double, optional, tag = "6")]
+    pub a_seat_x: Option<f64>,
+    #[prost(double, optional, tag = "7")]
+    pub a_head_x: Option<f64>,
+}
+
+/// `wbv.MassState` of `proto/wbv.proto`.
+#[derive(Clone, PartialEq, Message)]
+pub struct MassState {
+    #[prost(double, optional, tag = "1")]
+    pub x: Option<f64>,
+    #[prost(double, optional, tag = "2")]
+    pub v: Option<f64>,
+    #[prost(double, optional, tag = "3")]
+    pub a: Option<f64>,
+    #[prost(double, optional, tag = "4")]
+    pub x_abs: Option<f64>,
+    #[prost(double, optional, tag = "5")]
+    pub v_abs: Option<f64>,
+    #[prost(double, optional, tag = "6")]
+    pub a_abs: Option<f64>,
+}
+
+/// `wbv.LinkState` of `proto/wbv.proto`.
+#[derive(Clone, PartialEq, Message)]
+pub struct LinkState {
+    #[prost(double, optional, tag = "1")]
+    pub deflection: Option<f64>,
+    #[prost(double, optional, tag = "2")]
+    pub force: Option<f64>,
+}
+
+/// The compiled `proto/wbv.proto`.
+pub fn base_descriptor() -> FileDescriptorSet {
+    FileDescriptorSet::decode(WBV_FDS).expect("build.rs wrote a valid descriptor set")
+}
+
+fn message<'a>(fds: &'a FileDescriptorSet, full_name: &str) -> Option<&'a DescriptorProto> {
+    fds.file.iter().find_map(|f| {
+        let package = f.package();
+        f.message_type.iter().find(|m| {
+            let name = m.name();
+            if package.is_empty() {
+                name == full_name
+            } else {
+                full_name
+                    .strip_prefix(package)
+                    .and_then(|r| r.strip_prefix('.'))
+                    == Some(name)
+            }
+        })
+    })
+}
+
+/// Number of the field `name` of message `full_name` (e.g. `wbv.MassState`).
+fn field_number(fds: &FileDescriptorSet, full_name: &str, name: &str) -> Option<u32> {
+    message(fds, full_name)?
+        .field
+        .iter()
+        .find(|f| f.name() == name)
+        .map(|f| f.number() as u32)
+}
+
+/// A protobuf identifier: a letter or `_`, then letters, digits or `_`.
+fn is_identifier(s: &str) -> bool {
+    let mut c = s.chars();
+    c.next()
+        .is_some_and(|c| c.is_ascii_alphabetic() || c == '_')
+        && c.all(|c| c.is_ascii_alphanumeric() || c == '_')
+}
+
+/// The descriptor set of a run: `proto/wbv.proto` with `wbv.State` given one `MassState` field
+/// per entry of `masses` and `wbv.Links` one `LinkState` field per entry of `links` (plot keys,
+/// model order, numbered from 1).
+pub fn run_descriptor(masses: &[String], links: &[String]) -> Result<FileDescriptorSet> {
+    let mut fds = base_descriptor();
+    let file = (fds.file.iter_mut())
+        .find(|f| f.package() == "wbv")
+        .expect("wbv.proto declares package wbv");
+    for (shell, item, keys) in [
+        ("State", ".wbv.MassState", masses),
+        ("Links", ".wbv.LinkState", links),
+    ] {
+        let m = (file.message_type.iter_mut())
+            .find(|m| m.name() == shell)
+            .expect("wbv.proto declares the shells");
+        for (i, key) in keys.iter().enumerate() {
+            if !is_identifier(key) {
+                return Err(Error::parameter(
+                    format!(
+                        "{} name `{key}`",
+                        if shell == "State" { "mass" } else { "link" }
+                    ),
+                    "is not a protobuf field name (it must start with a letter or `_`); rename it \
+                     or record with --encoding json",
+                ));
+            }
+            m.field.push(FieldDescriptorProto {
+                name: Some(key.clone()),
+                number: Some(i as i32 + 1),
+                label: Some(Label::Optional as i32),
+                r#type: Some(Type::Message as i32),
+                type_name: Some(item.to_string()),
+                json_name: Some(key.clone()),
+                ..Default::default()
+            });
+        }
+    }
+    Ok(fds)
+}
+
+/// Writes the protobuf message of a topic straight from its values (in leaf order): every leaf
+/// a `double` field (key, then 8 bytes little-endian), nested leaves inside a length-delimited
+/// sub-message. Every value has a fixed size, so all the bytes but the values are constant and
+/// precomputed: `fragments[0] v0 fragments[1] v1 …` (the JSON [`Template`](super::json::Template)
+/// works the same way). The bytes equal what the `prost` derives encode for the same values.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ProtoTemplate {
+    /// Before each value: the sub-message header where a group starts, and the field key.
+    /// Fields go out in leaf order, which is the field-number order prost writes except for the
+    /// planar measured channels (`a_seat_x` before `a_head_z`): protobuf readers take fields in
+    /// any order, and [`ProtoTable`] keeps the order of the bytes so that a run reads back with
+    /// its channels in the same order in both encodings.
+    fragments: Vec<Vec<u8>>,
+}
+
+impl ProtoTemplate {
+    /// The encoder of the message `full_name` of `fds` for `leaves`: a one-element path is a
+    /// double field of the message; a two-element path `[key, field]` is `field` of the
+    /// sub-message field `key`; leaves of one sub-message are adjacent. Every name must exist in
+    /// the descriptor.
+    pub fn new(fds: &FileDescriptorSet, full_name: &str, leaves: &[Leaf]) -> Result<Self> {
+        let missing = |what: String| {
+            Error::parameter(
+                "protobuf schema",
+                format!("`{full_name}` has no field {what} (proto/wbv.proto)"),
+            )
+        };
+        let msg = message(fds, full_name).ok_or_else(|| missing(String::new()))?;
+        // (parent field number, [(leaf field number)]) per run of leaves sharing a parent
+        let mut groups: Vec<(Option<&str>, Option<u32>, Vec<(u32, usize)>)> = Vec::new();
+        for (index, leaf) in leaves.iter().enumerate() {
+            let (parent, name, inner_type) = match leaf.path.as_slice() {
+                [name] => (None, name.as_str(), full_name.to_string()),
+                [parent, name] => {
+                    let f = (msg.field.iter())
+                        .find(|f| f.name() == parent)
+                        .ok_or_else(|| missing(format!("`{parent}`")))?;
+                    let t = f.type_name().trim_start_matches('.').to_string();
+                    (Some(parent.as_str()), name.as_str(), t)
+                }
+                _ => return Err(missing(format!("`{}`", leaf.path.join(".")))),
+            };
+            let number = field_number(fds, &inner_type, name)
+                .ok_or_else(|| missing(format!("`{}`", leaf.path.join("."))))?;
+            match groups.last_mut() {
+                Some((p, _, fields)) if *p == parent => fields.push((number, index)),
+                _ => {
+                    let outer = match parent {
+                        None => None,
+                        Some(p) => Some(
+                            field_number(fds, full_name, p)
+                                .ok_or_else(|| missing(format!("`{p}`")))?,
+                        ),
+                    };
+                    groups.push((parent, outer, vec![(number, index)]));
+                }
+            }
+        }
+        let mut fragments = Vec::with_capacity(leaves.len());
+        for (_, outer, fields) in groups {
+            for (k, &(f, index)) in fields.iter().enumerate() {
+                let mut frag = Vec::new();
+                if let (0, Some(outer)) = (k, outer) {
+                    encode_key(outer, WireType::LengthDelimited, &mut frag);
+                    let body: usize = fields.iter().map(|&(f, _)| key_len(f) + 8).sum();
+                    encode_varint(body as u64, &mut frag);
+                }
+                encode_key(f, WireType::SixtyFourBit, &mut frag);
+                debug_assert_eq!(index, fragments.len());
+                fragments.push(frag);
+            }
+        }
+        Ok(ProtoTemplate { fragments })
+    }
+
+    /// Number of values a message takes.
+    pub fn len(&self) -> usize {
+        self.fragments.len()
+    }
+
+    /// Appends the message for `values` (any f64 is representable; the recorder refuses
+    /// non-finite values before this, for the JSON encoding's sake and for the plots').
+    pub fn render(&self, values: &[f64], out: &mut Vec<u8>) {
+        debug_assert_eq!(values.len(), self.fragments.len());
+        for (frag, v) in self.fragments.iter().zip(values) {
+            out.extend_from_slice(frag);
+            out.extend_from_slice(&v.to_le_bytes());
+        }
+    }
+}
+
+/// What a reader makes of one field of a message: a double leaf (its column) or a sub-message.
+#[derive(Debug, Clone)]
+enum Node {
+    Leaf(usize),
+    Message(Vec<(u32, Node)>),
+}
+
+/// Decodes the messages of one protobuf channel into columns of doubles, guided by the channel's
+/// descriptor: every `double` field (at any depth) is a column named by its field path. Only
+/// what wbv writes is accepted (doubles and sub-messages); other wire types are skipped with
+/// prost's `skip_field`.
+#[derive(Debug, Clone)]
+pub struct ProtoTable {
+    root: Vec<(u32, Node)>,
+    /// Field paths, in descriptor order.
+    pub names: Vec<Vec<String>>,
+    pub columns: Vec<Vec<f64>>,
+    /// Columns in the order their fields come in the first message.
+    first: Vec<usize>,
+    messages: usize,
+}
+
+impl ProtoTable {
+    /// The table of message `full_name` described by the serialized `FileDescriptorSet` `schema`.
+    pub fn new(schema: &[u8], full_name: &str) -> std::result::Result<Self, String> {
+        let fds = FileDescriptorSet::decode(schema)
+            .map_err(|e| format!("schema is not a FileDescriptorSet: {e}"))?;
+        let mut names = Vec::new();
+        let root = Self::tree(&fds, full_name, &mut Vec::new(), &mut names, 0)?;
+        let columns = vec![Vec::new(); names.len()];
+        Ok(ProtoTable {
+            root,
+            names,
+            columns,
+            first: Vec::new(),
+            messages: 0,
+        })
+    }
+
+    fn tree(
+        fds: &FileDescriptorSet,
+        full_name: &str,
+        path: &mut Vec<String>,
+        names: &mut Vec<Vec<String>>,
+        depth: usize,
+    ) -> std::result::Result<Vec<(u32, Node)>, String> {
+        if depth > 4 {
+            return Err("messages nested too deeply".into());
+        }
+        let m = message(fds, full_name)
+            .ok_or_else(|| format!("schema has no message `{full_name}`"))?;
+        let mut out = Vec::new();
+        for f in &m.field {
+            path.push(f.name().to_string());
+            match f.r#type() {
+                Type::Double if f.label() != Label::Repeated => {
+                    out.push((f.number() as u32, Node::Leaf(names.len())));
+                    names.push(path.clone());
+                }
+                Type::Message if f.label() != Label::Repeated => {
+                    let t = f.type_name().trim_start_matches('.').to_string();
+                    let sub = Self::tree(fds, &t, path, names, depth + 1)?;
+                    out.push((f.number() as u32, Node::Message(sub)));
+                }
+                _ => {} // not a signal: skipped when read
+            }
+            path.pop();
+        }
+        Ok(out)
+    }
+
+    /// Adds one message.
+    pub fn add(&mut self, mut data: &[u8]) -> std::result::Result<(), String> {
+        Self::walk(&self.root, &mut data, &mut self.columns, &mut self.first)?;
+        self.messages += 1;
+        for (name, col) in self.names.iter().zip(&self.columns) {
+            if !col.is_empty() && col.len() != self.messages {
+                return Err(format!(
+                    "field `{}` is in {} of {} messages",
+                    name.join("."),
+                    col.len(),
+                    self.messages
+                ));
+            }
+        }
+        Ok(())
+    }
+
+    fn walk(
+        fields: &[(u32, Node)],
+        buf: &mut &[u8],
+        columns: &mut [Vec<f64>],
+        first: &mut Vec<usize>,
+    ) -> std::result::Result<(), String> {
+        use prost::encoding::{DecodeContext, decode_key, decode_varint, skip_field};
+        let e = |e: prost::DecodeError| e.to_string();
+        while !buf.is_empty() {
+            let (tag, wire) = decode_key(buf).map_err(e)?;
+            match (fields.iter().find(|(n, _)| *n == tag), wire) {
+                (Some((_, Node::Leaf(col))), WireType::SixtyFourBit) => {
+                    let (v, rest) = buf.split_first_chunk::<8>().ok_or("truncated double")?;
+                    if columns[*col].is_empty() {
+                        first.push(*col);
+                    }
+                    columns[*col].push(f64::from_le_bytes(*v));
+                    *buf = rest;
+                }
+                (Some((_, Node::Message(sub))), WireType::LengthDelimited) => {
+                    let len = decode_varint(buf).map_err(e)?;
+                    if len > buf.len() as u64 {
+                        return Err("truncated sub-message".into());
+                    }
+                    let (mut inner, rest) = buf.split_at(len as usize);
+                    Self::walk(sub, &mut inner, columns, first)?;
+                    *buf = rest;
+                }
+                (Some(_), _) => return Err(format!("field {tag}: unexpected wire type")),
+                (None, _) => skip_field(wire, tag, buf, DecodeContext::default()).map_err(e)?,
+            }
+        }
+        Ok(())
+    }
+
+    /// The columns present in every message, with their names, in the order of the bytes.
+    pub fn into_columns(self) -> (Vec<Vec<String>>, Vec<Vec<f64>>) {
+        let messages = self.messages;
+        let (mut names, mut columns) = (self.names, self.columns);
+        (self.first.iter())
+            .map(|&k| {
+                (
+                    std::mem::take(&mut names[k]),
+                    std::mem::take(&mut columns[k]),
+                )
+            })
+            .filter(|(_, c)| messages > 0 && c.len() == messages)
+            .unzip()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn fields(fds: &FileDescriptorSet, name: &str) -> Vec<(String, i32, Type, Label)> {
+        message(fds, name)
+            .unwrap()
+            .field
+            .iter()
+            .map(|f| (f.name().to_string(), f.number(), f.r#type(), f.label()))
+            .collect()
+    }
+
+    /// The derives mirror the compiled `.proto`: the descriptor prost would generate from the
+    /// derive attributes is compared through the encoding of a message with every field set to
+    /// its field number, decoded back by the descriptor-driven reader.
+    #[test]
+    fn derives_match_the_compiled_proto() {
+        let fds = base_descriptor();
+        let expect = |name: &str, names: &[&str]| {
+            let f = fields(&fds, name);
+            let got: Vec<&str> = f.iter().map(|x| x.0.as_str()).collect();
+            assert_eq!(got, names, "{name}");
+            for (i, (_, number, ty, label)) in f.iter().enumerate() {
+                assert_eq!(*number, i as i32 + 1);
+                assert_eq!(*ty, Type::Double);
+                assert_eq!(*label, Label::Optional);
+            }
+        };
+        expect(
+            "wbv.Measured",
+            &[
+                "t", "a_base_z", "a_seat_z", "a_head_z", "f_seat_z", "a_seat_x", "a_head_x",
+            ],
+        );
+        expect("wbv.MassState", &["x", "v", "a", "x_abs", "v_abs", "a_abs"]);
+        expect("wbv.LinkState", &["deflection", "force"]);
+        // Each derive field set to its number decodes, through the descriptor, to that number
+        // under the descriptor's name for it.
+        let m = Measured {
+            t: Some(1.0),
+            a_base_z: Some(2.0),
+            a_seat_z: Some(3.0),
+            a_head_z: Some(4.0),
+            f_seat_z: Some(5.0),
+            a_seat_x: Some(6.0),
+            a_head_x: Some(7.0),
+        };
+        let mut table = ProtoTable::new(WBV_FDS, "wbv.Measured").unwrap();
+        table.add(&m.encode_to_vec()).unwrap();
+        let (names, cols) = table.into_columns();
+        for (k, (n, c)) in names.iter().zip(&cols).enumerate() {
+            assert_eq!(c, &[k as f64 + 1.0], "{n:?}");
+        }
+        let s = MassState {
+            x: Some(1.0),
+            v: Some(2.0),
+            a: Some(3.0),
+            x_abs: Some(4.0),
+            v_abs: Some(5.0),
+            a_abs: Some(6.0),
+        };
+        let mut table = ProtoTable::new(WBV_FDS, "wbv.MassState").unwrap();
+        table.add(&s.encode_to_vec()).unwrap();
+        let (_, cols) = table.into_columns();
+        assert_eq!(cols.concat(), [1.0, 2.0, 3.0, 4.0, 5.0, 6.0]);
+        let l = LinkState {
+            deflection: Some(1.0),
+            force: Some(2.0),
+        };
+        let mut table = ProtoTable::new(WBV_FDS, "wbv.LinkState").unwrap();
+        table.add(&l.encode_to_vec()).unwrap();
+        assert_eq!(table.into_columns().1.concat(), [1.0, 2.0]);
+    }
+
+    #[test]
+    fn template_bytes_equal_the_prost_derive_encoding() {
+        let masses = vec!["head".to_string(), "seat_1".to_string()];
+        let links = vec!["k1".to_string()];
+        let fds = run_descriptor(&masses, &links).unwrap();
+        let v = [-0.0, 1e-300, -2.5, f64::MAX, 3.0, 0.1];
+        // Measured in a planar run's leaf order (not field-number order)
+        let leaves: Vec<Leaf> = [
+            "t", "a_base_z", "a_seat_z", "a_seat_x", "a_head_z", "f_seat_z",
+        ]
+        .iter()
+        .map(|n| Leaf::new(&[n], ""))
+        .collect();
+        let t = ProtoTemplate::new(&fds, "wbv.Measured", &leaves).unwrap();
+        let mut out = Vec::new();
+        t.render(&v, &mut out);
+        // the reader keeps the order of the bytes
+        let mut table = ProtoTable::new(&fds.encode_to_vec(), "wbv.Measured").unwrap();
+        table.add(&out).unwrap();
+        let names: Vec<String> = table.into_columns().0.concat();
+        assert_eq!(
+            names,
+            [
+                "t", "a_base_z", "a_seat_z", "a_seat_x", "a_head_z", "f_seat_z"
+            ]
+        );
+        let m = Measured {
+            t: Some(v[0]),
+            a_base_z: Some(v[1]),
+            a_seat_z: Some(v[2]),
+            a_seat_x: Some(v[3]),
+            a_head_z: Some(v[4]),
+            f_seat_z: Some(v[5]),
+            ..Default::default()
+        };
+        // same fields and bits as prost's encoding (which writes in field-number order)
+        let back = Measured::decode(out.as_slice()).unwrap();
+        assert_eq!(format!("{back:?}"), format!("{m:?}"));
+        assert_eq!(out.len(), m.encode_to_vec().len());
+        // State: head and seat_1, all six fields each
+        let fields = ["x", "v", "a", "x_abs", "v_abs", "a_abs"];
+        let leaves: Vec<Leaf> = (masses.iter())
+            .flat_map(|m| fields.iter().map(move |f| Leaf::new(&[m, f], "")))
+            .collect();
+        let t = ProtoTemplate::new(&fds, "wbv.State", &leaves).unwrap();
+        let vals: Vec<f64> = (0..12).map(|i| v[i % 6] * (i as f64 + 1.0)).collect();
+        let mut out = Vec::new();
+        t.render(&vals, &mut out);
+        let mut expected = Vec::new();
+        for (i, c) in vals.chunks(6).enumerate() {
+            let s = MassState {
+                x: Some(c[0]),
+                v: Some(c[1]),
+                a: Some(c[2]),
+                x_abs: Some(c[3]),
+                v_abs: Some(c[4]),
+                a_abs: Some(c[5]),
+            };
+            prost::encoding::message::encode(i as u32 + 1, &s, &mut expected);
+        }
+        assert_eq!(out, expected);
+        // Links: k1 force only (a body link)
+        let t = ProtoTemplate::new(&fds, "wbv.Links", &[Leaf::new(&["k1", "force"], "")]).unwrap();
+        let mut out = Vec::new();
+        t.render(&[-0.0], &mut out);
+        let mut expected = Vec::new();
+        let l = LinkState {
+            deflection: None,
+            force: Some(-0.0),
+        };
+        prost::encoding::message::encode(1, &l, &mut expected);
+        assert_eq!(out, expected);
+        // and the reader gives the values back bit for bit, -0.0 included
+        let mut table = ProtoTable::new(&fds.encode_to_vec(), "wbv.State").unwrap();
+        let mut out = Vec::new();
+        t_state(&fds, &masses).render(&vals, &mut out);
+        table.add(&out).unwrap();
+        let (names, cols) = table.into_columns();
+        assert_eq!(names[7], ["seat_1", "v"]);
+        let bits: Vec<u64> = cols.iter().map(|c| c[0].to_bits()).collect();
+        assert_eq!(bits, vals.iter().map(|v| v.to_bits()).collect::<Vec<_>>());
+    }
+
+    fn t_state(fds: &FileDescriptorSet, masses: &[String]) -> ProtoTemplate {
+        let fields = ["x", "v", "a", "x_abs", "v_abs", "a_abs"];
+        let leaves: Vec<Leaf> = (masses.iter())
+            .flat_map(|m| fields.iter().map(move |f| Leaf::new(&[m, f], "")))
+            .collect();
+        ProtoTemplate::new(fds, "wbv.State", &leaves).unwrap()
+    }
+
+    #[test]
+    fn a_name_that_is_no_protobuf_identifier_is_refused() {
+        let e = run_descriptor(&["1st".to_string()], &[]).unwrap_err();
+        assert!(e.to_string().contains("mass name `1st`"), "{e}");
+    }
+}
