@@ -17,6 +17,7 @@ pub mod predict;
 pub mod replay;
 pub mod report;
 pub mod score;
+pub mod truth;
 
 use crate::error::{Error, Result};
 use crate::model::Model;
@@ -111,6 +112,9 @@ pub struct RunSummary {
 pub struct Diagnosis {
     /// Winning candidate id, `none`, `unexplained` or `not-identifiable`.
     pub verdict: String,
+    /// The effects named (significant), best first; empty for `none`, `unexplained` and
+    /// `not-identifiable`.
+    pub named: Vec<String>,
     /// One-sentence explanation of the verdict.
     pub verdict_text: String,
     /// Input problems that did not stop the diagnosis.
@@ -458,7 +462,13 @@ pub fn diagnose(model: &Model, train: &[Signals], check: &Signals) -> Result<Dia
         c.probability = (-(c.delta_bic - zmin) / 2.0).exp() / wsum;
     }
     let (verdict, verdict_text, separating) = decide(&null, &cands);
+    let named = if Candidate::from_id(&verdict).is_some() {
+        vec![verdict.clone()]
+    } else {
+        Vec::new()
+    };
     Ok(Diagnosis {
+        named,
         verdict,
         verdict_text,
         warnings,
