@@ -173,7 +173,7 @@ fn plant(effect: &str, u: f64, rng: &mut ChaCha8Rng, hi_rms: f64) -> Result<Trut
         "missing-dof" => {
             let f = 40.0 - 25.0 * u;
             let z = 0.05 + 0.1 * rng.random::<f64>();
-            add_frame(&mut m, f, z)?;
+            add_frame(&mut m, f, z, super::candidate::FRAME_MASS_KG)?;
             format!("seat frame at {f:.1} Hz, ζ = {z:.3}")
         }
         _ => "no effect".into(),
