@@ -9,7 +9,6 @@
 //! statistically linearised per run) and scored on the held-out run by BIC on the independent
 //! spectral cells; a second effect by forward selection when the best leaves a structural residual.
 
-pub mod bench;
 pub mod candidate;
 pub mod fit;
 pub mod gapmap;

@@ -328,17 +328,46 @@ pub fn effects_of(index: usize, rng: &mut ChaCha8Rng) -> Vec<(Form, f64)> {
     out
 }
 
+/// Fixed values replacing a case's random draws (tests, timing); `None` keeps the draw. The draws
+/// are made either way, so the other values of a case do not change.
+#[derive(Debug, Clone, Default)]
+pub struct CaseOptions {
+    /// Planted effects (form, strength); `Some(vec![])` plants none.
+    pub effects: Option<Vec<(Form, f64)>>,
+    /// Base spectrum kind (one of [`SPECTRA`]).
+    pub spectrum: Option<&'static str>,
+    /// Acquisition rate, Hz.
+    pub fs_hz: Option<f64>,
+    /// Run length, s.
+    pub duration_s: Option<f64>,
+    /// Noise, fraction of the channel r.m.s.
+    pub noise: Option<f64>,
+    /// Whether `f_seat_z` is measured.
+    pub force: Option<bool>,
+}
+
 /// Builds case `index` of a bench with master seed `seed`.
 pub fn make_case(index: usize, seed: u64) -> Result<Case> {
+    make_case_with(index, seed, &CaseOptions::default())
+}
+
+/// Builds case `index` of a bench with master seed `seed`, with some draws fixed by `o`.
+pub fn make_case_with(index: usize, seed: u64, o: &CaseOptions) -> Result<Case> {
     let cseed = seed.wrapping_mul(1_000_003).wrapping_add(index as u64);
     let mut rng = ChaCha8Rng::seed_from_u64(cseed);
     let effects = effects_of(index, &mut rng);
+    let effects = o.effects.clone().unwrap_or(effects);
     let kind = SPECTRA[(rng.random::<f64>() * 4.0) as usize % 4];
+    let kind = o.spectrum.unwrap_or(kind);
     let fs = RATES[(rng.random::<f64>() * RATES.len() as f64) as usize % RATES.len()];
+    let fs = o.fs_hz.unwrap_or(fs);
     // Log-uniform 60–300 s, whole seconds.
     let duration_s = (60f64.ln() + rng.random::<f64>() * 5f64.ln()).exp().round();
+    let duration_s = o.duration_s.unwrap_or(duration_s);
     let noise = uniform(&mut rng, 0.005, 0.03);
+    let noise = o.noise.unwrap_or(noise);
     let force = rng.random::<f64>() < 0.5;
+    let force = o.force.unwrap_or(force);
     let shape = [
         rng.random::<f64>(),
         rng.random::<f64>(),
