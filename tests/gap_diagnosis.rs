@@ -145,12 +145,7 @@ fn a_road_spectrum_is_diagnosed_on_its_coherent_bands() {
     let d = diagnose(&model, &case.train, &case.check).unwrap();
     assert!(!d.bands.is_empty());
     assert!(d.bands.iter().all(|b| !b.judged_hz.is_empty()));
-    assert!(
-        d.verdict == "none",
-        "{}: {}",
-        d.verdict,
-        d.verdict_text
-    );
+    assert!(d.verdict == "none", "{}: {}", d.verdict, d.verdict_text);
 }
 
 #[test]

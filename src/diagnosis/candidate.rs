@@ -292,9 +292,8 @@ impl Candidate {
             }
             Candidate::MissingDof => add_frame(m, p[0], p[1], p[2])?,
             Candidate::BodyMode => {
-                let t = heaviest_body_mass(m).ok_or_else(|| {
-                    Error::parameter(self.id(), "the model has no body mass")
-                })?;
+                let t = heaviest_body_mass(m)
+                    .ok_or_else(|| Error::parameter(self.id(), "the model has no body mass"))?;
                 let mv = p[0] * m.masses[t].m;
                 m.masses[t].m -= mv;
                 let j = m.masses.len();

@@ -49,7 +49,10 @@ pub fn text(d: &Diagnosis) -> String {
         if v.is_empty() {
             "–".to_string()
         } else {
-            v.iter().map(|b| format!("{b}")).collect::<Vec<_>>().join(" ")
+            v.iter()
+                .map(|b| format!("{b}"))
+                .collect::<Vec<_>>()
+                .join(" ")
         }
     };
     for b in &d.bands {
