@@ -1,55 +1,67 @@
-use crate::diagnosis::bench::{BenchOptions, run_case, summary};
+use crate::diagnosis::truth::{run_case, summary};
 use rayon::prelude::*;
 
 /// Arguments of `wbv gap-bench`.
 #[derive(Debug, clap::Args)]
 pub struct Args {
-    /// Number of blind cases (effects rotate: none, body-softening, cushion-stiffening,
-    /// cushion-viscoelastic, sensor-delay, missing-dof).
+    /// Number of blind cases (every sixth has no effect; the others rotate over the viscoelastic,
+    /// stiffening, softening, sensor and missing-dof families and their truth forms).
     #[arg(long, default_value_t = 60)]
     cases: usize,
     /// Master seed.
     #[arg(long, default_value_t = 1)]
     seed: u64,
-    /// Length of each run in s.
-    #[arg(long, default_value_t = 120.0)]
-    duration: f64,
     /// Print every case and the summary as JSON.
     #[arg(long)]
     json: bool,
+    /// Print only the summary as a Markdown table (the README's).
+    #[arg(long, conflicts_with = "json")]
+    markdown: bool,
 }
 
 pub fn run(args: Args) -> crate::Result<()> {
-    let opts = BenchOptions {
-        cases: args.cases,
-        seed: args.seed,
-        duration_s: args.duration,
-        ..BenchOptions::default()
-    };
-    let scores = (0..opts.cases)
+    let t0 = std::time::Instant::now();
+    let scores = (0..args.cases)
         .into_par_iter()
-        .map(|i| run_case(i, &opts))
+        .map(|i| run_case(i, args.seed))
         .collect::<crate::Result<Vec<_>>>()?;
-    let s = summary(&scores);
+    let s = summary(&scores, args.seed, t0.elapsed().as_secs_f64());
     if args.json {
         println!(
             "{}",
             serde_json::to_string_pretty(&serde_json::json!({"cases": scores, "summary": s}))
                 .expect("JSON value serializes")
         );
+    } else if args.markdown {
+        print!("{}", s.markdown());
     } else {
         for c in &scores {
+            let e = &c.label.effects;
+            let truth = if e.is_empty() {
+                "none".to_string()
+            } else {
+                e.iter()
+                    .map(|x| format!("{}/{} {:.2}", x.family.name(), x.form.name(), x.strength))
+                    .collect::<Vec<_>>()
+                    .join(" + ")
+            };
+            let n = &c.label.nuisance;
             println!(
-                "case {:>3}  truth {:<21} strength {:.2}  tier {:<6} verdict {:<21} top2 [{}]  χ²₀ {:>8.2}  closed {}",
+                "case {:>3}  {:<32} det {:>6.2} {:<6}  {:<10} {:>4} Hz {:>3} s {}  → {:<24} top2 [{}] closed {}{}",
                 c.index,
-                c.label.effect,
-                c.label.strength,
+                truth,
+                c.label.detectability,
                 c.tier,
-                c.verdict,
+                n.spectrum,
+                n.fs_hz,
+                n.duration_s,
+                if n.force { "F" } else { "-" },
+                c.named.first().unwrap_or(&c.verdict),
                 c.top2.join(", "),
-                c.null_chi2_red,
-                c.fraction_closed
-                    .map_or("-".into(), |f| format!("{:.2}", f))
+                c.fraction_closed.map_or("-".into(), |f| format!("{f:.2}")),
+                c.error
+                    .as_ref()
+                    .map_or(String::new(), |e| format!("  ERROR {e}"))
             );
         }
         print!("{}", s.text());

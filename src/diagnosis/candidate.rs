@@ -8,8 +8,7 @@ use std::f64::consts::PI;
 
 /// Bound of the base-parameter re-fit: ±30 % around nominal (physical prior width).
 pub const BASE_BOUND: f64 = 1.3;
-/// Mass of the seat frame added by `missing-dof`, in kg (a typical seat pan and frame; only the
-/// frame mode's frequency and damping are fitted).
+/// Starting mass of the seat frame added by `missing-dof`, in kg (a typical seat pan and frame).
 pub const FRAME_MASS_KG: f64 = 5.0;
 /// Reference velocity of the friction law in m/s (tanh regularisation width).
 pub const FRICTION_V_REF: f64 = 0.01;
@@ -56,28 +55,48 @@ pub enum Candidate {
     BodySoftening,
     /// Cubic stiffening of the cushion, F = k d + k3 d³.
     CushionStiffening,
-    /// Zener (standard linear solid) cushion instead of Kelvin–Voigt: k ∥ (k_m in series with c).
+    /// Quadratic contact stiffening of the cushion, F = k d (1 + |d|/d0): the second stiffening
+    /// form, so that the report names the form that fits better.
+    CushionContact,
+    /// Viscoelastic cushion: a Maxwell arm (k_m in series with c_m = k_m·τ) in parallel with the
+    /// Kelvin–Voigt cushion, with free stiffness ratio and relaxation time τ.
     CushionViscoelastic,
     /// Lag on the seat and/or head channel (phase gap linear in frequency).
     SensorDelay,
+    /// 4-pole Butterworth anti-alias low-pass on the seat and/or head channel.
+    SensorLowpass,
+    /// Calibration gain error on the base, seat and head accelerometers.
+    SensorGain,
+    /// Mount resonance of the seat-pad accelerometer.
+    SensorMountSeat,
+    /// Mount resonance of the head accelerometer.
+    SensorMountHead,
     /// Coulomb friction on the suspension, F_c tanh(v/v_ref).
     SuspensionFriction,
     /// End-stops on the suspension beyond ±gap.
     EndStop,
     /// A seat-frame mass–spring–damper between the base and the cushion.
     MissingDof,
+    /// A second body mode: part of the heaviest body mass (viscera) on its own spring–damper.
+    BodyMode,
 }
 
 impl Candidate {
     /// Every candidate in report order.
-    pub const ALL: [Candidate; 7] = [
+    pub const ALL: [Candidate; 13] = [
         Candidate::BodySoftening,
         Candidate::CushionStiffening,
+        Candidate::CushionContact,
         Candidate::CushionViscoelastic,
         Candidate::SensorDelay,
+        Candidate::SensorLowpass,
+        Candidate::SensorGain,
+        Candidate::SensorMountSeat,
+        Candidate::SensorMountHead,
         Candidate::SuspensionFriction,
         Candidate::EndStop,
         Candidate::MissingDof,
+        Candidate::BodyMode,
     ];
 
     /// Identifier used in verdicts.
@@ -85,11 +104,34 @@ impl Candidate {
         match self {
             Candidate::BodySoftening => "body-softening",
             Candidate::CushionStiffening => "cushion-stiffening",
+            Candidate::CushionContact => "cushion-contact",
             Candidate::CushionViscoelastic => "cushion-viscoelastic",
             Candidate::SensorDelay => "sensor-delay",
+            Candidate::SensorLowpass => "sensor-lowpass",
+            Candidate::SensorGain => "sensor-gain",
+            Candidate::SensorMountSeat => "sensor-mount-seat",
+            Candidate::SensorMountHead => "sensor-mount-head",
             Candidate::SuspensionFriction => "suspension-friction",
             Candidate::EndStop => "end-stop",
             Candidate::MissingDof => "missing-dof",
+            Candidate::BodyMode => "body-mode",
+        }
+    }
+
+    /// The kind of physics the candidate stands for; candidates of one family are alternative
+    /// forms of the same effect, so a close call between them is not a reason to abstain.
+    pub fn family(self) -> &'static str {
+        match self {
+            Candidate::BodySoftening => "body softening",
+            Candidate::CushionStiffening | Candidate::CushionContact => "cushion stiffening",
+            Candidate::CushionViscoelastic => "cushion viscoelasticity",
+            Candidate::SensorDelay
+            | Candidate::SensorLowpass
+            | Candidate::SensorGain
+            | Candidate::SensorMountSeat
+            | Candidate::SensorMountHead => "sensor",
+            Candidate::SuspensionFriction | Candidate::EndStop => "suspension",
+            Candidate::MissingDof | Candidate::BodyMode => "missing degree of freedom",
         }
     }
 
@@ -102,15 +144,20 @@ impl Candidate {
     pub fn applies_to(self, model: &Chain) -> bool {
         match self {
             Candidate::BodySoftening => interface_link(model).is_some(),
-            Candidate::CushionStiffening | Candidate::CushionViscoelastic => {
-                role_link(model, Role::Cushion).is_some()
-            }
+            Candidate::CushionStiffening
+            | Candidate::CushionContact
+            | Candidate::CushionViscoelastic => role_link(model, Role::Cushion).is_some(),
             Candidate::SuspensionFriction | Candidate::EndStop => {
                 role_link(model, Role::Suspension).is_some()
             }
-            Candidate::SensorDelay => true,
+            Candidate::SensorDelay
+            | Candidate::SensorLowpass
+            | Candidate::SensorGain
+            | Candidate::SensorMountSeat => true,
+            Candidate::SensorMountHead => model.measure.head.is_some(),
             Candidate::MissingDof => role_link(model, Role::Cushion)
                 .is_some_and(|i| model.links[i].a == Node::Base || model.links[i].b == Node::Base),
+            Candidate::BodyMode => heaviest_body_mass(model).is_some(),
         }
     }
 
@@ -129,12 +176,29 @@ impl Candidate {
             Candidate::CushionStiffening => {
                 vec![Param::new("k3_n_m3", 1e6, 1e12, &[1e8, 3e9, 1e11], true)]
             }
-            Candidate::CushionViscoelastic => {
-                vec![Param::new("k_m_over_k", 0.05, 50.0, &[0.3, 3.0], true)]
+            Candidate::CushionContact => {
+                vec![Param::new("d0_m", 1e-4, 1.0, &[0.002, 0.02, 0.2], true)]
             }
+            Candidate::CushionViscoelastic => vec![
+                Param::new("k_m_over_k", 0.01, 30.0, &[0.3, 2.0], true),
+                Param::new("tau_s", 5e-4, 0.5, &[0.005, 0.05], true),
+            ],
             Candidate::SensorDelay => vec![
                 Param::new("delay_seat_s", 0.0, 0.05, &[0.0], false),
                 Param::new("delay_head_s", 0.0, 0.05, &[0.0], false),
+            ],
+            Candidate::SensorLowpass => vec![
+                Param::new("lowpass_seat_hz", 10.0, 5000.0, &[150.0], true),
+                Param::new("lowpass_head_hz", 10.0, 5000.0, &[150.0], true),
+            ],
+            Candidate::SensorGain => vec![
+                Param::new("gain_base", 0.7, 1.4, &[1.0], true),
+                Param::new("gain_seat", 0.7, 1.4, &[1.0], true),
+                Param::new("gain_head", 0.7, 1.4, &[1.0], true),
+            ],
+            Candidate::SensorMountSeat | Candidate::SensorMountHead => vec![
+                Param::new("f_mount_hz", 8.0, 300.0, &[15.0, 40.0, 120.0], true),
+                Param::new("zeta_mount", 0.01, 0.7, &[0.08], true),
             ],
             Candidate::SuspensionFriction => {
                 vec![Param::new("f_c_n", 0.5, 1000.0, &[5.0, 50.0], true)]
@@ -143,75 +207,139 @@ impl Candidate {
             Candidate::MissingDof => vec![
                 Param::new("f_frame_hz", 6.0, 80.0, &[12.0, 25.0, 45.0], true),
                 Param::new("zeta_frame", 0.02, 0.7, &[0.1], true),
+                Param::new("m_frame_kg", 1.0, 40.0, &[FRAME_MASS_KG], true),
+            ],
+            Candidate::BodyMode => vec![
+                Param::new("mass_fraction", 0.02, 0.7, &[0.1, 0.3], true),
+                Param::new("f_mode_hz", 2.0, 30.0, &[5.0, 10.0], true),
+                Param::new("zeta_mode", 0.03, 0.8, &[0.25], true),
             ],
         }
     }
 
     /// The variant with effect parameter values `p` applied to `model`.
     pub fn apply(self, model: &Chain, p: &[f64]) -> Result<Variant> {
-        let mut m = model.clone();
-        let mut v_seat = 0.0;
-        let mut v_head = 0.0;
+        let mut v = Variant::plain(model.clone());
+        self.apply_to(&mut v, p)?;
+        Ok(v)
+    }
+
+    /// Applies the effect with parameter values `p` to `v` (model and measuring chain), so that
+    /// effects can be stacked (forward selection).
+    pub fn apply_to(self, v: &mut Variant, p: &[f64]) -> Result<()> {
         let need = |i: Option<usize>, what: &str| {
             i.ok_or_else(|| Error::parameter(self.id(), format!("the model has no {what} link")))
         };
+        let m = &mut v.model;
         match self {
             Candidate::BodySoftening => {
-                let i = need(interface_link(model), "body–seat interface")?;
+                let i = need(interface_link(m), "body–seat interface")?;
                 m.links[i].law = Some(Law::Softening { d_ref: p[0] });
             }
             Candidate::CushionStiffening => {
-                let i = need(role_link(model, Role::Cushion), "cushion")?;
+                let i = need(role_link(m, Role::Cushion), "cushion")?;
                 m.links[i].law = Some(Law::Cubic { k3: p[0] });
             }
+            Candidate::CushionContact => {
+                let i = need(role_link(m, Role::Cushion), "cushion")?;
+                m.links[i].law = Some(Law::Contact { d0: p[0] });
+            }
             Candidate::CushionViscoelastic => {
-                let i = need(role_link(model, Role::Cushion), "cushion")?;
-                if let Element::KelvinVoigt { k, c } = m.links[i].element {
-                    m.links[i].element = Element::Zener {
-                        k,
-                        k_m: p[0] * k,
-                        c_m: c.max(1e-6),
-                    };
-                }
+                let i = need(role_link(m, Role::Cushion), "cushion")?;
+                let l = m.links[i].clone();
+                let k_m = p[0] * l.element.static_stiffness();
+                m.links.push(Link {
+                    name: format!("{}-arm", l.name),
+                    a: l.a,
+                    b: l.b,
+                    element: Element::Maxwell {
+                        k: k_m,
+                        c: k_m * p[1],
+                    },
+                    law: None,
+                    role: l.role,
+                });
             }
             Candidate::SensorDelay => {
-                v_seat = p[0];
-                v_head = p[1];
+                v.seat.delay_s += p[0];
+                v.head.delay_s += p[1];
             }
+            Candidate::SensorLowpass => {
+                v.seat.lowpass_hz = p[0];
+                v.head.lowpass_hz = p[1];
+            }
+            Candidate::SensorGain => {
+                v.base.gain *= p[0];
+                v.seat.gain *= p[1];
+                v.head.gain *= p[2];
+            }
+            Candidate::SensorMountSeat => v.seat.mount = Some((p[0], p[1])),
+            Candidate::SensorMountHead => v.head.mount = Some((p[0], p[1])),
             Candidate::SuspensionFriction => {
-                let i = need(role_link(model, Role::Suspension), "suspension")?;
+                let i = need(role_link(m, Role::Suspension), "suspension")?;
                 m.links[i].law = Some(Law::Friction {
                     f_c: p[0],
                     v_ref: FRICTION_V_REF,
                 });
             }
             Candidate::EndStop => {
-                let i = need(role_link(model, Role::Suspension), "suspension")?;
+                let i = need(role_link(m, Role::Suspension), "suspension")?;
                 let k = m.links[i].element.static_stiffness();
                 m.links[i].law = Some(Law::EndStop {
                     gap: p[0],
                     k_stop: END_STOP_RATIO * k,
                 });
             }
-            Candidate::MissingDof => add_frame(&mut m, p[0], p[1])?,
+            Candidate::MissingDof => add_frame(m, p[0], p[1], p[2])?,
+            Candidate::BodyMode => {
+                let t = heaviest_body_mass(m)
+                    .ok_or_else(|| Error::parameter(self.id(), "the model has no body mass"))?;
+                let mv = p[0] * m.masses[t].m;
+                m.masses[t].m -= mv;
+                let j = m.masses.len();
+                m.masses.push(Mass {
+                    name: "viscera".into(),
+                    m: mv,
+                    role: Role::Body,
+                });
+                let w = 2.0 * PI * p[1];
+                m.links.push(Link {
+                    name: "viscera".into(),
+                    a: Node::Mass(j),
+                    b: Node::Mass(t),
+                    element: Element::KelvinVoigt {
+                        k: mv * w * w,
+                        c: 2.0 * p[2] * mv * w,
+                    },
+                    law: None,
+                    role: Role::Body,
+                });
+            }
         }
-        Ok(Variant {
-            model: m,
-            delay_seat_s: v_seat,
-            delay_head_s: v_head,
-        })
+        Ok(())
     }
 }
 
-/// Inserts a seat-frame mass of [`FRAME_MASS_KG`] between the base and the cushion, tuned to
-/// `f_hz` (on a rigid base, cushion removed) with damping ratio `zeta`.
-pub fn add_frame(m: &mut Chain, f_hz: f64, zeta: f64) -> Result<()> {
+/// Index of the heaviest body mass (the upper torso in the reference body).
+pub fn heaviest_body_mass(model: &Chain) -> Option<usize> {
+    model
+        .masses
+        .iter()
+        .enumerate()
+        .filter(|(_, m)| m.role == Role::Body)
+        .max_by(|a, b| a.1.m.total_cmp(&b.1.m))
+        .map(|(i, _)| i)
+}
+
+/// Inserts a seat-frame mass of `mass_kg` between the base and the cushion, tuned to `f_hz` (on a
+/// rigid base, cushion removed) with damping ratio `zeta`.
+pub fn add_frame(m: &mut Chain, f_hz: f64, zeta: f64, mass_kg: f64) -> Result<()> {
     let i = role_link(m, Role::Cushion)
         .ok_or_else(|| Error::parameter("missing-dof", "the model has no cushion link"))?;
     let j = m.masses.len();
     m.masses.push(Mass {
         name: "frame".into(),
-        m: FRAME_MASS_KG,
+        m: mass_kg,
         role: Role::Frame,
     });
     let l = &mut m.links[i];
@@ -226,8 +354,8 @@ pub fn add_frame(m: &mut Chain, f_hz: f64, zeta: f64) -> Result<()> {
         a: Node::Mass(j),
         b: Node::Base,
         element: Element::KelvinVoigt {
-            k: FRAME_MASS_KG * w * w,
-            c: 2.0 * zeta * FRAME_MASS_KG * w,
+            k: mass_kg * w * w,
+            c: 2.0 * zeta * mass_kg * w,
         },
         law: None,
         role: Role::Frame,
@@ -245,10 +373,16 @@ pub fn interface_link(model: &Chain) -> Option<usize> {
     model.measure.interface.first().copied()
 }
 
-/// The base parameters re-fitted by the null candidate: k and c of every Kelvin–Voigt link, as
-/// `(path, nominal value)` for [`crate::model::params`].
+/// The base parameters re-fitted by the null candidate: every mass and the k and c of every
+/// Kelvin–Voigt link, as `(path, nominal value)` for [`crate::model::params`]. A real occupant's
+/// masses are never the model's; with `f_seat_z` measured the apparent mass's static limit (the
+/// supported mass) pins their sum, otherwise only the prior does.
 pub fn base_params(model: &Chain) -> Vec<(String, f64)> {
-    let mut out = Vec::new();
+    let mut out: Vec<(String, f64)> = model
+        .masses
+        .iter()
+        .map(|m| (format!("mass.{}.m", m.name), m.m))
+        .collect();
     for l in &model.links {
         if let Element::KelvinVoigt { k, c } = l.element {
             out.push((format!("link.{}.k", l.name), k));
@@ -258,6 +392,18 @@ pub fn base_params(model: &Chain) -> Vec<(String, f64)> {
         }
     }
     out
+}
+
+/// Standard deviation of the Gaussian prior on ln(value/nominal) of base parameter `path`: 0.10 for
+/// masses, 0.25 for dampers, 0.15 for springs (a subject's and a seat's scatter about the model).
+pub fn prior_sigma(path: &str) -> f64 {
+    if path.starts_with("mass.") {
+        0.10
+    } else if path.ends_with(".c") {
+        0.25
+    } else {
+        0.15
+    }
 }
 
 /// `model` with base parameters scaled by `exp(u)`.

@@ -7,9 +7,12 @@ use crate::error::{Error, Result};
 use crate::signals::Signals;
 use num_complex::Complex64;
 
-/// Frequency resolution of the diagnosis spectra in Hz: 4 s segments give ≥ 59 averages in 120 s
-/// (half-overlapped) and 2 bins in the 0.5 Hz one-third-octave band.
+/// Finest frequency resolution of the diagnosis spectra in Hz: 4 s segments give ≥ 59 averages in
+/// 120 s (half-overlapped) and 2 bins in the 0.5 Hz one-third-octave band. Shorter runs trade
+/// resolution for averages, see [`resolution_hz`].
 pub const RESOLUTION_HZ: f64 = 0.25;
+/// Shortest run analysed, s: at [`resolution_hz`] it still gives ≥ 23 averages at 0.6 Hz.
+pub const MIN_DURATION_S: f64 = 20.0;
 /// Lowest and highest analysed frequency in Hz (one-third-octave bands 0.5–31.5 Hz, n = −3…15).
 pub const BAND_N: (i32, i32) = (-3, 15);
 /// Coherence below which a cell is untrustworthy and never scored (gap.md §3.2).
@@ -82,6 +85,8 @@ pub struct RunSpectra {
     pub freq_hz: Vec<f64>,
     /// Bin spacing in Hz.
     pub df_hz: f64,
+    /// Run length in s (samples / rate).
+    pub duration_s: f64,
     /// Number of Welch segments L.
     pub segments: usize,
     /// Base acceleration PSD on all bins up to Nyquist, with their frequencies ((m/s²)²/Hz).
@@ -112,12 +117,19 @@ pub fn analysed_range() -> (f64, f64) {
     )
 }
 
-/// Welch options of the diagnosis.
-pub fn welch(fs: f64) -> Result<Welch> {
+/// Resolution (Hz) for a run of `duration_s`: [`RESOLUTION_HZ`], coarser for runs under 48 s so
+/// that every estimate keeps ≥ 23 half-overlapped averages (segment ≤ T/12): the random error of
+/// H1 and the bias of the coherence (≈ 1/L) stay small at the price of the lowest bands.
+pub fn resolution_hz(duration_s: f64) -> f64 {
+    (12.0 / duration_s).max(RESOLUTION_HZ)
+}
+
+/// Welch options of the diagnosis for a run of `duration_s`.
+pub fn welch(fs: f64, duration_s: f64) -> Result<Welch> {
     Welch::new(
         fs,
         &WelchOptions {
-            segment: Segment::ResolutionHz(RESOLUTION_HZ),
+            segment: Segment::ResolutionHz(resolution_hz(duration_s)),
             ..WelchOptions::default()
         },
     )
@@ -126,13 +138,14 @@ pub fn welch(fs: f64) -> Result<Welch> {
 /// Estimates every path the run has channels for.
 pub fn estimate(signals: &Signals) -> Result<RunSpectra> {
     let fs = signals.sample_rate_hz;
-    if signals.duration_s() < 60.0 {
+    let duration_s = signals.len() as f64 / fs;
+    if duration_s < MIN_DURATION_S {
         return Err(Error::data(
             &signals.source,
             None,
             format!(
-                "run is {:.1} s long; the diagnosis needs at least 60 s (≥ 30 averages of 4 s segments)",
-                signals.duration_s()
+                "run is {duration_s:.1} s long; the diagnosis needs at least {MIN_DURATION_S} s (≥ 23 averages at {:.1} Hz resolution)",
+                resolution_hz(MIN_DURATION_S)
             ),
         ));
     }
@@ -149,7 +162,7 @@ pub fn estimate(signals: &Signals) -> Result<RunSpectra> {
     }
     let base = signals.require("a_base_z")?;
     let seat = signals.require("a_seat_z")?;
-    let mut w = welch(fs)?;
+    let mut w = welch(fs, duration_s)?;
     let (lo, hi) = analysed_range();
     let all = w.cross(base, seat)?;
     let keep: Vec<usize> = (0..all.freq_hz.len())
@@ -181,6 +194,7 @@ pub fn estimate(signals: &Signals) -> Result<RunSpectra> {
         fs,
         freq_hz: pick(&all.freq_hz),
         df_hz: w.df_hz(),
+        duration_s,
         segments: all.segments,
         base_psd: (all.freq_hz.clone(), all.gxx.clone()),
         seat_psd: pick(&all.gyy),

@@ -1,4 +1,4 @@
-//! Chain prediction of the measured paths of one run, in the frequency domain.
+//! Model prediction of the measured paths of one run, in the frequency domain.
 //!
 //! Nonlinear links (cubic, softening, friction, end-stop laws) are replaced by their statistical
 //! linearisation for the run's own base spectrum: under stationary Gaussian response the
@@ -14,6 +14,54 @@ use crate::error::{Error, Result};
 use crate::model::{Chain, Element, Law, Node};
 use num_complex::Complex64;
 use std::f64::consts::PI;
+
+/// A measuring channel's own response: gain × 4-pole Butterworth low-pass × mount resonance ×
+/// delay. The identity is `Channel::default()`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Channel {
+    /// Calibration gain (1 = calibrated).
+    pub gain: f64,
+    /// Lag in s (sensor or acquisition delay).
+    pub delay_s: f64,
+    /// Corner of a 4-pole Butterworth low-pass (anti-alias filter) in Hz; ∞ = none.
+    pub lowpass_hz: f64,
+    /// Mount resonance (Hz, damping ratio) as the absolute transmissibility of a base-excited
+    /// oscillator, (1 + 2iζr)/(1 − r² + 2iζr), r = f/f_m; `None` = rigid mount.
+    pub mount: Option<(f64, f64)>,
+}
+
+impl Default for Channel {
+    fn default() -> Self {
+        Channel {
+            gain: 1.0,
+            delay_s: 0.0,
+            lowpass_hz: f64::INFINITY,
+            mount: None,
+        }
+    }
+}
+
+impl Channel {
+    /// The channel's response at `f` Hz.
+    pub fn response(&self, f: f64) -> Complex64 {
+        let omega = 2.0 * PI * f;
+        let mut h = Complex64::from_polar(self.gain, -omega * self.delay_s);
+        if self.lowpass_hz.is_finite() {
+            // Butterworth poles exp(iπ(2k + n + 1)/(2n)), n = 4 (Butterworth 1930).
+            let s = Complex64::new(0.0, f / self.lowpass_hz);
+            for a in [5.0, 7.0] {
+                let p = Complex64::from_polar(1.0, a * PI / 8.0);
+                h *= p * p.conj() / ((s - p) * (s - p.conj()));
+            }
+        }
+        if let Some((fm, z)) = self.mount {
+            let r = f / fm;
+            let num = Complex64::new(1.0, 2.0 * z * r);
+            h *= num / Complex64::new(1.0 - r * r, 2.0 * z * r);
+        }
+        h
+    }
+}
 
 /// Absolute mass accelerations and the interface force on the body (N), per unit base
 /// acceleration at `f` Hz ([`crate::response::frf`] on the chain's system).
@@ -31,24 +79,27 @@ pub fn solve_point(model: &Chain, f: f64) -> Result<(Vec<Complex64>, Complex64)>
     Ok((acc, force))
 }
 
-/// A model plus output-channel delays (s): the thing a candidate evaluates.
+/// A model plus the measuring chain: the thing a candidate evaluates.
 #[derive(Debug, Clone)]
 pub struct Variant {
     /// The (possibly nonlinear) model.
     pub model: Chain,
-    /// Lag of the seat channel in s (sensor or acquisition delay).
-    pub delay_seat_s: f64,
-    /// Lag of the head channel in s.
-    pub delay_head_s: f64,
+    /// The base accelerometer.
+    pub base: Channel,
+    /// The seat-pad accelerometer.
+    pub seat: Channel,
+    /// The head accelerometer.
+    pub head: Channel,
 }
 
 impl Variant {
-    /// A variant with no delays.
+    /// A variant with ideal sensors.
     pub fn plain(model: Chain) -> Self {
         Variant {
             model,
-            delay_seat_s: 0.0,
-            delay_head_s: 0.0,
+            base: Channel::default(),
+            seat: Channel::default(),
+            head: Channel::default(),
         }
     }
 }
@@ -162,9 +213,7 @@ fn path_values(
         Node::Mass(i) => acc[i],
     };
     let head = model.measure.head.map(|h| acc[h]);
-    let omega = 2.0 * PI * f;
-    let lag = |tau: f64| Complex64::from_polar(1.0, -omega * tau);
-    let (ls, lh) = (lag(v.delay_seat_s), lag(v.delay_head_s));
+    let (lb, ls, lh) = (v.base.response(f), v.seat.response(f), v.head.response(f));
     for (o, &path) in out.iter_mut().zip(paths) {
         let missing = || {
             Error::parameter(
@@ -173,9 +222,9 @@ fn path_values(
             )
         };
         *o = match path {
-            Path::BaseSeat => seat * ls,
+            Path::BaseSeat => seat * ls / lb,
             Path::SeatHead => head.ok_or_else(missing)? / seat * lh / ls,
-            Path::BaseHead => head.ok_or_else(missing)? * lh,
+            Path::BaseHead => head.ok_or_else(missing)? * lh / lb,
             Path::ApparentMass => force / seat / ls,
         };
     }

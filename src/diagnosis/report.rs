@@ -17,11 +17,14 @@ fn stage_line(label: &str, s: &Stage) -> String {
 fn candidate_block(out: &mut String, r: &Ranked) {
     let _ = writeln!(
         out,
-        "  {} — ΔBIC {:.1}, probability {:.2}, closes {:.0} % of the structural gap",
+        "  {} — ΔBIC {:.1}, probability {:.2}, closes {:.0} % of the structural gap; size: seat a_w {:+.1} %, SEAT {:+.1} points, band gap {:+.2} dB",
         r.id,
         r.delta_bic,
         r.probability,
-        100.0 * r.fraction_closed
+        100.0 * r.fraction_closed,
+        r.aw_change_percent,
+        r.seat_change_points,
+        r.band_gap_change_db
     );
     for p in &r.params {
         let _ = writeln!(
@@ -41,6 +44,25 @@ pub fn text(d: &Diagnosis) -> String {
     let _ = writeln!(out, "verdict: {}\n  {}", d.verdict, d.verdict_text);
     for w in &d.warnings {
         let _ = writeln!(out, "warning: {w}");
+    }
+    let list = |v: &[f64]| {
+        if v.is_empty() {
+            "–".to_string()
+        } else {
+            v.iter()
+                .map(|b| format!("{b}"))
+                .collect::<Vec<_>>()
+                .join(" ")
+        }
+    };
+    for b in &d.bands {
+        let _ = writeln!(
+            out,
+            "bands judged on {} (Hz): {}; not judged: {}",
+            b.path,
+            list(&b.judged_hz),
+            list(&b.not_judged_hz)
+        );
     }
     let _ = writeln!(
         out,
@@ -110,13 +132,18 @@ pub fn text(d: &Diagnosis) -> String {
         out,
         "\n2. Which unmodelled effect (fitted on training runs, scored on the check run)"
     );
-    let _ = writeln!(out, "  null re-fit of the base parameters:");
+    let _ = writeln!(
+        out,
+        "  null re-fit of the base parameters (masses, stiffness, damping; moved = more than 5 %):"
+    );
     for p in &d.null.params {
+        let c = p.change_percent.unwrap_or(0.0);
         let _ = writeln!(
             out,
-            "      {:<22} {:>+6.1} %{}",
+            "      {:<26} {:>+6.1} %{}{}",
             p.name,
-            p.change_percent.unwrap_or(0.0),
+            c,
+            if c.abs() > 5.0 { "  moved" } else { "" },
             if p.at_bound {
                 "  (at ±30 % bound: structure absorbed?)"
             } else {
@@ -136,6 +163,10 @@ pub fn text(d: &Diagnosis) -> String {
     if !rest.is_empty() {
         let _ = writeln!(out, "  others: {}", rest.join(", "));
     }
+    if let Some(s) = &d.second {
+        let _ = writeln!(out, "  forward selection (against the best alone):");
+        candidate_block(&mut out, s);
+    }
     if let Some(m) = &d.separating_measurement {
         let _ = writeln!(out, "  to separate the two best: {m}");
     }
@@ -145,6 +176,9 @@ pub fn text(d: &Diagnosis) -> String {
     let _ = writeln!(out, "{}", stage_line("re-fitted (null)", &d.null.check));
     for r in d.candidates.iter().take(2) {
         let _ = writeln!(out, "{}", stage_line(&format!("+ {}", r.id), &r.check));
+    }
+    if let Some(s) = &d.second {
+        let _ = writeln!(out, "{}", stage_line(&format!("+ {}", s.id), &s.check));
     }
     out
 }

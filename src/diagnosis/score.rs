@@ -15,8 +15,6 @@ use num_complex::Complex64;
 /// integration, H1 leakage at 0.25 Hz resolution and statistical linearisation leave even for the
 /// true model structure.
 pub const FLOOR: f64 = 0.006;
-/// Standard deviation of the Gaussian prior on the log of each re-fitted base parameter.
-pub const PRIOR_SIGMA: f64 = 0.15;
 
 /// Whether a cell is trusted.
 pub fn trusted(coherence: f64) -> bool {

@@ -98,6 +98,15 @@ pub enum Law {
     /// End stop: beyond a free travel `gap` (m) either way a contact spring `k_stop` (N/m) engages:
     /// extra force `k_stop·(|d| − gap)·sign(d)` for `|d| > gap`.
     EndStop { gap: f64, k_stop: f64 },
+    /// Quadratic contact stiffening: the spring force `k·d` becomes `k·d·(1 + |d|/d0)`, `d0` in m
+    /// (foam whose contact area grows with deflection). Used by the gap bench's truth forms.
+    Contact { d0: f64 },
+    /// Exponential stiffening: the spring force `k·d` becomes `k·d0·sinh(d/d0)`, `d0` in m (tangent
+    /// `k·cosh(d/d0)`). Used by the gap bench's truth forms.
+    Exponential { d0: f64 },
+    /// Bilinear softening: stiffness `k` for `|d| ≤ d_knee` (m), `ratio·k` beyond. Used by the gap
+    /// bench's truth forms.
+    Bilinear { d_knee: f64, ratio: f64 },
 }
 
 impl Law {
@@ -124,6 +133,24 @@ impl Law {
                     (k * d + c * v + k_stop * over * d.signum(), k + k_stop, c)
                 } else {
                     (k * d + c * v, k, c)
+                }
+            }
+            Law::Contact { d0 } => (
+                k * d * (1.0 + d.abs() / d0) + c * v,
+                k * (1.0 + 2.0 * d.abs() / d0),
+                c,
+            ),
+            Law::Exponential { d0 } => {
+                // Capped argument keeps a diverging Newton trial finite (cosh(60) ≈ 6e25).
+                let x = (d / d0).clamp(-60.0, 60.0);
+                (k * d0 * x.sinh() + c * v, k * x.cosh(), c)
+            }
+            Law::Bilinear { d_knee, ratio } => {
+                if d.abs() <= d_knee {
+                    (k * d + c * v, k, c)
+                } else {
+                    let f = k * (d_knee + ratio * (d.abs() - d_knee)) * d.signum();
+                    (f + c * v, ratio * k, c)
                 }
             }
         }
@@ -173,6 +200,12 @@ mod tests {
             Law::EndStop {
                 gap: 0.002,
                 k_stop: 1e6,
+            },
+            Law::Contact { d0: 0.004 },
+            Law::Exponential { d0: 0.004 },
+            Law::Bilinear {
+                d_knee: 0.002,
+                ratio: 0.5,
             },
         ];
         for law in laws {

@@ -22,6 +22,8 @@ pub fn list(model: &Chain) -> Vec<String> {
             Some(Law::Softening { .. }) => &["d_ref"],
             Some(Law::Friction { .. }) => &["f_c", "v_ref"],
             Some(Law::EndStop { .. }) => &["gap", "k_stop"],
+            Some(Law::Contact { .. } | Law::Exponential { .. }) => &["d0"],
+            Some(Law::Bilinear { .. }) => &["d_knee", "ratio"],
         };
         for f in fields.iter().chain(law) {
             out.push(format!("link.{}.{f}", l.name));
@@ -67,6 +69,9 @@ fn slot<'a>(model: &'a mut Chain, path: &str) -> Result<&'a mut f64> {
                 (Some(Law::Friction { v_ref, .. }), "v_ref") => Ok(v_ref),
                 (Some(Law::EndStop { gap, .. }), "gap") => Ok(gap),
                 (Some(Law::EndStop { k_stop, .. }), "k_stop") => Ok(k_stop),
+                (Some(Law::Contact { d0 } | Law::Exponential { d0 }), "d0") => Ok(d0),
+                (Some(Law::Bilinear { d_knee, .. }), "d_knee") => Ok(d_knee),
+                (Some(Law::Bilinear { ratio, .. }), "ratio") => Ok(ratio),
                 _ => Err(unknown()),
             }
         }
