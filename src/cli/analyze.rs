@@ -5,8 +5,12 @@ use std::path::PathBuf;
 /// Arguments of `wbv analyze`.
 #[derive(Debug, clap::Args)]
 pub struct Args {
-    /// Run to analyse: a measured-run CSV, an MCAP run or a run directory.
+    /// Measurement or run to analyse: delimited text (CSV, TSV, `;`), WAV, MATLAB .mat (v5),
+    /// UFF58, another logger's MCAP (with --topic), a wbv MCAP run or a run directory
+    /// (docs/inputs.md). Whatever acceleration channels exist are analysed.
     path: PathBuf,
+    #[command(flatten)]
+    input: crate::io::input::InputArgs,
     /// Print the report as JSON (keys `a_w`, `vdv`, `mtvv`, `crest_factor`, `seat_percent`,
     /// `comfort`, …; units under `units`).
     #[arg(long)]
@@ -33,7 +37,11 @@ pub struct Args {
 
 pub fn run(args: Args) -> crate::Result<()> {
     let start = std::time::Instant::now();
-    let signals = analysis::load_signals(&args.path)?;
+    let input = analysis::load_input(&args.path, &args.input.options()?)?;
+    for n in &input.notes {
+        eprintln!("input: {n}");
+    }
+    let signals = input.signals;
     let loaded = start.elapsed().as_secs_f64();
     let welch = WelchOptions {
         window: Window::Hann,
