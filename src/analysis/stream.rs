@@ -109,7 +109,10 @@ impl ChannelAnalyzer {
     fn push(&mut self, x: &[f64], welch: &mut Welch) {
         let Some(&x0) = x.first() else { return };
         let x0 = *self.first.get_or_insert(x0);
-        self.sum += x.iter().sum::<f64>();
+        // Sample by sample, so any split into blocks gives the same sum bit for bit.
+        for v in x {
+            self.sum += v;
+        }
         let (raw, psd) = (&mut self.raw, &mut self.psd);
         let spectrum = || {
             raw.push(x);

@@ -215,24 +215,33 @@ pub(crate) fn read(bytes: &[u8], source: &str, opts: &Options) -> Result<Raw> {
         }
         first_data = false;
         for (k, cell) in rec.iter().take(n).enumerate() {
-            let v = parse_number(cell, decimal_comma).ok_or_else(|| {
-                Error::data(
-                    source,
-                    Some(line),
-                    format!(
-                        "column `{}`: `{cell}` is not a number{}",
-                        columns[k].name,
-                        if decimal_comma {
-                            " (decimal point or comma)"
-                        } else {
-                            ""
-                        }
-                    ),
-                )
-            })?;
-            columns[k].data.push(v);
-            if let Some(r) = res[k].as_mut() {
-                r.push(printed_resolution(cell));
+            let c = &mut columns[k];
+            if c.bad.is_some() {
+                continue;
+            }
+            match parse_number(cell, decimal_comma) {
+                Some(v) => {
+                    c.data.push(v);
+                    if let Some(r) = res[k].as_mut() {
+                        r.push(printed_resolution(cell));
+                    }
+                }
+                None => {
+                    c.bad = Some(Error::data(
+                        source,
+                        Some(line),
+                        format!(
+                            "column `{}`: `{cell}` is not a number{}",
+                            c.name,
+                            if decimal_comma {
+                                " (decimal point or comma)"
+                            } else {
+                                ""
+                            }
+                        ),
+                    ));
+                    c.data = Vec::new();
+                }
             }
         }
         lines.push(line);

@@ -179,7 +179,7 @@ pub struct Input {
 }
 
 /// One column of a file as a format module reads it, before mapping and units.
-#[derive(Debug, Clone, Default)]
+#[derive(Debug, Default)]
 pub(crate) struct Column {
     /// Name in the file (a header without its unit, a variable, `channel 2`, a field path).
     pub name: String,
@@ -190,6 +190,18 @@ pub(crate) struct Column {
     pub data: Vec<f64>,
     /// Printed resolution of each value (time columns of text files), e.g. 1e-3 for `0.125`.
     pub resolution: Option<Vec<f64>>,
+    /// The first cell that is not a number (text formats): an error if the column is used.
+    pub bad: Option<Error>,
+}
+
+impl Column {
+    /// The column, or its first unreadable cell's error when it is to be used.
+    fn usable(self) -> Result<Column> {
+        match self.bad {
+            Some(e) => Err(e),
+            None => Ok(self),
+        }
+    }
 }
 
 /// How a file gives its timing.
@@ -204,7 +216,7 @@ pub(crate) enum Timing {
 }
 
 /// What a format module hands back.
-#[derive(Debug, Clone)]
+#[derive(Debug)]
 pub(crate) struct Raw {
     pub columns: Vec<Column>,
     pub timing: Timing,
@@ -412,7 +424,7 @@ pub(crate) fn assemble(raw: Raw, source: &str, opts: &Options) -> Result<Input> 
                 .iter()
                 .position(|c| TIME_NAMES.iter().any(|n| c.name.eq_ignore_ascii_case(n))),
         };
-        time = idx.map(|i| columns.remove(i));
+        time = idx.map(|i| columns.remove(i).usable()).transpose()?;
     } else if matches!(timing, Timing::Rate { .. }) && opts.columns.iter().any(|(c, _)| c == "t_s") {
         return Err(refuse(
             "--column",
@@ -426,7 +438,7 @@ pub(crate) fn assemble(raw: Raw, source: &str, opts: &Options) -> Result<Input> 
         let mut ignored = Vec::new();
         for c in columns.drain(..) {
             if is_channel_name(&c.name) {
-                picked.push((c.name.clone(), c));
+                picked.push((c.name.clone(), c.usable()?));
             } else {
                 ignored.push(format!("`{}`", c.name));
             }
@@ -464,7 +476,7 @@ pub(crate) fn assemble(raw: Raw, source: &str, opts: &Options) -> Result<Input> 
                     ),
                 )
             })?;
-            let mut c = columns.remove(i);
+            let mut c = columns.remove(i).usable()?;
             c.aliases.clear();
             if picked.iter().any(|(n, _)| n == ch) {
                 return Err(refuse("--column", &format!("{ch} is mapped twice")));

@@ -345,7 +345,7 @@ pub(crate) fn read(bytes: &[u8], source: &str) -> Result<Raw> {
             aliases: vec![k.to_string(), format!("dataset {k}")],
             unit: hd.unit,
             data,
-            resolution: None,
+            ..Column::default()
         });
     }
     let Some((dx, dx_text, _)) = rate else {

@@ -62,7 +62,7 @@ pub(crate) fn read(bytes: &[u8], source: &str) -> Result<Raw> {
             aliases: vec![(i + 1).to_string()],
             unit: Some(super::FULL_SCALE.into()),
             data: d,
-            resolution: None,
+            ..Column::default()
         })
         .collect();
     Ok(Raw {
