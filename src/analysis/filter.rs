@@ -409,7 +409,10 @@ mod interp_tests {
         for i in 200..3800 {
             let t = (i as f64 + 0.5) / fs;
             assert!((y[2 * i] - x[i]).abs() < 1e-3, "{i}");
-            assert!((y[2 * i + 1] - (2.0 * PI * f * t).sin()).abs() < 2e-3, "{i}");
+            assert!(
+                (y[2 * i + 1] - (2.0 * PI * f * t).sin()).abs() < 2e-3,
+                "{i}"
+            );
         }
     }
 }

@@ -122,7 +122,9 @@ impl ChannelReport {
     fn notes(&self, duration_s: f64) -> Vec<String> {
         let mut notes = Vec::new();
         let g = crate::io::input::STANDARD_GRAVITY;
-        let ac = (self.rms * self.rms - self.mean * self.mean).max(0.0).sqrt();
+        let ac = (self.rms * self.rms - self.mean * self.mean)
+            .max(0.0)
+            .sqrt();
         let m = self.mean.abs();
         if self.name.starts_with("a_") && (m - g).abs() < 0.1 * g {
             notes.push(format!(

@@ -4,7 +4,9 @@
 //! report of a recorded run equals the one computed during the simulation bit for bit.
 
 use super::figures::{Averaging, Moments, RunningRms};
-use super::filter::{FilterStream, Interpolator, MIN_ANALYSIS_RATE_HZ, WeightingFilter, oversampling};
+use super::filter::{
+    FilterStream, Interpolator, MIN_ANALYSIS_RATE_HZ, WeightingFilter, oversampling,
+};
 use super::octave;
 use super::report::{ChannelReport, Options, Report};
 use super::spectrum::{PsdAccumulator, Segment, Welch};

@@ -50,7 +50,11 @@ pub fn run(args: Args) -> crate::Result<()> {
         }
         Ok(s)
     };
-    let train = args.runs.iter().map(load).collect::<crate::Result<Vec<_>>>()?;
+    let train = args
+        .runs
+        .iter()
+        .map(load)
+        .collect::<crate::Result<Vec<_>>>()?;
     let check = load(&args.check)?;
     let d = diagnose(&model, &train, &check)?;
     if let Some(dir) = &args.plot {

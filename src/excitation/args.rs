@@ -84,7 +84,11 @@ fn refuse_unused(args: &ExcitationArgs, kind: &str) -> Result<()> {
         ("--fade-in", args.fade_in.is_some(), &["sine", "sweep"]),
         ("--sweep", args.sweep.is_some(), &["sweep"]),
         ("--sweep-law", args.sweep_law.is_some(), &["sweep"]),
-        ("--sweep-duration", args.sweep_duration.is_some(), &["sweep"]),
+        (
+            "--sweep-duration",
+            args.sweep_duration.is_some(),
+            &["sweep"],
+        ),
         ("--input", args.input.is_some(), &["psd", "recorded"]),
         ("--road-class", args.road_class.is_some(), &["road"]),
         ("--speed", args.speed.is_some(), &["road"]),

@@ -91,7 +91,11 @@ impl Resampled {
         let n = x.len() as i64;
         let i0 = i as i64;
         if i0 >= n {
-            return if u <= n as f64 { x[(n - 1) as usize] } else { 0.0 };
+            return if u <= n as f64 {
+                x[(n - 1) as usize]
+            } else {
+                0.0
+            };
         }
         let s = u - i;
         let at = |k: i64| x[k.clamp(0, n - 1) as usize];

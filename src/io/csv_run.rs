@@ -189,7 +189,11 @@ mod tests {
         let run = read_from(csv_text(2100, 200.0).as_bytes(), "mem.csv").unwrap();
         assert!((run.signals.sample_rate_hz - 200.0).abs() < 1e-9);
         assert_eq!(run.signals.names, vec!["a_base_z", "a_seat_z"]);
-        assert!(run.warnings.iter().any(|w| w.contains("comment")), "{:?}", run.warnings);
+        assert!(
+            run.warnings.iter().any(|w| w.contains("comment")),
+            "{:?}",
+            run.warnings
+        );
     }
 
     #[test]

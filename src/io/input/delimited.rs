@@ -189,11 +189,18 @@ pub(crate) fn read(bytes: &[u8], source: &str, opts: &Options) -> Result<Raw> {
                 format!("{n} fields, expected {ncol} as in the header"),
             ));
         }
-        if first_data && rec.iter().take(n).all(|c| parse_number(c, decimal_comma).is_none()) {
+        if first_data
+            && rec
+                .iter()
+                .take(n)
+                .all(|c| parse_number(c, decimal_comma).is_none())
+        {
             // A units row.
             first_data = false;
             for (c, u) in columns.iter_mut().zip(rec.iter()) {
-                let u = u.trim_matches(|ch| matches!(ch, '[' | ']' | '(' | ')')).trim();
+                let u = u
+                    .trim_matches(|ch| matches!(ch, '[' | ']' | '(' | ')'))
+                    .trim();
                 if u.is_empty() {
                     continue;
                 }
@@ -307,7 +314,11 @@ mod tests {
             assert_eq!(inp.signals.sample_rate_hz, 200.0, "{d:?}");
             let z = inp.signals.get("a_seat_z").unwrap();
             assert!((z[0] - 9.80665).abs() < 1e-9, "{}", z[0]);
-            assert!(inp.notes.iter().any(|n| n.contains("Temp")), "{:?}", inp.notes);
+            assert!(
+                inp.notes.iter().any(|n| n.contains("Temp")),
+                "{:?}",
+                inp.notes
+            );
         }
     }
 

@@ -27,7 +27,11 @@ pub fn topics(bytes: &[u8]) -> Vec<String> {
         let Ok(m) = m else { break };
         match seen.iter_mut().find(|(t, _, _)| *t == m.channel.topic) {
             Some(e) => e.2 += 1,
-            None => seen.push((m.channel.topic.clone(), m.channel.message_encoding.clone(), 1)),
+            None => seen.push((
+                m.channel.topic.clone(),
+                m.channel.message_encoding.clone(),
+                1,
+            )),
         }
     }
     seen.into_iter()
@@ -124,7 +128,9 @@ impl Decoder {
                     .ok_or_else(|| err("cdr channel without a ros2msg schema".into()))?;
                 let text = std::str::from_utf8(&s.data)
                     .map_err(|_| err("ros2msg schema is not UTF-8".into()))?;
-                Ok(Decoder::Cdr(ros2msg::Schema::parse(&s.name, text).map_err(err)?))
+                Ok(Decoder::Cdr(
+                    ros2msg::Schema::parse(&s.name, text).map_err(err)?,
+                ))
             }
             other => Err(err(format!(
                 "message encoding `{other}`; json, protobuf or cdr (ros2msg) expected"
@@ -188,7 +194,11 @@ pub(crate) fn read(bytes: &[u8], source: &str, topic: &str, opts: &Options) -> R
     let mut count = 0usize;
     let mut other: HashMap<String, usize> = HashMap::new();
     for m in stream {
-        let m = m.map_err(|e| err(format!("corrupt MCAP after {count} messages of {topic}: {e}")))?;
+        let m = m.map_err(|e| {
+            err(format!(
+                "corrupt MCAP after {count} messages of {topic}: {e}"
+            ))
+        })?;
         if m.channel.topic != topic {
             *other.entry(m.channel.topic.clone()).or_default() += 1;
             continue;
@@ -200,7 +210,12 @@ pub(crate) fn read(bytes: &[u8], source: &str, topic: &str, opts: &Options) -> R
             .as_ref()
             .expect("set")
             .decode(&m.data)
-            .map_err(|e| err(format!("topic {topic}: message {} undecodable: {e}", count + 1)))?;
+            .map_err(|e| {
+                err(format!(
+                    "topic {topic}: message {} undecodable: {e}",
+                    count + 1
+                ))
+            })?;
         if fields.is_empty() {
             let mut paths = Vec::new();
             numeric_paths(&value, "", &mut paths);
@@ -215,26 +230,31 @@ pub(crate) fn read(bytes: &[u8], source: &str, topic: &str, opts: &Options) -> R
             ));
         }
         for (k, (ch, path)) in fields.iter().enumerate() {
-            let x = lookup(&value, path).and_then(Value::as_f64).ok_or_else(|| {
-                let mut paths = Vec::new();
-                numeric_paths(&value, "", &mut paths);
-                Error::parameter(
-                    "--column",
-                    format!(
-                        "{ch}={path}: message {} of {topic} has no numeric field `{path}` \
+            let x = lookup(&value, path)
+                .and_then(Value::as_f64)
+                .ok_or_else(|| {
+                    let mut paths = Vec::new();
+                    numeric_paths(&value, "", &mut paths);
+                    Error::parameter(
+                        "--column",
+                        format!(
+                            "{ch}={path}: message {} of {topic} has no numeric field `{path}` \
                          (numeric fields: {})",
-                        count + 1,
-                        paths.join(", ")
-                    ),
-                )
-            })?;
+                            count + 1,
+                            paths.join(", ")
+                        ),
+                    )
+                })?;
             data[k].push(x);
         }
         match time_field {
             Some(p) => t.push(lookup(&value, p).and_then(seconds).ok_or_else(|| {
                 Error::parameter(
                     "--column",
-                    format!("t_s={p}: message {} of {topic} has no time there", count + 1),
+                    format!(
+                        "t_s={p}: message {} of {topic} has no time there",
+                        count + 1
+                    ),
                 )
             })?),
             None => {
@@ -274,7 +294,8 @@ pub(crate) fn read(bytes: &[u8], source: &str, topic: &str, opts: &Options) -> R
     Ok(Raw {
         columns,
         timing: Timing::Stamps {
-            name: time_field.map_or_else(|| format!("{topic} log time"), |p| format!("{topic} {p}")),
+            name: time_field
+                .map_or_else(|| format!("{topic} log time"), |p| format!("{topic} {p}")),
             t,
         },
         lines: None,
@@ -464,7 +485,9 @@ pub(crate) mod ros2msg {
                 };
                 let v = match f.len {
                     Len::One => one(r)?,
-                    Len::Fixed(n) => Value::Array((0..n).map(|_| one(r)).collect::<Result<_, _>>()?),
+                    Len::Fixed(n) => {
+                        Value::Array((0..n).map(|_| one(r)).collect::<Result<_, _>>()?)
+                    }
                     Len::Seq => {
                         let n = r.u32()? as usize;
                         if n > r.b.len() {

@@ -232,12 +232,11 @@ const UNITS: &str = "m/s2 (m/s^2, m/s²), g, mg, N, kN";
 
 /// Factor to SI of a unit name (acceleration → m/s², force → N, time → s), `None` when unknown.
 pub fn scale_of(unit: &str) -> Option<f64> {
-    let u: String = unit
-        .trim()
-        .chars()
-        .filter(|c| !c.is_whitespace())
-        .collect();
-    let u = u.replace("**", "^").replace("s²", "s^2").replace("s-2", "s^2");
+    let u: String = unit.trim().chars().filter(|c| !c.is_whitespace()).collect();
+    let u = u
+        .replace("**", "^")
+        .replace("s²", "s^2")
+        .replace("s-2", "s^2");
     Some(match u.as_str() {
         "m/s2" | "m/s^2" | "m/(s^2)" | "ms^2" | "m.s^2" => 1.0,
         "g" | "G" | "gn" => STANDARD_GRAVITY,
@@ -257,9 +256,7 @@ pub fn is_channel_name(name: &str) -> bool {
     (name.starts_with("a_") || name.starts_with("f_"))
         && name.len() > 2
         && name[2..].split('_').all(|p| !p.is_empty())
-        && name
-            .chars()
-            .all(|c| c.is_ascii_alphanumeric() || c == '_')
+        && name.chars().all(|c| c.is_ascii_alphanumeric() || c == '_')
 }
 
 fn check_channel_name(flag: &str, name: &str) -> Result<()> {
@@ -425,7 +422,8 @@ pub(crate) fn assemble(raw: Raw, source: &str, opts: &Options) -> Result<Input> 
                 .position(|c| TIME_NAMES.iter().any(|n| c.name.eq_ignore_ascii_case(n))),
         };
         time = idx.map(|i| columns.remove(i).usable()).transpose()?;
-    } else if matches!(timing, Timing::Rate { .. }) && opts.columns.iter().any(|(c, _)| c == "t_s") {
+    } else if matches!(timing, Timing::Rate { .. }) && opts.columns.iter().any(|(c, _)| c == "t_s")
+    {
         return Err(refuse(
             "--column",
             "t_s=…: this format states its own timing (sample rate or time stamps)",
@@ -491,7 +489,11 @@ pub(crate) fn assemble(raw: Raw, source: &str, opts: &Options) -> Result<Input> 
         }
     }
     // Options that name channels must name picked ones.
-    for (ch, _) in opts.units.iter().filter_map(|(c, u)| c.as_ref().map(|c| (c, u))) {
+    for (ch, _) in opts
+        .units
+        .iter()
+        .filter_map(|(c, u)| c.as_ref().map(|c| (c, u)))
+    {
         if !picked.iter().any(|(n, _)| n == ch) {
             return Err(refuse(
                 "--units",
@@ -511,7 +513,10 @@ pub(crate) fn assemble(raw: Raw, source: &str, opts: &Options) -> Result<Input> 
     let (fs, rate_note) = match (&timing, time, opts.fs) {
         (Timing::Rate { .. }, _, Some(_)) | (Timing::Stamps { .. }, _, Some(_)) => {
             if matches!(timing, Timing::Stamps { .. }) {
-                (opts.fs.unwrap(), Some("time stamps ignored: --fs given".to_string()))
+                (
+                    opts.fs.unwrap(),
+                    Some("time stamps ignored: --fs given".to_string()),
+                )
             } else {
                 return Err(refuse(
                     "--fs",
@@ -522,7 +527,10 @@ pub(crate) fn assemble(raw: Raw, source: &str, opts: &Options) -> Result<Input> 
         (Timing::Rate { fs, what }, _, None) => (*fs, Some(format!("{fs} Hz from {what}"))),
         (Timing::Stamps { name, t }, _, None) => {
             let fs = fit_rate(t, None, &|_| None, source, name)?;
-            (fs, Some(format!("{fs} Hz fitted to the time stamps of {name}")))
+            (
+                fs,
+                Some(format!("{fs} Hz fitted to the time stamps of {name}")),
+            )
         }
         (Timing::InColumns, Some(t), None) => {
             let scale = match &t.unit {
@@ -550,7 +558,10 @@ pub(crate) fn assemble(raw: Raw, source: &str, opts: &Options) -> Result<Input> 
         }
         (Timing::InColumns, Some(t), Some(fs)) => (
             fs,
-            Some(format!("time column `{}` ignored: --fs {fs} Hz given", t.name)),
+            Some(format!(
+                "time column `{}` ignored: --fs {fs} Hz given",
+                t.name
+            )),
         ),
         (Timing::InColumns, None, Some(fs)) => (fs, None),
         (Timing::InColumns, None, None) => {

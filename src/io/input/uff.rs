@@ -86,8 +86,12 @@ fn header(rec: &[&str], source: &str, line: usize) -> Result<Header> {
     let r6 = rec[5];
     let r7 = rec[6];
     let int = |s: &str, k: usize, what: &str| -> Result<i64> {
-        s.parse()
-            .map_err(|_| err(k, &format!("record {}: {what} `{s}` is not an integer", k + 1)))
+        s.parse().map_err(|_| {
+            err(
+                k,
+                &format!("record {}: {what} `{s}` is not an integer", k + 1),
+            )
+        })
     };
     let func_type = int(field(r6, 0, 5), 5, "function type")?;
     // Record 7 is fixed width (3I10, 3E13.5); fall back to fields separated by blanks.
@@ -105,7 +109,10 @@ fn header(rec: &[&str], source: &str, line: usize) -> Result<Header> {
         free
     };
     if f7.len() < 5 {
-        return Err(err(6, "record 7: expected ordinate type, points, spacing, minimum, increment"));
+        return Err(err(
+            6,
+            "record 7: expected ordinate type, points, spacing, minimum, increment",
+        ));
     }
     let ord_type = int(f7[0], 6, "ordinate data type")?;
     let n = int(f7[1], 6, "number of points")?;
@@ -190,13 +197,15 @@ pub(crate) fn read(bytes: &[u8], source: &str) -> Result<Raw> {
                     "58b header: expected byte order 1 or 2, IEEE format 2 and a byte count",
                 ));
             };
-            let body = bytes.get(c.pos..c.pos.saturating_add(nbytes)).ok_or_else(|| {
-                Error::data(
-                    source,
-                    Some(start),
-                    format!("58b states {nbytes} bytes of data; the file ends before"),
-                )
-            })?;
+            let body = bytes
+                .get(c.pos..c.pos.saturating_add(nbytes))
+                .ok_or_else(|| {
+                    Error::data(
+                        source,
+                        Some(start),
+                        format!("58b states {nbytes} bytes of data; the file ends before"),
+                    )
+                })?;
             c.pos += nbytes;
             let width = if hd.ord_type == 2 { 4 } else { 8 };
             if real && hd.even && body.len() != hd.n * width {

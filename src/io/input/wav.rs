@@ -16,7 +16,9 @@ pub(crate) fn read(bytes: &[u8], source: &str) -> Result<Raw> {
     let spec = r.spec();
     let nch = spec.channels as usize;
     if nch == 0 || spec.sample_rate == 0 {
-        return Err(err("WAV header states no channels or a zero sample rate".into()));
+        return Err(err(
+            "WAV header states no channels or a zero sample rate".into()
+        ));
     }
     let frames = r.duration() as usize;
     // Refuse lengths the data chunk cannot hold before allocating for them.
