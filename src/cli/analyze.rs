@@ -36,6 +36,19 @@ pub struct Args {
 }
 
 pub fn run(args: Args) -> crate::Result<()> {
+    if args.plot.is_none() {
+        for (set, flag) in [
+            (args.force, "--force"),
+            (args.plot_format != "png", "--plot-format"),
+        ] {
+            if set {
+                return Err(crate::Error::parameter(
+                    flag,
+                    "applies to the plots; give --plot DIR",
+                ));
+            }
+        }
+    }
     let start = std::time::Instant::now();
     let input = analysis::load_input(&args.path, &args.input.options()?)?;
     for n in &input.notes {

@@ -31,6 +31,12 @@ pub struct Args {
 }
 
 pub fn run(args: Args) -> crate::Result<()> {
+    if args.force && args.plot.is_none() {
+        return Err(crate::Error::parameter(
+            "--force",
+            "applies to the plots; give --plot DIR",
+        ));
+    }
     let model = catalog::resolve(&args.model)?;
     let opts = args.input.options()?;
     let load = |p: &PathBuf| -> crate::Result<crate::signals::Signals> {

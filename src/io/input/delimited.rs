@@ -90,7 +90,7 @@ pub(crate) fn printed_resolution(cell: &str) -> f64 {
     let decimals = mantissa
         .find(['.', ','])
         .map_or(0, |i| mantissa.len() - i - 1) as i32;
-    10f64.powi(exp - decimals)
+    10f64.powi(exp.saturating_sub(decimals))
 }
 
 /// Reads delimited text into raw columns (time, when present, is one of them).

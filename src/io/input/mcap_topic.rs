@@ -462,6 +462,8 @@ pub(crate) mod ros2msg {
                 b: &data[4..],
                 pos: 0,
                 le,
+                // Values a message may hold: bounds fixed arrays of empty types.
+                budget: 64 * data.len() + 1024,
             };
             self.message(&self.root, &mut r, 0)
         }
@@ -477,6 +479,10 @@ pub(crate) mod ros2msg {
             let mut out = Map::new();
             for f in fields {
                 let one = |r: &mut Reader<'_>| -> Result<Value, String> {
+                    r.budget = r
+                        .budget
+                        .checked_sub(1)
+                        .ok_or("more values than the message can hold")?;
                     match &f.ty {
                         Ty::Prim(p) => r.prim(p),
                         Ty::Str => r.string(),
@@ -506,6 +512,7 @@ pub(crate) mod ros2msg {
         b: &'a [u8],
         pos: usize,
         le: bool,
+        budget: usize,
     }
 
     impl Reader<'_> {

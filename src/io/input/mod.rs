@@ -681,7 +681,7 @@ pub(crate) fn fit_rate(
         return Err(Error::data(source, None, "fewer than two samples"));
     }
     for i in 1..n {
-        if !(t[i] > t[i - 1]) {
+        if t[i] <= t[i - 1] || !t[i].is_finite() {
             return Err(Error::data(
                 source,
                 line_of(i),

@@ -208,7 +208,7 @@ pub(crate) fn read(bytes: &[u8], source: &str) -> Result<Raw> {
                 })?;
             c.pos += nbytes;
             let width = if hd.ord_type == 2 { 4 } else { 8 };
-            if real && hd.even && body.len() != hd.n * width {
+            if real && hd.even && Some(body.len()) != hd.n.checked_mul(width) {
                 return Err(Error::data(
                     source,
                     Some(start),
