@@ -51,9 +51,6 @@ pub fn run(args: Args) -> crate::Result<()> {
     }
     let start = std::time::Instant::now();
     let input = analysis::load_input(&args.path, &args.input.options()?)?;
-    for n in &input.notes {
-        eprintln!("input: {n}");
-    }
     let signals = input.signals;
     let loaded = start.elapsed().as_secs_f64();
     let welch = WelchOptions {
@@ -67,6 +64,10 @@ pub fn run(args: Args) -> crate::Result<()> {
         ..Options::default()
     };
     let report = Report::from_signals(&signals, &opts)?;
+    // What the reader decided, once the run is known to analyse (an error stays one line).
+    for n in &input.notes {
+        eprintln!("input: {n}");
+    }
     if args.timing {
         eprintln!(
             "timing: load {loaded:.4} s, analysis {:.4} s ({} samples × {} channels)",

@@ -41,15 +41,46 @@ pub struct ExcitationArgs {
     /// (m/s²)²/Hz.
     #[arg(long)]
     pub input: Option<PathBuf>,
-    /// recorded: how to read the measurement (--column a_base_z=SOURCE, --units, --fs, …).
-    #[command(flatten)]
-    pub read: crate::io::input::InputArgs,
+    /// recorded: input format csv, wav, mat, uff or mcap (default: detected; docs/inputs.md).
+    #[arg(long, value_enum)]
+    pub format: Option<crate::io::input::Format>,
+    /// recorded: read the base channel from a column, variable, WAV channel, UFF58 dataset or MCAP
+    /// field: `--column a_base_z="Floor Z"` (`t_s=NAME`: the time column).
+    #[arg(long = "column", value_name = "CHANNEL=SOURCE")]
+    pub columns: Vec<String>,
+    /// recorded: unit of the samples, `g`, `mg`, `m/s2`, for all channels or `CHANNEL=UNIT`.
+    #[arg(long = "units", value_name = "[CHANNEL=]UNIT")]
+    pub units: Vec<String>,
+    /// recorded: sample rate in Hz of a file without time stamps.
+    #[arg(long)]
+    pub fs: Option<f64>,
+    /// recorded, WAV: value of full scale of a channel, `CHANNEL=VALUE`.
+    #[arg(long = "sensitivity", value_name = "CHANNEL=VALUE")]
+    pub sensitivity: Vec<String>,
+    /// recorded, MCAP of another logger: the topic to read.
+    #[arg(long)]
+    pub topic: Option<String>,
     /// road: ISO 8608 class A–H (default C).
     #[arg(long)]
     pub road_class: Option<String>,
     /// road: vehicle speed in m/s.
     #[arg(long)]
     pub speed: Option<f64>,
+}
+
+impl ExcitationArgs {
+    /// The input options of a `recorded` excitation (inlined above rather than flattened, so that
+    /// commands taking `Option<ExcitationArgs>` still see whether an excitation was given).
+    pub fn read(&self) -> crate::io::input::InputArgs {
+        crate::io::input::InputArgs {
+            format: self.format,
+            columns: self.columns.clone(),
+            units: self.units.clone(),
+            fs: self.fs,
+            sensitivity: self.sensitivity.clone(),
+            topic: self.topic.clone(),
+        }
+    }
 }
 
 /// Sweep law on the command line.
@@ -75,7 +106,7 @@ fn pair(v: &[f64], flag: &str) -> Result<[f64; 2]> {
 
 /// Refuses every option given that `kind` does not use (no option is silently ignored).
 fn refuse_unused(args: &ExcitationArgs, kind: &str) -> Result<()> {
-    let r = &args.read;
+    let r = args.read();
     let given = [
         ("--rms", args.rms.is_some(), &["random"][..]),
         ("--band", args.band.is_some(), &["random"]),
@@ -173,7 +204,7 @@ pub fn resolve(args: &ExcitationArgs) -> Result<ExcitationSpec> {
         "recorded" => {
             let csv = need(args.input.as_ref(), "--input", kind)?.clone();
             let d = format!("recorded run {}", csv.display());
-            let input = args.read.options()?;
+            let input = args.read().options()?;
             ExcitationSpec::new(Kind::Recorded { csv, input }, d)?
         }
         "sine" => {

@@ -72,6 +72,8 @@ impl PsdTable {
     /// Parses CSV text (see [`PsdTable::read_csv`]) with the `csv` crate; `source` names it in
     /// errors.
     pub fn parse_csv(text: &str, source: &str) -> Result<Self> {
+        // Windows line ends as `\n`: the csv crate's line numbers count a CRLF record end short.
+        let text = text.replace("\r\n", "\n");
         let mut rdr = csv::ReaderBuilder::new()
             .has_headers(false)
             .flexible(true)

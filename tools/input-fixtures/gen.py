@@ -279,8 +279,8 @@ with open(out / "logger.csv", "w", newline="", encoding="utf-8-sig") as f:
     wr.writerow(["Time", "Acc Z seat", "Acc Z base", "Status"])
     wr.writerow(["s", "g", "g", ""])
     for i in range(n):
-        wr.writerow([f"{i / fs:.3f}".replace(".", ","), repr(z[i]).replace(".", ","),
-                     repr(b[i]).replace(".", ","), "OK"])
+        wr.writerow([f"{i / fs:.3f}".replace(".", ","), repr(float(z[i])).replace(".", ","),
+                     repr(float(b[i])).replace(".", ","), "OK"])
 add(
     "logger.csv",
     fs,

@@ -96,6 +96,12 @@ pub(crate) fn printed_resolution(cell: &str) -> f64 {
 /// Reads delimited text into raw columns (time, when present, is one of them).
 pub(crate) fn read(bytes: &[u8], source: &str, opts: &Options) -> Result<Raw> {
     let (text, enc_note) = decode(bytes, source)?;
+    // Windows line ends as `\n`: the csv crate's line numbers count a CRLF record end short.
+    let text = if text.contains('\r') {
+        text.replace("\r\n", "\n")
+    } else {
+        text
+    };
     let first = text
         .lines()
         .find(|l| !l.trim().is_empty() && !l.starts_with('#'))
@@ -298,7 +304,7 @@ mod tests {
             } else {
                 (t, a)
             };
-            s += &format!("{t}{delim}{a}{delim}21\n");
+            s += &format!("{t}{delim}{a}{delim}21\r\n");
         }
         s
     }
@@ -351,7 +357,7 @@ mod tests {
         for i in 0..2100 {
             s += &format!("{},{}\n", i as f64 / 200.0, 1);
         }
-        let bad = s.replacen(",1\n", ",x\n", 5);
+        let bad = s.replacen(",1\n", ",x\n", 5).replace('\n', "\r\n");
         let e = run(&bad, &Options::default()).unwrap_err().to_string();
         assert!(e.starts_with("x.csv:2:") && e.contains("`x`"), "{e}");
         let short = s.replacen(",1\n", ",1,2\n", 1);

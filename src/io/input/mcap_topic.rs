@@ -81,10 +81,11 @@ fn numeric_paths(v: &Value, prefix: &str, out: &mut Vec<String>) {
     }
 }
 
-/// Seconds of a time field: a number, or a `{sec, nanosec}` / `{seconds, nanos}` stamp.
-fn seconds(v: &Value) -> Option<f64> {
+/// A time field as (whole seconds, nanoseconds): a number of seconds, or a `{sec, nanosec}` /
+/// `{seconds, nanos}` stamp, kept apart so that differences of large epoch times stay exact.
+fn stamp(v: &Value) -> Option<(f64, f64)> {
     if let Some(x) = v.as_f64() {
-        return Some(x);
+        return Some((x, 0.0));
     }
     let m = v.as_object()?;
     let s = m.get("sec").or_else(|| m.get("seconds"))?.as_f64()?;
@@ -94,7 +95,7 @@ fn seconds(v: &Value) -> Option<f64> {
         .or_else(|| m.get("nsec"))
         .and_then(Value::as_f64)
         .unwrap_or(0.0);
-    Some(s + ns * 1e-9)
+    Some((s, ns))
 }
 
 enum Decoder {
@@ -191,6 +192,7 @@ pub(crate) fn read(bytes: &[u8], source: &str, topic: &str, opts: &Options) -> R
     let mut data: Vec<Vec<f64>> = vec![Vec::new(); fields.len()];
     let mut t: Vec<f64> = Vec::new();
     let mut first_log: Option<u64> = None;
+    let mut first_stamp: Option<(f64, f64)> = None;
     let mut count = 0usize;
     let mut other: HashMap<String, usize> = HashMap::new();
     for m in stream {
@@ -248,15 +250,19 @@ pub(crate) fn read(bytes: &[u8], source: &str, topic: &str, opts: &Options) -> R
             data[k].push(x);
         }
         match time_field {
-            Some(p) => t.push(lookup(&value, p).and_then(seconds).ok_or_else(|| {
-                Error::parameter(
-                    "--column",
-                    format!(
-                        "t_s={p}: message {} of {topic} has no time there",
-                        count + 1
-                    ),
-                )
-            })?),
+            Some(p) => {
+                let (s, ns) = lookup(&value, p).and_then(stamp).ok_or_else(|| {
+                    Error::parameter(
+                        "--column",
+                        format!(
+                            "t_s={p}: message {} of {topic} has no time there",
+                            count + 1
+                        ),
+                    )
+                })?;
+                let (s0, ns0) = *first_stamp.get_or_insert((s, ns));
+                t.push((s - s0) + (ns - ns0) * 1e-9);
+            }
             None => {
                 let first = *first_log.get_or_insert(m.log_time);
                 t.push(m.log_time.wrapping_sub(first) as f64 * 1e-9);
@@ -611,6 +617,9 @@ mod tests {
         let v = s.decode(&b).unwrap();
         assert_eq!(lookup(&v, "z").unwrap(), 2.5);
         assert_eq!(lookup(&v, "w[0]").unwrap(), 1.5);
-        assert_eq!(seconds(lookup(&v, "header.stamp").unwrap()), Some(1.5));
+        assert_eq!(
+            stamp(lookup(&v, "header.stamp").unwrap()),
+            Some((1.0, 500_000_000.0))
+        );
     }
 }
