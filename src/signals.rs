@@ -1,5 +1,5 @@
 //! Uniformly sampled, named channels: the common currency between a simulated run, a recorded MCAP
-//! run and a measured CSV run (`../shared/specs/measured-runs.md`).
+//! run and a measurement read by `crate::io::input` (`docs/measured-runs.md`, `docs/inputs.md`).
 //!
 //! Channel names follow the measured-run convention: `a_<place>_<axis>` for absolute acceleration in
 //! m/s² (gravity removed), `f_<place>_<axis>` for forces in N.

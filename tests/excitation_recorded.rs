@@ -20,7 +20,14 @@ fn resampled_sine_within_stated_error() {
     let dir = tempfile::tempdir().unwrap();
     let path = dir.path().join("run.csv");
     write_sine(&path, 500.0, 5.0, 2.0, 12.0);
-    let spec = ExcitationSpec::new(Kind::Recorded { csv: path.clone() }, "rec").unwrap();
+    let spec = ExcitationSpec::new(
+        Kind::Recorded {
+            csv: path.clone(),
+            input: Default::default(),
+        },
+        "rec",
+    )
+    .unwrap();
     // A step that is not a divisor of the record's 2 ms, to exercise interpolation everywhere.
     let dt = 0.000_3;
     let n = (11.0 / dt) as usize;
@@ -48,7 +55,14 @@ fn coarser_step_and_too_long_runs_are_refused() {
     let dir = tempfile::tempdir().unwrap();
     let path = dir.path().join("run.csv");
     write_sine(&path, 500.0, 5.0, 1.0, 12.0);
-    let spec = ExcitationSpec::new(Kind::Recorded { csv: path.clone() }, "rec").unwrap();
+    let spec = ExcitationSpec::new(
+        Kind::Recorded {
+            csv: path.clone(),
+            input: Default::default(),
+        },
+        "rec",
+    )
+    .unwrap();
     let e = spec.build(0.004, 5.0, 0).err().unwrap().to_string();
     assert!(e.contains("run.csv") && e.contains("alias"), "{e}");
     let e = spec.build(0.001, 60.0, 0).err().unwrap().to_string();
@@ -56,6 +70,7 @@ fn coarser_step_and_too_long_runs_are_refused() {
     let missing = ExcitationSpec::new(
         Kind::Recorded {
             csv: dir.path().join("nope.csv"),
+            input: Default::default(),
         },
         "rec",
     )

@@ -26,23 +26,17 @@ use crate::error::Result;
 use crate::signals::Signals;
 use std::path::Path;
 
-/// Loads the measured-run channels of a run file for analysis: a measured-run CSV
-/// (`../shared/specs/measured-runs.md`) or an MCAP run recorded by wbv (its `a_*` and `f_*`
-/// channels; a run directory stands for its `run.mcap`).
+/// Loads the channels of a run for analysis with default input options (see [`load_input`]).
 pub fn load_signals(path: &Path) -> Result<Signals> {
-    let path = crate::record::run_file(path);
-    if path
-        .extension()
-        .is_some_and(|e| e.eq_ignore_ascii_case("mcap"))
-    {
-        let run = crate::record::read_run(&path)?;
-        let mut out = Signals::new(run.signals.sample_rate_hz, path.display().to_string());
-        for (name, data) in run.signals.names.iter().zip(run.signals.data) {
-            if name.starts_with("a_") || name.starts_with("f_") {
-                out.push(name.clone(), data)?;
-            }
-        }
-        return Ok(out);
-    }
-    Ok(crate::io::csv_run::read(&path)?.signals)
+    Ok(load_input(path, &crate::io::input::Options::default())?.signals)
+}
+
+/// Loads a measurement or a run through the input layer ([`crate::io::input::read`]): a measured-run
+/// CSV or any delimited text, WAV, MAT, UFF58, another logger's MCAP topic, or an MCAP run recorded
+/// by wbv (its `a_*` and `f_*` channels; a run directory stands for its `run.mcap`).
+pub fn load_input(
+    path: &Path,
+    opts: &crate::io::input::Options,
+) -> Result<crate::io::input::Input> {
+    crate::io::input::read(path, opts)
 }

@@ -43,7 +43,11 @@ pub struct ChannelReport {
     pub weighting: Weighting,
     /// Comfort multiplying factor k (ISO 2631-1 8.2.2).
     pub k: f64,
-    /// Unweighted r.m.s., m/s².
+    /// Mean of the samples, m/s²: a sensor offset or gravity; it is removed before weighting (the
+    /// filters start in steady state at the first sample), so it changes no weighted figure.
+    #[serde(default)]
+    pub mean: f64,
+    /// Unweighted r.m.s. (mean included), m/s².
     pub rms: f64,
     /// Weighted r.m.s. a_w, m/s² (eq. 1).
     pub a_w: f64,
@@ -118,6 +122,32 @@ fn units() -> BTreeMap<String, String> {
 impl ChannelReport {
     fn notes(&self, duration_s: f64) -> Vec<String> {
         let mut notes = Vec::new();
+        let g = crate::io::input::STANDARD_GRAVITY;
+        let ac = (self.rms * self.rms - self.mean * self.mean)
+            .max(0.0)
+            .sqrt();
+        let m = self.mean.abs();
+        if self.name.starts_with("a_") && (m - g).abs() < 0.1 * g {
+            notes.push(format!(
+                "{}: mean {:.3} m/s² is close to 1 g: gravity seems to be included (removed \
+                 before weighting; the unweighted r.m.s. includes it)",
+                self.name, self.mean
+            ));
+        } else if self.name.starts_with("a_") && (m - 1.0).abs() < 0.1 && ac < 0.5 {
+            notes.push(format!(
+                "{}: mean {:.3} with r.m.s. fluctuation {ac:.3}: the data look like g with \
+                 gravity (1 g ≈ 1.0) read as m/s²; give --units g if so",
+                self.name, self.mean
+            ));
+        } else if m > 0.5 * ac && m > 0.0 {
+            notes.push(format!(
+                "{}: mean {:.4} m/s² is {:.0} % of the r.m.s. fluctuation: a sensor offset? \
+                 (removed before weighting)",
+                self.name,
+                self.mean,
+                100.0 * m / ac.max(f64::MIN_POSITIVE)
+            ));
+        }
         if self.crest_factor > fig::CREST_FACTOR_LIMIT {
             notes.push(format!(
                 "{}: crest factor {:.1} > 9: the basic r.m.s. method may underestimate shocks; \

@@ -4,7 +4,9 @@
 //! report of a recorded run equals the one computed during the simulation bit for bit.
 
 use super::figures::{Averaging, Moments, RunningRms};
-use super::filter::{FilterStream, WeightingFilter};
+use super::filter::{
+    FilterStream, Interpolator, MIN_ANALYSIS_RATE_HZ, WeightingFilter, oversampling,
+};
 use super::octave;
 use super::report::{ChannelReport, Options, Report};
 use super::spectrum::{PsdAccumulator, Segment, Welch};
@@ -43,6 +45,17 @@ struct ChannelAnalyzer {
     weighting: Weighting,
     k: f64,
     weight: FilterStream,
+    /// Oversampler ahead of the weighting when the input rate is below the filter's verified
+    /// range ([`oversampling`]), and its output buffer.
+    up: Option<Interpolator>,
+    up_buf: Vec<f64>,
+    /// Rate of the weighted signal in Hz (input rate × oversampling).
+    fs_weighted: f64,
+    /// First sample: subtracted before both weightings, which starts them in steady state (every
+    /// weighting has zero gain at DC), so a constant offset changes no weighted figure.
+    first: Option<f64>,
+    /// Σx of the raw samples, for the mean.
+    sum: f64,
     /// Wf for the MSDV (vertical axes only).
     sickness: Option<(FilterStream, Moments)>,
     raw: Moments,
@@ -59,6 +72,8 @@ impl ChannelAnalyzer {
     fn new(column: usize, name: &str, fs: f64, welch: &Welch, opts: &Options) -> Result<Self> {
         let (place, axis) = parse_name(name).expect("caller filtered names");
         let (weighting, k) = weighting_for(place, axis);
+        let factor = oversampling(weighting, fs);
+        let fs_weighted = fs * factor as f64;
         let sickness = if axis == "z" {
             Some((
                 WeightingFilter::new(Weighting::Wf, fs)?.stream(),
@@ -74,12 +89,17 @@ impl ChannelAnalyzer {
             axis: axis.to_string(),
             weighting,
             k,
-            weight: WeightingFilter::new(weighting, fs)?.stream(),
+            weight: WeightingFilter::new(weighting, fs_weighted)?.stream(),
+            up: (factor > 1).then(|| Interpolator::new(factor)),
+            up_buf: Vec::new(),
+            fs_weighted,
+            first: None,
+            sum: 0.0,
             sickness,
             raw: Moments::default(),
             weighted: Moments::default(),
-            linear: RunningRms::new(fs, opts.tau_s, Averaging::Linear),
-            exponential: RunningRms::new(fs, opts.tau_s, Averaging::Exponential),
+            linear: RunningRms::new(fs_weighted, opts.tau_s, Averaging::Linear),
+            exponential: RunningRms::new(fs_weighted, opts.tau_s, Averaging::Exponential),
             psd: PsdAccumulator::new(welch),
             scratch: Vec::new(),
             scratch_sickness: Vec::new(),
@@ -90,6 +110,12 @@ impl ChannelAnalyzer {
     /// dose — so they run side by side (each block is thousands of samples, far more than a
     /// task's overhead); every figure is computed exactly as in sequence.
     fn push(&mut self, x: &[f64], welch: &mut Welch) {
+        let Some(&x0) = x.first() else { return };
+        let x0 = *self.first.get_or_insert(x0);
+        // Sample by sample, so any split into blocks gives the same sum bit for bit.
+        for v in x {
+            self.sum += v;
+        }
         let (raw, psd) = (&mut self.raw, &mut self.psd);
         let spectrum = || {
             raw.push(x);
@@ -97,19 +123,28 @@ impl ChannelAnalyzer {
         };
         let (scratch, weight, weighted) = (&mut self.scratch, &mut self.weight, &mut self.weighted);
         let (linear, exponential) = (&mut self.linear, &mut self.exponential);
+        let (up, up_buf) = (&mut self.up, &mut self.up_buf);
         let weighted_chain = || {
             scratch.clear();
-            scratch.extend_from_slice(x);
-            weight.process(scratch);
-            weighted.push(scratch);
-            linear.push(scratch);
-            exponential.push(scratch);
+            scratch.extend(x.iter().map(|v| v - x0));
+            let y = match up.as_mut() {
+                Some(ip) => {
+                    up_buf.clear();
+                    ip.push(scratch, up_buf);
+                    up_buf
+                }
+                None => scratch,
+            };
+            weight.process(y);
+            weighted.push(y);
+            linear.push(y);
+            exponential.push(y);
         };
         let (sick_scratch, sickness) = (&mut self.scratch_sickness, &mut self.sickness);
         let sickness_chain = || {
             if let Some((filter, moments)) = sickness.as_mut() {
                 sick_scratch.clear();
-                sick_scratch.extend_from_slice(x);
+                sick_scratch.extend(x.iter().map(|v| v - x0));
                 filter.process(sick_scratch);
                 moments.push(sick_scratch);
             }
@@ -117,8 +152,23 @@ impl ChannelAnalyzer {
         rayon::join(spectrum, || rayon::join(weighted_chain, sickness_chain));
     }
 
-    fn finish(self, fs: f64, welch: &Welch) -> Result<ChannelReport> {
+    fn finish(mut self, fs: f64, welch: &Welch) -> Result<ChannelReport> {
+        if let Some(ip) = self.up.as_mut() {
+            self.up_buf.clear();
+            ip.finish(&mut self.up_buf);
+            let y = &mut self.up_buf;
+            self.weight.process(y);
+            self.weighted.push(y);
+            self.linear.push(y);
+            self.exponential.push(y);
+        }
+        let mean = if self.raw.count == 0 {
+            0.0
+        } else {
+            self.sum / self.raw.count as f64
+        };
         Ok(ChannelReport {
+            mean,
             bands: octave::third_octave_bands(&self.psd.finish(welch)?, -3, 19),
             name: self.name,
             place: self.place,
@@ -127,7 +177,7 @@ impl ChannelAnalyzer {
             k: self.k,
             rms: self.raw.rms(),
             a_w: self.weighted.rms(),
-            vdv: self.weighted.vdv(fs),
+            vdv: self.weighted.vdv(self.fs_weighted),
             mtvv: self.linear.max(),
             mtvv_exponential: self.exponential.max(),
             peak: self.weighted.peak,
@@ -160,6 +210,15 @@ impl ReportBuilder {
     ) -> Result<Self> {
         if len == 0 {
             return Err(Error::data(source, None, "the run has no samples"));
+        }
+        if !(fs.is_finite() && fs >= MIN_ANALYSIS_RATE_HZ) {
+            return Err(Error::parameter(
+                "sample rate",
+                format!(
+                    "{fs} Hz is below the {MIN_ANALYSIS_RATE_HZ} Hz the analysis needs: ISO \
+                     2631-1's range reaches 80 Hz, which must lie at or below the Nyquist frequency"
+                ),
+            ));
         }
         if !(opts.tau_s.is_finite() && opts.tau_s > 0.0) {
             return Err(Error::parameter(

@@ -5,8 +5,12 @@ use std::path::PathBuf;
 /// Arguments of `wbv analyze`.
 #[derive(Debug, clap::Args)]
 pub struct Args {
-    /// Run to analyse: a measured-run CSV, an MCAP run or a run directory.
+    /// Measurement or run to analyse: delimited text (CSV, TSV, `;`), WAV, MATLAB .mat (v5),
+    /// UFF58, another logger's MCAP (with --topic), a wbv MCAP run or a run directory
+    /// (docs/inputs.md). Whatever acceleration channels exist are analysed.
     path: PathBuf,
+    #[command(flatten)]
+    input: crate::io::input::InputArgs,
     /// Print the report as JSON (keys `a_w`, `vdv`, `mtvv`, `crest_factor`, `seat_percent`,
     /// `comfort`, …; units under `units`).
     #[arg(long)]
@@ -33,6 +37,19 @@ pub struct Args {
 }
 
 pub fn run(args: Args) -> crate::Result<()> {
+    if args.plot.is_none() {
+        for (set, flag) in [
+            (args.force, "--force"),
+            (args.plot_format != "png", "--plot-format"),
+        ] {
+            if set {
+                return Err(crate::Error::parameter(
+                    flag,
+                    "applies to the plots; give --plot DIR",
+                ));
+            }
+        }
+    }
     let ow = Overwrite::from_force(args.force);
     // Refuse an overwrite before any work.
     let plot = match &args.plot {
@@ -44,7 +61,8 @@ pub fn run(args: Args) -> crate::Result<()> {
         None => None,
     };
     let start = std::time::Instant::now();
-    let signals = analysis::load_signals(&args.path)?;
+    let input = analysis::load_input(&args.path, &args.input.options()?)?;
+    let signals = input.signals;
     let loaded = start.elapsed().as_secs_f64();
     let welch = WelchOptions {
         window: Window::Hann,
@@ -57,6 +75,10 @@ pub fn run(args: Args) -> crate::Result<()> {
         ..Options::default()
     };
     let report = Report::from_signals(&signals, &opts)?;
+    // What the reader decided, once the run is known to analyse (an error stays one line).
+    for n in &input.notes {
+        eprintln!("input: {n}");
+    }
     if args.timing {
         eprintln!(
             "timing: load {loaded:.4} s, analysis {:.4} s ({} samples × {} channels)",

@@ -9,12 +9,16 @@ pub struct Args {
     /// Model name or TOML file (e.g. `reference`).
     #[arg(long)]
     model: String,
-    /// Training run (measured-run CSV or MCAP); repeat for runs at different magnitudes.
+    /// Training run: a measurement with channels a_base_z and a_seat_z in any input format
+    /// (docs/inputs.md) or a wbv run; repeat for runs at different magnitudes.
     #[arg(long = "run", required = true)]
     runs: Vec<PathBuf>,
     /// Held-out run used only to score the candidates.
     #[arg(long)]
     check: PathBuf,
+    /// How to read the runs (applies to every --run and --check).
+    #[command(flatten)]
+    input: crate::io::input::InputArgs,
     /// Print the report as JSON (top-level `verdict`).
     #[arg(long)]
     json: bool,
@@ -30,6 +34,12 @@ pub struct Args {
 }
 
 pub fn run(args: Args) -> crate::Result<()> {
+    if args.force && args.plot.is_none() {
+        return Err(crate::Error::parameter(
+            "--force",
+            "applies to the plots; give --plot DIR",
+        ));
+    }
     let ow = Overwrite::from_force(args.force);
     let plot = match &args.plot {
         // Refuse an overwrite before the diagnosis runs.
@@ -51,12 +61,30 @@ pub fn run(args: Args) -> crate::Result<()> {
             ),
         )
     })?;
+    let opts = args.input.options()?;
+    let load = |p: &PathBuf| -> crate::Result<crate::signals::Signals> {
+        let s = crate::analysis::load_input(p, &opts)?.signals;
+        for need in ["a_base_z", "a_seat_z"] {
+            s.require(need).map_err(|_| {
+                crate::Error::data(
+                    p,
+                    None,
+                    format!(
+                        "wbv gap needs channels a_base_z and a_seat_z (base and seat-pad vertical \
+                         acceleration); `{need}` is missing (present: {}); map it with --column",
+                        s.names.join(", ")
+                    ),
+                )
+            })?;
+        }
+        Ok(s)
+    };
     let train = args
         .runs
         .iter()
-        .map(|p| crate::analysis::load_signals(p))
+        .map(load)
         .collect::<crate::Result<Vec<_>>>()?;
-    let check = crate::analysis::load_signals(&args.check)?;
+    let check = load(&args.check)?;
     let d = diagnose(&model, &train, &check)?;
     if let Some((dir, ext)) = &plot {
         plot::write_as(&d, dir, ext, ow)?;

@@ -95,9 +95,9 @@ impl ModelArg {
 /// The time-domain run options shared by the commands that simulate (`simulate`, `sweep`, `foam`).
 #[derive(Debug, Clone, clap::Args)]
 pub struct TimeArgs {
-    /// Simulated duration in s.
-    #[arg(long, default_value_t = TimeArgs::default().duration)]
-    pub duration: f64,
+    /// Simulated duration in s (default 60 s; with --excitation recorded, the recording's length).
+    #[arg(long)]
+    pub duration: Option<f64>,
     /// Time step in s.
     #[arg(long, default_value_t = TimeArgs::default().dt)]
     pub dt: f64,
@@ -113,7 +113,7 @@ impl Default for TimeArgs {
     /// 60 s at 1 kHz, seed 1, Newmark average acceleration.
     fn default() -> Self {
         TimeArgs {
-            duration: 60.0,
+            duration: None,
             dt: 1e-3,
             seed: 1,
             integrator: "newmark".into(),
@@ -122,11 +122,14 @@ impl Default for TimeArgs {
 }
 
 impl TimeArgs {
+    /// Duration in s when `--duration` is not given (and the excitation has no length of its own).
+    pub const DEFAULT_DURATION_S: f64 = 60.0;
+
     /// Step, duration and integrator.
     pub fn settings(&self) -> crate::Result<crate::simulate::Settings> {
         Ok(crate::simulate::Settings {
             dt: self.dt,
-            duration_s: self.duration,
+            duration_s: self.duration.unwrap_or(Self::DEFAULT_DURATION_S),
             method: crate::integrator::Method::parse(&self.integrator)?,
         })
     }

@@ -50,10 +50,19 @@ pub struct Args {
 impl Args {
     /// The scenario these arguments describe.
     pub fn scenario(&self) -> crate::Result<Scenario> {
+        let excitation = resolve(&self.excitation)?;
+        let mut settings = self.time.settings()?;
+        // A recording lasts as long as it lasts: its length is the default duration.
+        if self.time.duration.is_none()
+            && let crate::excitation::Kind::Recorded { csv, input } = &excitation.kind
+        {
+            let rec = crate::excitation::recorded::read_record(csv, input)?;
+            settings.duration_s = rec.samples.len() as f64 / rec.sample_rate_hz;
+        }
         Ok(Scenario {
             model: self.model.resolve()?,
-            excitation: resolve(&self.excitation)?,
-            settings: self.time.settings()?,
+            excitation,
+            settings,
             seed: self.time.seed,
         })
     }
@@ -280,6 +289,19 @@ pub fn run(args: Args) -> crate::Result<()> {
         })?;
         execute_as(&scenario, Some(&dir), options, args.csv.clone(), line)?;
         return Ok(());
+    }
+    if args.no_record {
+        for (set, flag) in [
+            (args.record_rate.is_some(), "--record-rate"),
+            (args.out.is_some(), "--out"),
+        ] {
+            if set {
+                return Err(crate::Error::parameter(
+                    flag,
+                    "has no effect with --no-record (nothing is recorded)",
+                ));
+            }
+        }
     }
     let scenario = args.scenario()?;
     let core = if args.timing {

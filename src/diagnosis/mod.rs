@@ -13,6 +13,7 @@ pub mod candidate;
 pub mod fit;
 pub mod gapmap;
 pub mod measure;
+#[cfg(feature = "plot")]
 pub mod plot;
 pub mod predict;
 pub mod replay;

@@ -9,7 +9,7 @@
 
 use super::Excitation;
 use crate::error::{Error, Result};
-use crate::io::csv_run;
+use crate::io::input;
 use std::path::Path;
 
 /// The base channel a recorded run must contain (measured-run spec).
@@ -23,11 +23,21 @@ pub struct Record {
     pub source: String,
 }
 
-/// Reads the base acceleration of a recorded run. Extension point: MCAP runs recorded by wbv will be
-/// dispatched here on the file extension.
-pub fn read_record(path: &Path) -> Result<Record> {
-    let run = csv_run::read(path)?;
-    let samples = run.signals.require(BASE_CHANNEL)?.to_vec();
+/// Reads the base acceleration of a measurement through the input layer ([`input::read`]: CSV,
+/// WAV, MAT, UFF58, MCAP), with `opts` as given on the command line.
+pub fn read_record(path: &Path, opts: &input::Options) -> Result<Record> {
+    let run = input::read(path, opts)?;
+    let samples = run.signals.get(BASE_CHANNEL).map(<[f64]>::to_vec).ok_or_else(|| {
+        Error::data(
+            path,
+            None,
+            format!(
+                "a recorded excitation needs channel `{BASE_CHANNEL}` (base acceleration, m/s²); \
+                 present: {}; map one with --column {BASE_CHANNEL}=SOURCE",
+                run.signals.names.join(", ")
+            ),
+        )
+    })?;
     Ok(Record {
         samples,
         sample_rate_hz: run.signals.sample_rate_hz,
@@ -56,7 +66,8 @@ impl Resampled {
                 ),
             ));
         }
-        let available = (record.samples.len() - 1) as f64 * h;
+        // The record covers N samples × h; the last sample is held for its own interval.
+        let available = record.samples.len() as f64 * h;
         if duration_s > available * (1.0 + 1e-9) {
             return Err(Error::data(
                 &record.source,
@@ -71,16 +82,16 @@ impl Resampled {
         })
     }
 
-    /// Value at time `t_s`: Catmull–Rom cubic through the neighbouring samples, ends extended flat;
-    /// 0 after the end of the record.
+    /// Value at time `t_s`: Catmull–Rom cubic through the neighbouring samples, ends extended flat
+    /// (the last sample held for one step, so a record of N samples covers N steps); 0 after that.
     pub fn value_at(&self, t_s: f64) -> f64 {
         let x = &self.record.samples;
         let u = t_s * self.record.sample_rate_hz;
         let i = u.floor();
         let n = x.len() as i64;
         let i0 = i as i64;
-        if i0 >= n - 1 {
-            return if i0 == n - 1 && u == i {
+        if i0 >= n {
+            return if u <= n as f64 {
                 x[(n - 1) as usize]
             } else {
                 0.0

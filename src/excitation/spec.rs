@@ -71,8 +71,14 @@ pub enum Kind {
         #[serde(default)]
         vehicle: Option<QuarterCar>,
     },
-    /// A measured-run CSV (column `a_base_z`, m/s²), resampled to the step.
-    Recorded { csv: PathBuf },
+    /// A measurement with channel `a_base_z` (m/s²) in any format of [`crate::io::input`],
+    /// resampled to the step. The key is `csv` for compatibility; `input` holds command-line read
+    /// options.
+    Recorded {
+        csv: PathBuf,
+        #[serde(skip)]
+        input: crate::io::input::Options,
+    },
     /// A sine `amplitude sin(2π f t + phase)`.
     Sine {
         frequency_hz: f64,
@@ -212,7 +218,7 @@ impl ExcitationSpec {
                     }
                 });
             }
-            Kind::Recorded { csv } => *csv = resolve(csv),
+            Kind::Recorded { csv, .. } => *csv = resolve(csv),
             _ => {}
         }
         self.validate()?;
@@ -412,8 +418,8 @@ impl ExcitationSpec {
         }
         let fs = 1.0 / step_s;
         let nyquist = fs / 2.0;
-        if let Kind::Recorded { csv } = &self.kind {
-            let record = recorded::read_record(csv)?;
+        if let Kind::Recorded { csv, input } = &self.kind {
+            let record = recorded::read_record(csv, input)?;
             return Ok(Box::new(Resampled::new(record, step_s, duration_s)?));
         }
         if let Some([_, hi]) = self.band_hz()

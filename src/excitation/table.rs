@@ -69,14 +69,27 @@ impl PsdTable {
         Self::parse_csv(&text, &path.display().to_string())
     }
 
-    /// Parses CSV text (see [`PsdTable::read_csv`]); `source` names it in errors.
+    /// Parses CSV text (see [`PsdTable::read_csv`]) with the `csv` crate; `source` names it in
+    /// errors.
     pub fn parse_csv(text: &str, source: &str) -> Result<Self> {
-        let mut lines = text
-            .lines()
-            .enumerate()
-            .filter(|(_, l)| !l.trim().is_empty());
-        let header: Vec<String> = match lines.next() {
-            Some((_, h)) => h.split(',').map(|c| c.trim().to_string()).collect(),
+        // Windows line ends as `\n`: the csv crate's line numbers count a CRLF record end short.
+        let text = text.replace("\r\n", "\n");
+        let mut rdr = csv::ReaderBuilder::new()
+            .has_headers(false)
+            .flexible(true)
+            .trim(csv::Trim::All)
+            .from_reader(text.as_bytes());
+        let line_of = |r: &csv::StringRecord| r.position().map(|p| p.line() as usize);
+        let mut records = rdr.records();
+        let header = match records.next() {
+            Some(Ok(h)) => h,
+            Some(Err(e)) => {
+                return Err(Error::data(
+                    source,
+                    Some(1),
+                    format!("malformed header: {e}"),
+                ));
+            }
             None => {
                 return Err(Error::data(
                     source,
@@ -85,35 +98,40 @@ impl PsdTable {
                 ));
             }
         };
-        if header != ["freq_hz", "psd"] {
+        let names: Vec<&str> = header.iter().collect();
+        if names != ["freq_hz", "psd"] {
             return Err(Error::data(
                 source,
-                Some(1),
+                line_of(&header),
                 format!(
                     "header `{}`; expected `freq_hz,psd` (Hz, (m/s²)²/Hz)",
-                    header.join(",")
+                    names.join(",")
                 ),
             ));
         }
         let mut points = Vec::new();
-        let mut line_of = Vec::new();
-        for (i, l) in lines {
-            let cells: Vec<&str> = l.split(',').map(str::trim).collect();
-            let parse = |c: &str| -> Result<f64> {
-                c.parse::<f64>()
-                    .map_err(|_| Error::data(source, Some(i + 1), format!("`{c}` is not a number")))
-            };
-            if cells.len() != 2 {
+        let mut line_at = Vec::new();
+        for rec in records {
+            let rec = rec.map_err(|e| {
+                let line = e.position().map(|p| p.line() as usize);
+                Error::data(source, line, format!("malformed line: {e}"))
+            })?;
+            let line = line_of(&rec);
+            if rec.len() != 2 {
                 return Err(Error::data(
                     source,
-                    Some(i + 1),
-                    format!("{} fields, expected 2", cells.len()),
+                    line,
+                    format!("{} fields, expected 2", rec.len()),
                 ));
             }
-            points.push([parse(cells[0])?, parse(cells[1])?]);
-            line_of.push(i + 1);
+            let parse = |c: &str| -> Result<f64> {
+                c.parse::<f64>()
+                    .map_err(|_| Error::data(source, line, format!("`{c}` is not a number")))
+            };
+            points.push([parse(&rec[0])?, parse(&rec[1])?]);
+            line_at.push(line);
         }
-        Self::new(&points, source, &|k| line_of.get(k).copied())
+        Self::new(&points, source, &|k| line_at.get(k).copied().flatten())
     }
 
     /// PSD at `f_hz` in (m/s²)²/Hz: log-log interpolation, zero outside the table.

@@ -2,4 +2,5 @@
 
 pub mod atomic;
 pub mod csv_run;
+pub mod input;
 pub mod memory;

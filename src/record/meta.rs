@@ -157,7 +157,7 @@ pub fn excitation_definition(spec: &crate::excitation::ExcitationSpec) -> String
             put("speed_m_s", num(*speed_m_s));
             "road"
         }
-        Kind::Recorded { csv } => {
+        Kind::Recorded { csv, .. } => {
             put("csv", path(csv));
             "recorded"
         }

@@ -1,0 +1,379 @@
+//! Delimited text (CSV, TSV, `;`-separated with decimal commas) on the `csv` crate.
+//!
+//! - Encoding: UTF-8 with or without a byte-order mark; other bytes are read as Latin-1 (Windows
+//!   loggers write `m/s²` so), said in a note. UTF-16 is refused with what to do.
+//! - Delimiter: the first line's tab, else `;`, else `,` (outside quotes). With tab or `;`, a
+//!   decimal comma (`0,125`) is read as a decimal point.
+//! - Header: the first line; a unit in brackets or parentheses at its end (`Acc Z [m/s^2]`) is the
+//!   column's unit. A second line without any number is a units row.
+//! - Lines starting with `#` are comments.
+
+use super::{Column, Options, Raw, TIME_NAMES, Timing};
+use crate::error::{Error, Result};
+
+/// Decodes bytes to text (see the module comment); returns the text and a note when not UTF-8.
+pub(crate) fn decode(bytes: &[u8], source: &str) -> Result<(String, Option<String>)> {
+    if bytes.starts_with(&[0xFF, 0xFE]) || bytes.starts_with(&[0xFE, 0xFF]) {
+        return Err(Error::data(
+            source,
+            Some(1),
+            "UTF-16 text; save the file as UTF-8 (or ASCII) and read it again",
+        ));
+    }
+    let bytes = bytes.strip_prefix(&[0xEF, 0xBB, 0xBF]).unwrap_or(bytes);
+    match std::str::from_utf8(bytes) {
+        Ok(s) => Ok((s.to_string(), None)),
+        Err(_) => Ok((
+            bytes.iter().map(|&b| b as char).collect(),
+            Some(format!("{source}: not UTF-8; read as Latin-1")),
+        )),
+    }
+}
+
+/// The delimiter of a header line: tab, else `;`, else `,`, counted outside double quotes.
+pub(crate) fn sniff_delimiter(line: &str) -> u8 {
+    let mut quoted = false;
+    let (mut tab, mut semi) = (0, 0);
+    for c in line.chars() {
+        match c {
+            '"' => quoted = !quoted,
+            '\t' if !quoted => tab += 1,
+            ';' if !quoted => semi += 1,
+            _ => {}
+        }
+    }
+    if tab > 0 {
+        b'\t'
+    } else if semi > 0 {
+        b';'
+    } else {
+        b','
+    }
+}
+
+/// Splits `Acc Z [m/s^2]` or `Acc Z (g)` into the name and the unit.
+pub(crate) fn split_unit(header: &str) -> (String, Option<String>) {
+    let h = header.trim();
+    for (open, close) in [('[', ']'), ('(', ')')] {
+        if h.ends_with(close)
+            && let Some(i) = h.rfind(open)
+        {
+            let name = h[..i].trim();
+            let unit = h[i + 1..h.len() - 1].trim();
+            if !name.is_empty() && !unit.is_empty() {
+                return (name.to_string(), Some(unit.to_string()));
+            }
+        }
+    }
+    (h.to_string(), None)
+}
+
+/// Parses a number cell; with `decimal_comma` a single `,` is the decimal point.
+pub(crate) fn parse_number(cell: &str, decimal_comma: bool) -> Option<f64> {
+    let c = cell.trim();
+    if decimal_comma && c.contains(',') {
+        if c.contains('.') || c.matches(',').count() > 1 {
+            return None;
+        }
+        return c.replace(',', ".").parse().ok();
+    }
+    c.parse().ok()
+}
+
+/// The printed resolution of a number: 1e-3 for `0.125`, 1e-4 for `1.5e-3`, 1 for `12`.
+pub(crate) fn printed_resolution(cell: &str) -> f64 {
+    let c = cell.trim();
+    let (mantissa, exp) = match c.find(['e', 'E']) {
+        Some(i) => (&c[..i], c[i + 1..].parse::<i32>().unwrap_or(0)),
+        None => (c, 0),
+    };
+    let decimals = mantissa
+        .find(['.', ','])
+        .map_or(0, |i| mantissa.len() - i - 1) as i32;
+    10f64.powi(exp.saturating_sub(decimals))
+}
+
+/// Reads delimited text into raw columns (time, when present, is one of them).
+pub(crate) fn read(bytes: &[u8], source: &str, opts: &Options) -> Result<Raw> {
+    let (text, enc_note) = decode(bytes, source)?;
+    // Windows line ends as `\n`: the csv crate's line numbers count a CRLF record end short.
+    let text = if text.contains('\r') {
+        text.replace("\r\n", "\n")
+    } else {
+        text
+    };
+    let first = text
+        .lines()
+        .find(|l| !l.trim().is_empty() && !l.starts_with('#'))
+        .ok_or_else(|| Error::data(source, Some(1), "empty file; expected a header line"))?;
+    let delim = sniff_delimiter(first);
+    let decimal_comma = delim != b',';
+    let mut rdr = csv::ReaderBuilder::new()
+        .has_headers(false)
+        .flexible(true)
+        .delimiter(delim)
+        .comment(Some(b'#'))
+        .trim(csv::Trim::All)
+        .from_reader(text.as_bytes());
+    let mut records = rdr.records();
+    let line_of = |r: &csv::StringRecord| r.position().map_or(0, |p| p.line() as usize);
+    let header = match records.next() {
+        Some(Ok(h)) => h,
+        Some(Err(e)) => {
+            return Err(Error::data(
+                source,
+                Some(1),
+                format!("cannot read the header: {e}"),
+            ));
+        }
+        None => return Err(Error::data(source, Some(1), "empty file")),
+    };
+    let header_line = line_of(&header).max(1);
+    let mut cells: Vec<String> = header.iter().map(str::to_string).collect();
+    // A trailing delimiter on every line makes an empty last column: drop it.
+    let trailing_empty = cells.len() > 1 && cells.last().is_some_and(|c| c.is_empty());
+    if trailing_empty {
+        cells.pop();
+    }
+    let ncol = cells.len();
+    let mut columns: Vec<Column> = Vec::with_capacity(ncol);
+    for (i, h) in cells.iter().enumerate() {
+        if h.is_empty() {
+            return Err(Error::data(
+                source,
+                Some(header_line),
+                format!("column {} has an empty header", i + 1),
+            ));
+        }
+        let (name, unit) = split_unit(h);
+        if columns.iter().any(|c| c.name == name) {
+            return Err(Error::data(
+                source,
+                Some(header_line),
+                format!("column `{name}` appears twice"),
+            ));
+        }
+        let mut aliases = vec![(i + 1).to_string()];
+        if name != *h {
+            aliases.push(h.clone());
+        }
+        columns.push(Column {
+            name,
+            aliases,
+            unit,
+            ..Column::default()
+        });
+    }
+    let is_time = |c: &Column| {
+        TIME_NAMES.iter().any(|n| c.name.eq_ignore_ascii_case(n))
+            || opts
+                .columns
+                .iter()
+                .any(|(ch, src)| ch == "t_s" && (c.name == *src || c.aliases.contains(src)))
+    };
+    let timed: Vec<bool> = columns.iter().map(is_time).collect();
+    let mut res: Vec<Option<Vec<f64>>> = timed.iter().map(|&t| t.then(Vec::new)).collect();
+    let mut lines = Vec::new();
+    let mut first_data = true;
+    for rec in records {
+        let rec = rec.map_err(|e| {
+            let line = e.position().map(|p| p.line() as usize);
+            Error::data(source, line, format!("malformed line: {e}"))
+        })?;
+        let line = line_of(&rec);
+        let mut n = rec.len();
+        if trailing_empty && n == ncol + 1 && rec.get(ncol).is_some_and(str::is_empty) {
+            n = ncol;
+        }
+        if n == 1 && rec.get(0).is_some_and(str::is_empty) {
+            continue; // blank line
+        }
+        if n != ncol {
+            return Err(Error::data(
+                source,
+                Some(line),
+                format!("{n} fields, expected {ncol} as in the header"),
+            ));
+        }
+        if first_data
+            && rec
+                .iter()
+                .take(n)
+                .all(|c| parse_number(c, decimal_comma).is_none())
+        {
+            // A units row.
+            first_data = false;
+            for (c, u) in columns.iter_mut().zip(rec.iter()) {
+                let u = u
+                    .trim_matches(|ch| matches!(ch, '[' | ']' | '(' | ')'))
+                    .trim();
+                if u.is_empty() {
+                    continue;
+                }
+                match &c.unit {
+                    Some(h) if h != u => {
+                        return Err(Error::data(
+                            source,
+                            Some(line),
+                            format!(
+                                "column `{}`: units row says `{u}`, header says `{h}`",
+                                c.name
+                            ),
+                        ));
+                    }
+                    _ => c.unit = Some(u.to_string()),
+                }
+            }
+            continue;
+        }
+        first_data = false;
+        for (k, cell) in rec.iter().take(n).enumerate() {
+            let c = &mut columns[k];
+            if c.bad.is_some() {
+                continue;
+            }
+            match parse_number(cell, decimal_comma) {
+                Some(v) => {
+                    c.data.push(v);
+                    if let Some(r) = res[k].as_mut() {
+                        r.push(printed_resolution(cell));
+                    }
+                }
+                None => {
+                    c.bad = Some(Error::data(
+                        source,
+                        Some(line),
+                        format!(
+                            "column `{}`: `{cell}` is not a number{}",
+                            c.name,
+                            if decimal_comma {
+                                " (decimal point or comma)"
+                            } else {
+                                ""
+                            }
+                        ),
+                    ));
+                    c.data = Vec::new();
+                }
+            }
+        }
+        lines.push(line);
+    }
+    for (c, r) in columns.iter_mut().zip(res) {
+        c.resolution = r;
+    }
+    let mut notes = Vec::new();
+    notes.extend(enc_note);
+    if delim != b',' {
+        notes.push(format!(
+            "{source}: {}-separated{}",
+            if delim == b'\t' { "tab" } else { "semicolon" },
+            if text.contains(',') {
+                ", decimal commas read as points"
+            } else {
+                ""
+            }
+        ));
+    }
+    Ok(Raw {
+        columns,
+        timing: Timing::InColumns,
+        lines: Some(lines),
+        notes,
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::super::{Options, assemble};
+    use super::*;
+
+    fn run(text: &str, opts: &Options) -> Result<super::super::Input> {
+        assemble(read(text.as_bytes(), "x.csv", opts)?, "x.csv", opts)
+    }
+
+    fn logger_text(delim: &str, comma: bool, n: usize) -> String {
+        let mut s = String::from("\u{feff}\"Time [s]\"");
+        s += &format!("{delim}\"Acc Z\"{delim}Temp\n");
+        s += &format!("s{delim}g{delim}degC\n");
+        for i in 0..n {
+            let t = format!("{:.3}", i as f64 / 200.0);
+            let a = format!("{:.6}", 1.0 + 0.01 * (i as f64 * 0.1).sin());
+            let (t, a) = if comma {
+                (t.replace('.', ","), a.replace('.', ","))
+            } else {
+                (t, a)
+            };
+            s += &format!("{t}{delim}{a}{delim}21\r\n");
+        }
+        s
+    }
+
+    #[test]
+    fn logger_layouts_with_units_row_decimal_comma_and_bom() {
+        let opts = Options {
+            columns: vec![("a_seat_z".into(), "Acc Z".into())],
+            ..Options::default()
+        };
+        for (d, comma) in [(",", false), (";", true), ("\t", false), ("\t", true)] {
+            let inp = run(&logger_text(d, comma, 2400), &opts).unwrap();
+            assert_eq!(inp.signals.sample_rate_hz, 200.0, "{d:?}");
+            let z = inp.signals.get("a_seat_z").unwrap();
+            assert!((z[0] - 9.80665).abs() < 1e-9, "{}", z[0]);
+            assert!(
+                inp.notes.iter().any(|n| n.contains("Temp")),
+                "{:?}",
+                inp.notes
+            );
+        }
+    }
+
+    #[test]
+    fn seat_only_and_fs_without_time() {
+        let mut s = String::from("t_s,a_seat_z\n");
+        for i in 0..2100 {
+            s += &format!("{},{}\n", i as f64 / 200.0, (i as f64).sin());
+        }
+        let inp = run(&s, &Options::default()).unwrap();
+        assert_eq!(inp.signals.names, vec!["a_seat_z"]);
+        let mut s = String::from("a_seat_z;a_back_x\n");
+        for i in 0..2100 {
+            s += &format!("{},5;1\n", i % 7);
+        }
+        let e = run(&s, &Options::default()).unwrap_err().to_string();
+        assert!(e.contains("--fs"), "{e}");
+        let o = Options {
+            fs: Some(210.0),
+            ..Options::default()
+        };
+        let inp = run(&s, &o).unwrap();
+        assert_eq!(inp.signals.sample_rate_hz, 210.0);
+        assert_eq!(inp.signals.get("a_seat_z").unwrap()[1], 1.5);
+    }
+
+    #[test]
+    fn errors_name_the_line() {
+        let mut s = String::from("t_s,a_seat_z\n");
+        for i in 0..2100 {
+            s += &format!("{},{}\n", i as f64 / 200.0, 1);
+        }
+        let bad = s.replacen(",1\n", ",x\n", 5).replace('\n', "\r\n");
+        let e = run(&bad, &Options::default()).unwrap_err().to_string();
+        assert!(e.starts_with("x.csv:2:") && e.contains("`x`"), "{e}");
+        let short = s.replacen(",1\n", ",1,2\n", 1);
+        let e = run(&short, &Options::default()).unwrap_err().to_string();
+        assert!(e.starts_with("x.csv:2:") && e.contains("3 fields"), "{e}");
+        let e = run("t_s,a_seat_z\n0,1\n", &Options::default()).unwrap_err();
+        assert!(e.to_string().contains("fewer than two"), "{e}");
+    }
+
+    #[test]
+    fn resolution_of_printed_numbers() {
+        assert_eq!(printed_resolution("0.125"), 1e-3);
+        assert!((printed_resolution("1.5e-3") - 1e-4).abs() < 1e-18);
+        assert_eq!(printed_resolution("12"), 1.0);
+        assert_eq!(split_unit("Acc Z [m/s^2]").1.as_deref(), Some("m/s^2"));
+        assert_eq!(parse_number("0,5", true), Some(0.5));
+        assert_eq!(parse_number("0,5", false), None);
+    }
+}
