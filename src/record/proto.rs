@@ -145,6 +145,10 @@ pub fn run_descriptor(masses: &[String], links: &[String]) -> Result<FileDescrip
     Ok(fds)
 }
 
+/// Leaves sharing a parent: the parent's name and field number (`None` at the top level) and
+/// the field number and leaf index of each.
+type Group<'a> = (Option<&'a str>, Option<u32>, Vec<(u32, usize)>);
+
 /// Writes the protobuf message of a topic straight from its values (in leaf order): every leaf
 /// a `double` field (key, then 8 bytes little-endian), nested leaves inside a length-delimited
 /// sub-message. Every value has a fixed size, so all the bytes but the values are constant and
@@ -174,7 +178,7 @@ impl ProtoTemplate {
         };
         let msg = message(fds, full_name).ok_or_else(|| missing(String::new()))?;
         // (parent field number, [(leaf field number)]) per run of leaves sharing a parent
-        let mut groups: Vec<(Option<&str>, Option<u32>, Vec<(u32, usize)>)> = Vec::new();
+        let mut groups: Vec<Group> = Vec::new();
         for (index, leaf) in leaves.iter().enumerate() {
             let (parent, name, inner_type) = match leaf.path.as_slice() {
                 [name] => (None, name.as_str(), full_name.to_string()),
@@ -223,6 +227,11 @@ impl ProtoTemplate {
     /// Number of values a message takes.
     pub fn len(&self) -> usize {
         self.fragments.len()
+    }
+
+    /// Whether a message takes no values.
+    pub fn is_empty(&self) -> bool {
+        self.fragments.is_empty()
     }
 
     /// Appends the message for `values` (any f64 is representable; the recorder refuses
@@ -364,7 +373,12 @@ impl ProtoTable {
         let messages = self.messages;
         let (mut names, mut columns) = (self.names, self.columns);
         (self.first.iter())
-            .map(|&k| (std::mem::take(&mut names[k]), std::mem::take(&mut columns[k])))
+            .map(|&k| {
+                (
+                    std::mem::take(&mut names[k]),
+                    std::mem::take(&mut columns[k]),
+                )
+            })
             .filter(|(_, c)| messages > 0 && c.len() == messages)
             .unzip()
     }
@@ -452,10 +466,12 @@ mod tests {
         let fds = run_descriptor(&masses, &links).unwrap();
         let v = [-0.0, 1e-300, -2.5, f64::MAX, 3.0, 0.1];
         // Measured in a planar run's leaf order (not field-number order)
-        let leaves: Vec<Leaf> = ["t", "a_base_z", "a_seat_z", "a_seat_x", "a_head_z", "f_seat_z"]
-            .iter()
-            .map(|n| Leaf::new(&[n], ""))
-            .collect();
+        let leaves: Vec<Leaf> = [
+            "t", "a_base_z", "a_seat_z", "a_seat_x", "a_head_z", "f_seat_z",
+        ]
+        .iter()
+        .map(|n| Leaf::new(&[n], ""))
+        .collect();
         let t = ProtoTemplate::new(&fds, "wbv.Measured", &leaves).unwrap();
         let mut out = Vec::new();
         t.render(&v, &mut out);
@@ -463,7 +479,12 @@ mod tests {
         let mut table = ProtoTable::new(&fds.encode_to_vec(), "wbv.Measured").unwrap();
         table.add(&out).unwrap();
         let names: Vec<String> = table.into_columns().0.concat();
-        assert_eq!(names, ["t", "a_base_z", "a_seat_z", "a_seat_x", "a_head_z", "f_seat_z"]);
+        assert_eq!(
+            names,
+            [
+                "t", "a_base_z", "a_seat_z", "a_seat_x", "a_head_z", "f_seat_z"
+            ]
+        );
         let m = Measured {
             t: Some(v[0]),
             a_base_z: Some(v[1]),
