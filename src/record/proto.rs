@@ -145,6 +145,10 @@ pub fn run_descriptor(masses: &[String], links: &[String]) -> Result<FileDescrip
     Ok(fds)
 }
 
+/// Leaves sharing a parent: the parent's name and field number (`None` at the top level) and
+/// the field number and leaf index of each.
+type Group<'a> = (Option<&'a str>, Option<u32>, Vec<(u32, usize)>);
+
 /// Writes the protobuf message of a topic straight from its values (in leaf order): every leaf
 /// a `double` field (key, then 8 bytes little-endian), nested leaves inside a length-delimited
 /// sub-message. Every value has a fixed size, so all the bytes but the values are constant and
@@ -174,7 +178,7 @@ impl ProtoTemplate {
         };
         let msg = message(fds, full_name).ok_or_else(|| missing(String::new()))?;
         // (parent field number, [(leaf field number)]) per run of leaves sharing a parent
-        let mut groups: Vec<(Option<&str>, Option<u32>, Vec<(u32, usize)>)> = Vec::new();
+        let mut groups: Vec<Group> = Vec::new();
         for (index, leaf) in leaves.iter().enumerate() {
             let (parent, name, inner_type) = match leaf.path.as_slice() {
                 [name] => (None, name.as_str(), full_name.to_string()),
@@ -223,6 +227,11 @@ impl ProtoTemplate {
     /// Number of values a message takes.
     pub fn len(&self) -> usize {
         self.fragments.len()
+    }
+
+    /// Whether a message takes no values.
+    pub fn is_empty(&self) -> bool {
+        self.fragments.is_empty()
     }
 
     /// Appends the message for `values` (any f64 is representable; the recorder refuses
