@@ -45,7 +45,7 @@ pub fn run(args: Args) -> crate::Result<()> {
     // Both outputs are refused before the run if they exist.
     crate::io::atomic::check_overwrite(&mcap, crate::io::atomic::Overwrite::Refuse)?;
     crate::io::atomic::check_overwrite(&html, crate::io::atomic::Overwrite::Refuse)?;
-    println!(
+    eprintln!(
         "default scenario: `{}` ({}) under {} for {} s, dt {} s, seed {}",
         scenario.model.name,
         scenario.model.description,
@@ -79,7 +79,7 @@ pub fn run(args: Args) -> crate::Result<()> {
         crate::io::atomic::Overwrite::Refuse,
     )?;
     println!("\nReport: {}", html.display());
-    println!(
+    eprintln!(
         "Open {} in Foxglove or Lichtblick (layout: tools/viewer/wbv-layout.json) or PlotJuggler.",
         mcap.display()
     );

