@@ -16,9 +16,45 @@ use crate::error::{Error, Result};
 use serde_json::{Map, Value};
 use std::collections::HashMap;
 
+/// Largest ratio of a chunk's stated uncompressed size to its compressed size that is believed
+/// (zstd and lz4 stay far below it on sensor data); a larger one is a corrupt or hostile header,
+/// refused before the `mcap` crate would allocate its stated size.
+const MAX_CHUNK_RATIO: u64 = 1024;
+
+/// Checks every chunk's stated uncompressed size against its data before the messages are read.
+fn check_chunks(bytes: &[u8]) -> std::result::Result<(), String> {
+    let reader = mcap::read::LinearReader::new(bytes).map_err(|e| e.to_string())?;
+    for rec in reader {
+        match rec {
+            Ok(mcap::records::Record::Chunk { header, data }) => {
+                let stated = header.uncompressed_size;
+                let limit = (data.len() as u64)
+                    .saturating_mul(MAX_CHUNK_RATIO)
+                    .max(1 << 20);
+                if stated > limit {
+                    return Err(format!(
+                        "a chunk states {stated} bytes uncompressed from {} bytes",
+                        data.len()
+                    ));
+                }
+            }
+            Ok(_) => {}
+            Err(e) => return Err(e.to_string()),
+        }
+    }
+    Ok(())
+}
+
 /// `topic (encoding, N messages)` for each channel of an MCAP file, for error messages; empty when
 /// the file cannot be read.
 pub fn topics(bytes: &[u8]) -> Vec<String> {
+    std::panic::catch_unwind(|| list_topics(bytes)).unwrap_or_default()
+}
+
+fn list_topics(bytes: &[u8]) -> Vec<String> {
+    if check_chunks(bytes).is_err() {
+        return Vec::new();
+    }
     let Ok(s) = mcap::MessageStream::new(bytes) else {
         return Vec::new();
     };
@@ -177,9 +213,24 @@ fn proto_to_json(m: &prost_reflect::DynamicMessage) -> Value {
     Value::Object(out)
 }
 
-/// Reads the mapped fields of `topic`.
+/// Reads the mapped fields of `topic`. The `mcap` crate can panic on some corrupt chunks (a
+/// capacity overflow while decompressing); that panic is turned into this file's error.
 pub(crate) fn read(bytes: &[u8], source: &str, topic: &str, opts: &Options) -> Result<Raw> {
+    std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
+        read_topic(bytes, source, topic, opts)
+    }))
+    .unwrap_or_else(|_| {
+        Err(Error::data(
+            source,
+            None,
+            "corrupt MCAP (the reader gave up on a chunk)",
+        ))
+    })
+}
+
+fn read_topic(bytes: &[u8], source: &str, topic: &str, opts: &Options) -> Result<Raw> {
     let err = |m: String| Error::data(source, None, m);
+    check_chunks(bytes).map_err(|e| err(format!("corrupt MCAP: {e}")))?;
     let stream =
         mcap::MessageStream::new(bytes).map_err(|e| err(format!("not a readable MCAP: {e}")))?;
     let fields: Vec<&(String, String)> = opts.columns.iter().filter(|(c, _)| c != "t_s").collect();
