@@ -82,9 +82,9 @@ table.kv td{text-align:left}";
 fn figure_html(out: &mut String, fig: &RunFigure) -> Result<()> {
     let p = fig.panels();
     let svg = svg_string(&p, p.size())?;
-    let _ = write!(
+    let _ = writeln!(
         out,
-        "<figure id=\"{}\">{svg}<figcaption>{}</figcaption></figure>\n",
+        "<figure id=\"{}\">{svg}<figcaption>{}</figcaption></figure>",
         fig.name,
         esc(&fig.caption)
     );
@@ -160,10 +160,10 @@ fn model_html(out: &mut String, p: &Provenance) -> Result<()> {
         cols: 2,
     };
     let svg = svg_string(&panels, panels.size())?;
-    let _ = write!(
+    let _ = writeln!(
         out,
         "<figure id=\"model_frf\">{svg}<figcaption>Frequency responses of the simulated model \
-         `{}` (linearised, magnitude and phase)</figcaption></figure>\n",
+         `{}` (linearised, magnitude and phase)</figcaption></figure>",
         esc(&model.name)
     );
     if let Ok(modes) = crate::response::modes::damped(model.system()) {
@@ -241,10 +241,10 @@ pub fn build(run: &Path, settings: &Settings) -> Result<Built> {
         esc(&signals.names.join(", "))
     );
     out.push_str("<h2>Verdict</h2>\n");
-    let _ = write!(
+    let _ = writeln!(
         out,
         "<p class=\"verdict\">Comfort (ISO 2631-1 Annex C, public transport): the vibration total \
-         value over the {} is a<sub>v</sub> = {:.3} m/s², <b>{}</b>. {}</p>\n",
+         value over the {} is a<sub>v</sub> = {:.3} m/s², <b>{}</b>. {}</p>",
         esc(&report.comfort_place),
         report.total_value,
         report.comfort,
@@ -262,13 +262,13 @@ pub fn build(run: &Path, settings: &Settings) -> Result<Built> {
         None => out.push_str("<p>No seat channel: no health assessment.</p>\n"),
     }
     if let Some(s) = report.seat_percent {
-        let _ = write!(
+        let _ = writeln!(
             out,
-            "<p>SEAT (ISO 10326-1, a_w seat z / a_w base z, Wk): {s:.1} %.</p>\n"
+            "<p>SEAT (ISO 10326-1, a_w seat z / a_w base z, Wk): {s:.1} %.</p>"
         );
     }
     for n in &report.notes {
-        let _ = write!(out, "<p>Note: {}</p>\n", esc(n));
+        let _ = writeln!(out, "<p>Note: {}</p>", esc(n));
     }
     out.push_str("<h2>Scenario and provenance</h2>\n");
     match &provenance {
@@ -285,11 +285,11 @@ pub fn build(run: &Path, settings: &Settings) -> Result<Built> {
         out.push_str("<h2>Model</h2>\n");
         model_html(&mut out, p)?;
     }
-    let _ = write!(
+    let _ = writeln!(
         out,
         "<p><small>Written by wbv {}. Health: ISO 2631-1:1997 clause 7 and Annex B, \
          Directive 2002/44/EC Article 3; comfort: ISO 2631-1 Annex C.</small></p>\
-         </body></html>\n",
+         </body></html>",
         env!("CARGO_PKG_VERSION")
     );
     let health = report.health.clone();

@@ -138,10 +138,10 @@ mod tests {
         // Project the last second onto sin and cos.
         let m = fs as usize;
         let (mut s, mut c) = (0.0, 0.0);
-        for i in n - m..n {
+        for (i, xi) in x.iter().enumerate().skip(n - m) {
             let w = 2.0 * std::f64::consts::PI * f * i as f64 / fs;
-            s += x[i] * w.sin();
-            c += x[i] * w.cos();
+            s += xi * w.sin();
+            c += xi * w.cos();
         }
         Complex64::new(2.0 * s / m as f64, 2.0 * c / m as f64)
     }
