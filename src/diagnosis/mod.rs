@@ -28,6 +28,7 @@ use candidate::{BASE_BOUND, Candidate, Param, base_params, prior_sigma, scaled};
 use gapmap::{BandCell, Weighted};
 use measure::{Path, RunSpectra};
 use predict::Variant;
+use rayon::prelude::*;
 use serde::Serialize;
 
 /// ΔBIC (held-out) an effect must reach against the null re-fit to be *detected* (gap.md §3.6:
@@ -361,9 +362,12 @@ fn fit_candidate(
         fit::levenberg_marquardt(&f, &starts[0], &lo, &hi, FIT_ITERATIONS)?
     } else {
         // Scout every start briefly, then carry the best one to convergence.
+        let scouts: Vec<fit::Fit> = starts
+            .par_iter()
+            .map(|s| fit::levenberg_marquardt(&f, s, &lo, &hi, SCOUT_ITERATIONS))
+            .collect::<Result<_>>()?;
         let mut best: Option<fit::Fit> = None;
-        for s in &starts {
-            let ft = fit::levenberg_marquardt(&f, s, &lo, &hi, SCOUT_ITERATIONS)?;
+        for ft in scouts {
             if best.as_ref().is_none_or(|b| ft.cost < b.cost) {
                 best = Some(ft);
             }
@@ -548,9 +552,20 @@ pub fn diagnose(model: &Chain, train: &[Signals], check: &Signals) -> Result<Dia
     };
     let mut cands = Vec::new();
     let mut fits: Vec<(Candidate, Vec<f64>)> = Vec::new();
-    for c in Candidate::ALL.into_iter().filter(|c| c.applies_to(model)) {
-        let ft = fit_candidate(model, &[c], &tr, &null_fit.fit.u)?;
-        let st = stage(&ft.variant, &ck)?;
+    // The candidates' fits are independent: fitted in parallel, ranked in a fixed order after.
+    let applicable: Vec<Candidate> = Candidate::ALL
+        .into_iter()
+        .filter(|c| c.applies_to(model))
+        .collect();
+    let fitted: Vec<(Candidate, Fitted, Stage)> = applicable
+        .par_iter()
+        .map(|&c| {
+            let ft = fit_candidate(model, &[c], &tr, &null_fit.fit.u)?;
+            let st = stage(&ft.variant, &ck)?;
+            Ok((c, ft, st))
+        })
+        .collect::<Result<_>>()?;
+    for (c, ft, st) in fitted {
         let p = nb + c.params().len();
         let (aw, seat, db) = sizes(&st, &null.check);
         let all = (ft.fit.cost - null_fit.fit.cost)
@@ -594,16 +609,23 @@ pub fn diagnose(model: &Chain, train: &[Signals], check: &Signals) -> Result<Dia
         if best.check.chi2_red > GAP_CHI2 {
             let warm = &fits.iter().find(|(c, _)| *c == bc).expect("fitted").1;
             let best_bic = bic(&best.check, warm.len());
-            for other in cands
+            let others: Vec<Candidate> = cands
                 .iter()
                 .filter(|r| r.id != best.id)
                 .filter_map(|r| Candidate::from_id(&r.id))
                 .filter(|c| c.family() != bc.family())
                 .take(4)
-            {
+                .collect();
+            let pairs: Vec<(Candidate, Fitted, Stage)> = others
+                .par_iter()
+                .map(|&other| {
+                    let ft = fit_candidate(model, &[bc, other], &tr, warm)?;
+                    let st = stage(&ft.variant, &ck)?;
+                    Ok((other, ft, st))
+                })
+                .collect::<Result<_>>()?;
+            for (other, ft, st) in pairs {
                 let pair = [bc, other];
-                let ft = fit_candidate(model, &pair, &tr, warm)?;
-                let st = stage(&ft.variant, &ck)?;
                 let p = warm.len() + other.params().len();
                 let d = bic(&st, p) - best_bic;
                 let closed = score::fraction_closed(best.check.chi2_red, st.chi2_red);

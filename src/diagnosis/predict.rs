@@ -12,6 +12,7 @@
 use super::measure::{Path, RunSpectra};
 use crate::error::{Error, Result};
 use crate::model::{Chain, Element, Law, Node};
+use crate::system::System;
 use num_complex::Complex64;
 use std::f64::consts::PI;
 
@@ -67,16 +68,22 @@ impl Channel {
 /// acceleration at `f` Hz ([`crate::response::frf`] on the chain's system).
 pub fn solve_point(model: &Chain, f: f64) -> Result<(Vec<Complex64>, Complex64)> {
     let system = model.system();
-    let channels = crate::response::frf::solve_point(&system, f)?;
+    let (acc, force, _) = solve_system(&system, f)?;
+    Ok((acc, force))
+}
+
+/// [`solve_point`] on a system already built (the fits call this per bin, so the system is built
+/// once per prediction and D(ω) factorised once per bin), plus the base-relative displacements.
+fn solve_system(system: &System, f: f64) -> Result<(Vec<Complex64>, Complex64, Vec<Complex64>)> {
+    let (channels, x) = crate::response::frf::solve_full(system, f)?;
     let omega = 2.0 * PI * f;
-    let x = crate::response::frf::displacements(&system, f)?;
-    let acc = (0..model.dof())
-        .map(|i| crate::response::frf::dof_value(&system, i, omega, x.as_slice()))
+    let acc = (0..system.dof())
+        .map(|i| crate::response::frf::dof_value(system, i, omega, x.as_slice()))
         .collect();
     let force = system
         .channel_index("f_seat_z")
         .map_or(Complex64::new(0.0, 0.0), |c| channels[c]);
-    Ok((acc, force))
+    Ok((acc, force, x.as_slice().to_vec()))
 }
 
 /// A model plus the measuring chain: the thing a candidate evaluates.
@@ -108,16 +115,24 @@ impl Variant {
 /// ≤ 0.01·φ for a step such as an end-stop's).
 fn gauss_mean(sigma: f64, g: impl Fn(f64) -> f64) -> f64 {
     const N: usize = 1201;
-    let h = 12.0 / (N - 1) as f64;
-    // Weights normalised to sum to one, so constants are reproduced exactly.
-    let (mut num, mut den) = (0.0, 0.0);
-    for i in 0..N {
-        let z = -6.0 + i as f64 * h;
-        let w = if i == 0 || i == N - 1 { 0.5 } else { 1.0 } * (-0.5 * z * z).exp();
-        num += w * g(sigma * z);
-        den += w;
-    }
-    num / den
+    const H: f64 = 12.0 / (N - 1) as f64;
+    // Weights normalised to sum to one, so constants are reproduced exactly; computed once (the
+    // fits call this per link, per run and per iteration).
+    static WEIGHTS: std::sync::OnceLock<Vec<f64>> = std::sync::OnceLock::new();
+    let w = WEIGHTS.get_or_init(|| {
+        let raw: Vec<f64> = (0..N)
+            .map(|i| {
+                let z = -6.0 + i as f64 * H;
+                (if i == 0 || i == N - 1 { 0.5 } else { 1.0 }) * (-0.5 * z * z).exp()
+            })
+            .collect();
+        let den: f64 = raw.iter().sum();
+        raw.iter().map(|x| x / den).collect()
+    });
+    w.iter()
+        .enumerate()
+        .map(|(i, wi)| wi * g(sigma * (-6.0 + i as f64 * H)))
+        .sum()
 }
 
 /// Equivalent stiffness and damping of a law for Gaussian deflection σ_d (m) and velocity σ_v (m/s).
@@ -132,14 +147,6 @@ fn rel(x: &[Complex64], n: Node) -> Complex64 {
         Node::Base => Complex64::new(0.0, 0.0),
         Node::Mass(i) => x[i],
     }
-}
-
-/// Base-relative displacements per unit base acceleration at `f` Hz: X = (A − 1)/(−ω²)… i.e.
-/// A = 1 − ω²X (see [`crate::response::frf`]).
-fn displacements(model: &Chain, f: f64) -> Result<Vec<Complex64>> {
-    let w2 = (2.0 * PI * f).powi(2);
-    let (acc, _) = solve_point(model, f)?;
-    Ok(acc.iter().map(|a| (1.0 - a) / w2).collect())
 }
 
 /// The statistically linearised model for a base acceleration PSD given on `(freq, psd)` bins.
@@ -178,8 +185,9 @@ pub fn linearise(model: &Chain, base_psd: &(Vec<f64>, Vec<f64>)) -> Result<Chain
         .collect::<Result<_>>()?;
     for _ in 0..8 {
         let mut var = vec![(0.0, 0.0); nl.len()];
+        let system = lin.system();
         for &i in &grid {
-            let x = displacements(&lin, freq[i])?;
+            let (_, _, x) = solve_system(&system, freq[i])?;
             let w2 = (2.0 * PI * freq[i]).powi(2);
             for (j, &li) in nl.iter().enumerate() {
                 let l = &lin.links[li];
@@ -202,12 +210,13 @@ pub fn linearise(model: &Chain, base_psd: &(Vec<f64>, Vec<f64>)) -> Result<Chain
 /// Predicted H of each of `paths` at `f` Hz for an already linear model (one solve per frequency).
 fn path_values(
     model: &Chain,
+    system: &System,
     v: &Variant,
     f: f64,
     paths: &[Path],
     out: &mut [Complex64],
 ) -> Result<()> {
-    let (acc, force) = solve_point(model, f)?;
+    let (acc, force, _) = solve_system(system, f)?;
     let seat = match model.measure.seat {
         Node::Base => Complex64::new(1.0, 0.0),
         Node::Mass(i) => acc[i],
@@ -237,8 +246,9 @@ pub fn predict(v: &Variant, run: &RunSpectra) -> Result<Vec<Vec<Complex64>>> {
     let paths: Vec<Path> = run.paths.iter().map(|p| p.path).collect();
     let mut out = vec![vec![Complex64::new(0.0, 0.0); run.freq_hz.len()]; paths.len()];
     let mut buf = vec![Complex64::new(0.0, 0.0); paths.len()];
+    let system = lin.system();
     for (b, &f) in run.freq_hz.iter().enumerate() {
-        path_values(&lin, v, f, &paths, &mut buf)?;
+        path_values(&lin, &system, v, f, &paths, &mut buf)?;
         for (p, val) in buf.iter().enumerate() {
             out[p][b] = *val;
         }

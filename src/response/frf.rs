@@ -103,8 +103,9 @@ pub fn displacements(system: &System, f: f64) -> Result<DVector<Complex64>> {
     Ok(solve_full(system, f)?.1)
 }
 
-/// Channels and coordinate displacements `X` per unit base acceleration at `f` Hz.
-fn solve_full(system: &System, f: f64) -> Result<(Vec<Complex64>, DVector<Complex64>)> {
+/// Channels and base-relative displacements per unit base acceleration at `f` Hz from one
+/// factorisation of D(ω) (callers needing both should not solve twice).
+pub fn solve_full(system: &System, f: f64) -> Result<(Vec<Complex64>, DVector<Complex64>)> {
     let omega = 2.0 * PI * f;
     let d = system.dynamic_matrix(omega);
     let mr = &system.m * &system.r;

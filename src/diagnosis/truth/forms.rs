@@ -204,16 +204,18 @@ pub fn link_sigma(model: &Chain, link: usize, lines: &[(f64, f64)]) -> Result<(f
         l.law = None;
     }
     let (mut vd, mut vv) = (0.0, 0.0);
+    // The linear model's exact FRF (crate::response::frf), not the diagnosis's predictor.
+    let system = m.system();
     for &(f, ms) in lines {
         if f <= 0.0 || ms <= 0.0 {
             continue;
         }
-        let (acc, _) = crate::diagnosis::predict::solve_point(&m, f)?;
+        let xs = crate::response::frf::displacements(&system, f)?;
         let w2 = (2.0 * PI * f).powi(2);
-        // Base-relative displacement per unit base acceleration: X = (1 − A)/ω².
+        // Base-relative displacement per unit base acceleration (D(ω)·X = −M·r).
         let x = |n: Node| match n {
             Node::Base => num_complex::Complex64::new(0.0, 0.0),
-            Node::Mass(i) => (1.0 - acc[i]) / w2,
+            Node::Mass(i) => xs[i],
         };
         let l = &m.links[link];
         let d2 = (x(l.a) - x(l.b)).norm_sqr() * ms;
