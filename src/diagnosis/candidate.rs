@@ -1,7 +1,7 @@
 //! The candidate unmodelled effects: each a small physical extension of the base model with one or
 //! two parameters (gap.md §3.4), plus the null candidate (the base model's own parameters re-fitted).
 
-use super::predict::Variant;
+use super::predict::{MagnitudeSchedule, Variant};
 use crate::error::{Error, Result};
 use crate::model::{Chain, Element, Law, Link, Mass, Node, Role};
 use std::f64::consts::PI;
@@ -53,6 +53,9 @@ pub enum Candidate {
     /// Softening body link (tanh law, k·d_ref·tanh(d/d_ref)) at the seat interface: resonance falls
     /// as magnitude rises.
     BodySoftening,
+    /// Body stiffness and damping scheduled with the run's magnitude (E1): linear within a run,
+    /// softer between runs of different magnitude.
+    BodySofteningMagnitude,
     /// Cubic stiffening of the cushion, F = k d + k3 d³.
     CushionStiffening,
     /// Quadratic contact stiffening of the cushion, F = k d (1 + |d|/d0): the second stiffening
@@ -83,8 +86,9 @@ pub enum Candidate {
 
 impl Candidate {
     /// Every candidate in report order.
-    pub const ALL: [Candidate; 13] = [
+    pub const ALL: [Candidate; 14] = [
         Candidate::BodySoftening,
+        Candidate::BodySofteningMagnitude,
         Candidate::CushionStiffening,
         Candidate::CushionContact,
         Candidate::CushionViscoelastic,
@@ -103,6 +107,7 @@ impl Candidate {
     pub fn id(self) -> &'static str {
         match self {
             Candidate::BodySoftening => "body-softening",
+            Candidate::BodySofteningMagnitude => "body-softening-magnitude",
             Candidate::CushionStiffening => "cushion-stiffening",
             Candidate::CushionContact => "cushion-contact",
             Candidate::CushionViscoelastic => "cushion-viscoelastic",
@@ -122,7 +127,7 @@ impl Candidate {
     /// forms of the same effect, so a close call between them is not a reason to abstain.
     pub fn family(self) -> &'static str {
         match self {
-            Candidate::BodySoftening => "body softening",
+            Candidate::BodySoftening | Candidate::BodySofteningMagnitude => "body softening",
             Candidate::CushionStiffening | Candidate::CushionContact => "cushion stiffening",
             Candidate::CushionViscoelastic => "cushion viscoelasticity",
             Candidate::SensorDelay
@@ -144,6 +149,9 @@ impl Candidate {
     pub fn applies_to(self, model: &Chain) -> bool {
         match self {
             Candidate::BodySoftening => interface_link(model).is_some(),
+            Candidate::BodySofteningMagnitude => model.links.iter().any(|l| {
+                l.role == Role::Body && matches!(l.element, Element::KelvinVoigt { .. })
+            }),
             Candidate::CushionStiffening
             | Candidate::CushionContact
             | Candidate::CushionViscoelastic => role_link(model, Role::Cushion).is_some(),
@@ -173,6 +181,10 @@ impl Candidate {
                     true,
                 )]
             }
+            Candidate::BodySofteningMagnitude => vec![
+                Param::new("alpha_k", -0.3, 1.0, &[0.0, 0.3], false),
+                Param::new("alpha_c", -0.6, 1.0, &[0.0], false),
+            ],
             Candidate::CushionStiffening => {
                 vec![Param::new("k3_n_m3", 1e6, 1e12, &[1e8, 3e9, 1e11], true)]
             }
@@ -183,9 +195,11 @@ impl Candidate {
                 Param::new("k_m_over_k", 0.01, 30.0, &[0.3, 2.0], true),
                 Param::new("tau_s", 5e-4, 0.5, &[0.005, 0.05], true),
             ],
+            // Relative to the base channel, so a lag on the base accelerometer is a negative
+            // delay of both outputs.
             Candidate::SensorDelay => vec![
-                Param::new("delay_seat_s", 0.0, 0.05, &[0.0], false),
-                Param::new("delay_head_s", 0.0, 0.05, &[0.0], false),
+                Param::new("delay_seat_s", -0.05, 0.05, &[0.0], false),
+                Param::new("delay_head_s", -0.05, 0.05, &[0.0], false),
             ],
             Candidate::SensorLowpass => vec![
                 Param::new("lowpass_seat_hz", 10.0, 5000.0, &[150.0], true),
@@ -235,6 +249,13 @@ impl Candidate {
             Candidate::BodySoftening => {
                 let i = need(interface_link(m), "body–seat interface")?;
                 m.links[i].law = Some(Law::Softening { d_ref: p[0] });
+            }
+            Candidate::BodySofteningMagnitude => {
+                v.schedule = Some(MagnitudeSchedule {
+                    alpha_k: p[0],
+                    alpha_c: p[1],
+                    rms_ref: v.rms_ref,
+                });
             }
             Candidate::CushionStiffening => {
                 let i = need(role_link(m, Role::Cushion), "cushion")?;

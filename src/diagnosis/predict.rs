@@ -86,11 +86,51 @@ fn solve_system(system: &System, f: f64) -> Result<(Vec<Complex64>, Complex64, V
     Ok((acc, force, x.as_slice().to_vec()))
 }
 
+/// Body stiffness and damping scheduled with a run's magnitude (gap.md §3.4 E1): linear within a
+/// run, softer between runs, as the seated body's apparent-mass resonance falls with magnitude
+/// (Mansfield & Griffin, J. Biomech. 33 (2000) 933–941; Matsumoto & Griffin, JSV 215 (1998) 743–762).
+/// Every Kelvin–Voigt body link's `k` is multiplied by `(A/A_ref)^(−alpha_k)` and its `c` by
+/// `(A/A_ref)^(−alpha_c)`, A the run's unweighted base r.m.s. (m/s²).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct MagnitudeSchedule {
+    /// Stiffness exponent (> 0 softens as magnitude rises).
+    pub alpha_k: f64,
+    /// Damping exponent.
+    pub alpha_c: f64,
+    /// Reference magnitude A_ref (m/s²): the geometric mean of the training runs' base r.m.s., so
+    /// the base parameters keep their meaning at the training runs' centre.
+    pub rms_ref: f64,
+}
+
+impl MagnitudeSchedule {
+    /// `model` as it behaves in a run of base r.m.s. `rms` (m/s²).
+    pub fn at(&self, model: &Chain, rms: f64) -> Chain {
+        let r = (rms / self.rms_ref).max(1e-9);
+        let (fk, fc) = (r.powf(-self.alpha_k), r.powf(-self.alpha_c));
+        let mut m = model.clone();
+        for l in &mut m.links {
+            if l.role == crate::model::Role::Body
+                && let Element::KelvinVoigt { k, c } = l.element
+            {
+                l.element = Element::KelvinVoigt {
+                    k: k * fk,
+                    c: c * fc,
+                };
+            }
+        }
+        m
+    }
+}
+
 /// A model plus the measuring chain: the thing a candidate evaluates.
 #[derive(Debug, Clone)]
 pub struct Variant {
     /// The (possibly nonlinear) model.
     pub model: Chain,
+    /// Magnitude schedule of the body between runs, if any.
+    pub schedule: Option<MagnitudeSchedule>,
+    /// Reference magnitude for a schedule (m/s²): the training runs' geometric-mean base r.m.s.
+    pub rms_ref: f64,
     /// The base accelerometer.
     pub base: Channel,
     /// The seat-pad accelerometer.
@@ -104,6 +144,8 @@ impl Variant {
     pub fn plain(model: Chain) -> Self {
         Variant {
             model,
+            schedule: None,
+            rms_ref: 1.0,
             base: Channel::default(),
             seat: Channel::default(),
             head: Channel::default(),
@@ -242,7 +284,10 @@ fn path_values(
 
 /// Predictions of every path `run` measured, on the run's analysis bins: `[path][bin]`.
 pub fn predict(v: &Variant, run: &RunSpectra) -> Result<Vec<Vec<Complex64>>> {
-    let lin = linearise(&v.model, &run.base_psd)?;
+    let lin = match &v.schedule {
+        Some(s) => linearise(&s.at(&v.model, run.base_rms), &run.base_psd)?,
+        None => linearise(&v.model, &run.base_psd)?,
+    };
     let paths: Vec<Path> = run.paths.iter().map(|p| p.path).collect();
     let mut out = vec![vec![Complex64::new(0.0, 0.0); run.freq_hz.len()]; paths.len()];
     let mut buf = vec![Complex64::new(0.0, 0.0); paths.len()];

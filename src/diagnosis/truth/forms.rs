@@ -177,14 +177,23 @@ pub enum Sensor {
     Gain(f64),
 }
 
-/// Body stiffness scheduled with the run's r.m.s.: every body link's `k` times
-/// `(rms/rms_ref)^(−beta)`.
+/// Body stiffness and damping that change with the run's r.m.s. — linear within a run, softer
+/// between runs — in a form that is not the diagnosis's power law: body link `i` has
+/// `k_i·(1 − loss_k·w_i·s)` and `c_i·(1 − loss_c·w_i·s)` with `s = (rms − rms_lo)/(rms_hi − rms_lo)`
+/// linear in the magnitude, per-link weights `w_i` ∈ [0.4, 1] (the links soften unequally) and a
+/// damping loss of either sign.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Schedule {
-    /// Reference r.m.s. (the check run's), m/s².
-    pub rms_ref: f64,
-    /// Exponent (> 0 softens as magnitude rises).
-    pub beta: f64,
+    /// Lowest and highest run magnitude (base r.m.s.), m/s².
+    pub rms_lo: f64,
+    /// See `rms_lo`.
+    pub rms_hi: f64,
+    /// Fractional stiffness loss at `rms_hi` for a link of weight one.
+    pub loss_k: f64,
+    /// Fractional damping loss at `rms_hi` for a link of weight one (negative: damping rises).
+    pub loss_c: f64,
+    /// Per-body-link weights, in the order of the model's body links.
+    pub weights: Vec<f64>,
 }
 
 /// What a form planted: changes to the model, a per-run schedule, or a sensor on a channel.
@@ -479,17 +488,22 @@ pub fn plant(
             )
         }
         Form::Scheduled => {
-            // Stiffness loss t between the lowest and the highest magnitude.
+            // Tangent loss t of the stiffest-hit link between the lowest and highest magnitude.
             let (lo, hi) = (rms[0].min(rms[1]), rms[0].max(rms[1]));
-            let beta = -(1.0 - t).ln() / (hi / lo).ln();
+            let n_body = model.links.iter().filter(|l| l.role == Role::Body).count();
+            let weights: Vec<f64> = (0..n_body).map(|_| uniform(rng, 0.4, 1.0)).collect();
+            let loss_c = t * uniform(rng, -0.5, 1.0);
             planted.schedule = Some(Schedule {
-                rms_ref: rms[2],
-                beta,
+                rms_lo: lo,
+                rms_hi: hi,
+                loss_k: t,
+                loss_c,
+                weights,
             });
             format!(
-                "body stiffness ∝ (a_rms/{:.2})^−{beta:.3} between runs (−{:.0} % from lowest to highest magnitude)",
-                rms[2],
-                100.0 * t
+                "body stiffness falls linearly with the run's r.m.s. by up to {:.0} % from {lo:.2} to {hi:.2} m/s² (per-link weights 0.4–1), damping by {:+.0} %",
+                100.0 * t,
+                -100.0 * loss_c
             )
         }
         Form::Delay | Form::LowPass | Form::Mount | Form::Gain => {
@@ -592,12 +606,19 @@ pub fn plant(
 /// `model` with the schedule applied for a run of base r.m.s. `rms`.
 pub fn scheduled(model: &Chain, s: &Schedule, rms: f64) -> Chain {
     let mut m = model.clone();
-    let f = (rms / s.rms_ref).powf(-s.beta);
+    let x = (rms - s.rms_lo) / (s.rms_hi - s.rms_lo).max(1e-12);
+    let mut j = 0;
     for l in &mut m.links {
-        if l.role == Role::Body
-            && let Element::KelvinVoigt { k, c } = l.element
-        {
-            l.element = Element::KelvinVoigt { k: k * f, c };
+        if l.role != Role::Body {
+            continue;
+        }
+        let w = s.weights.get(j).copied().unwrap_or(1.0);
+        j += 1;
+        if let Element::KelvinVoigt { k, c } = l.element {
+            l.element = Element::KelvinVoigt {
+                k: k * (1.0 - s.loss_k * w * x).max(0.05),
+                c: c * (1.0 - s.loss_c * w * x).max(0.05),
+            };
         }
     }
     m
