@@ -311,9 +311,28 @@ fn time_core(scenario: &Scenario) -> crate::Result<(f64, f64)> {
     Ok((excitation, start.elapsed().as_secs_f64()))
 }
 
+/// Refuses existing outputs before any input is read or anything simulated: the recording in
+/// `dir` and the CSV.
+fn refuse_existing(dir: Option<&Path>, csv: Option<&Path>, force: bool) -> crate::Result<()> {
+    let ow = Overwrite::from_force(force);
+    if let Some(d) = dir {
+        crate::io::atomic::check_overwrite(&d.join(RUN_FILE), ow)?;
+    }
+    if let Some(c) = csv {
+        crate::io::atomic::check_overwrite(c, ow)?;
+    }
+    Ok(())
+}
+
+/// The default run directory of `model` and `seed`: `runs/<model>-s<seed>`.
+fn default_dir(model: &str, seed: u64) -> PathBuf {
+    PathBuf::from("runs").join(format!("{}-s{seed}", model.replace('+', "_")))
+}
+
 pub fn run(args: Args) -> crate::Result<()> {
     if let Some(run) = &args.from {
         check_from_alone(std::env::args().skip(1))?;
+        refuse_existing(args.out.as_deref(), args.csv.as_deref(), args.force)?;
         let (scenario, options, line) = from_run(run)?;
         let options = RecordOptions {
             overwrite: Overwrite::from_force(args.force),
@@ -344,6 +363,15 @@ pub fn run(args: Args) -> crate::Result<()> {
             }
         }
     }
+    let dir = match &args.out {
+        Some(d) => d.clone(),
+        None => default_dir(&args.model.resolve()?.name, args.time.seed),
+    };
+    refuse_existing(
+        (!args.no_record).then_some(dir.as_path()),
+        args.csv.as_deref(),
+        args.force,
+    )?;
     let scenario = args.scenario()?;
     let core = if args.timing {
         Some(time_core(&scenario)?)
@@ -357,13 +385,6 @@ pub fn run(args: Args) -> crate::Result<()> {
         overwrite: Overwrite::from_force(args.force),
         ..RecordOptions::default()
     };
-    let dir = args.out.clone().unwrap_or_else(|| {
-        PathBuf::from("runs").join(format!(
-            "{}-s{}",
-            scenario.model.name.replace('+', "_"),
-            scenario.seed
-        ))
-    });
     let outcome = execute(
         &scenario,
         (!args.no_record).then_some(dir.as_path()),

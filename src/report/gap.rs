@@ -318,6 +318,15 @@ fn stages(d: &Diagnosis) -> Vec<(String, &Stage)> {
     if let Some(s) = d.second.as_ref().filter(|s| d.named.contains(&s.id)) {
         v.push((format!("re-fitted + {}", d.named.join(" + ")), &s.check));
     }
+    // Nothing named: the best candidate still shows how little it changes.
+    if d.named.is_empty()
+        && let Some(best) = d.candidates.first()
+    {
+        v.push((
+            format!("re-fitted + {} (best candidate, not named)", best.id),
+            &best.check,
+        ));
+    }
     v
 }
 
