@@ -37,10 +37,13 @@ fn subcommands() -> Vec<String> {
             inside = true;
         } else if inside && line.trim().is_empty() {
             break;
-        } else if inside && let Some(name) = line.split_whitespace().next() {
-            if line.starts_with("  ") && !line.starts_with("   ") && name != "help" {
-                names.push(name.to_string());
-            }
+        } else if inside
+            && line.starts_with("  ")
+            && !line.starts_with("   ")
+            && let Some(name) = line.split_whitespace().next()
+            && name != "help"
+        {
+            names.push(name.to_string());
         }
     }
     assert!(names.len() >= 20, "subcommands of wbv --help: {names:?}");
@@ -279,7 +282,7 @@ fn every_subcommand_prints_one_json_document() {
         ),
         (
             "sweep",
-            sweep(&["--json"]),
+            sweep(&["--excitation", "sine-4hz", "--duration", "2", "--json"]),
             &["params", "points", "written"],
         ),
         (
@@ -376,6 +379,18 @@ fn every_subcommand_prints_one_json_document() {
             }
         }
     }
+    // A sweep's comfort column is spelled as in every JSON document.
+    let (v, _) = json_of(
+        &sweep(&["--excitation", "sine-4hz", "--duration", "2", "--json"]),
+        d,
+    );
+    let comfort = &v["points"][0]["figures"]["comfort"];
+    assert!(
+        comfort
+            .as_str()
+            .is_some_and(|c| c.ends_with("uncomfortable")),
+        "{comfort}"
+    );
     // The report shows the gap section read from the diagnosis.
     let html = std::fs::read_to_string(d.join("run/report.html")).unwrap();
     assert!(html.contains("id=\"gap\"") && html.contains("id=\"gap_map\""));

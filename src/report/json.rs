@@ -391,6 +391,18 @@ impl Inspected {
     }
 }
 
+/// A sweep point's figure as JSON: the `comfort` column holds the index of the class in
+/// [`crate::analysis::comfort::RANGES`] and is written as the class; the others are numbers.
+fn figure(name: &str, v: f64) -> Value {
+    let class = crate::analysis::comfort::RANGES
+        .get(v as usize)
+        .filter(|_| name == "comfort" && v >= 0.0 && v.fract() == 0.0);
+    match class {
+        Some(r) => serde_json::to_value(r.0).unwrap_or(Value::Null),
+        None => finite(v).map_or(Value::Null, Value::from),
+    }
+}
+
 /// One point of `wbv sweep`.
 #[derive(Debug, Clone, Serialize)]
 pub struct SweepPoint {
@@ -400,8 +412,9 @@ pub struct SweepPoint {
     pub peak_freq_hz: Option<f64>,
     /// Peak magnitude in the response's unit.
     pub peak_mag: Option<f64>,
-    /// Time-domain figures by column name (`a_w_seat_m_s2`, …), with an excitation.
-    pub figures: BTreeMap<String, Option<f64>>,
+    /// Time-domain figures by column name (`a_w_seat_m_s2`, `a_v_m_s2`, `seat_pct`, and
+    /// `comfort` spelled as everywhere in JSON), with an excitation.
+    pub figures: BTreeMap<String, Value>,
 }
 
 /// `wbv sweep`.
@@ -444,8 +457,8 @@ impl Sweep {
                     peak_mag: finite(p.peak.value),
                     figures: names
                         .iter()
-                        .cloned()
-                        .zip(p.extra.iter().map(|v| finite(*v)))
+                        .zip(&p.extra)
+                        .map(|(n, v)| (n.clone(), figure(n, *v)))
                         .collect(),
                 })
                 .collect(),
@@ -912,6 +925,13 @@ mod tests {
         let v: Value = serde_json::from_str(&document("n", &3, &[]).unwrap()).unwrap();
         assert_eq!(v["result"], 3);
         assert_eq!(v["warnings"], serde_json::json!([]));
+    }
+
+    #[test]
+    fn a_sweep_comfort_column_is_the_class() {
+        assert_eq!(figure("comfort", 1.0), "a_little_uncomfortable");
+        assert_eq!(figure("seat_pct", 1.0), 1.0);
+        assert_eq!(figure("seat_pct", f64::NAN), Value::Null);
     }
 
     #[test]

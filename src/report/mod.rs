@@ -294,6 +294,11 @@ pub fn build(run: &Path, settings: &Settings) -> Result<Built> {
     for n in &report.notes {
         let _ = writeln!(out, "<p>Note: {}</p>", esc(n));
     }
+    // The gap verdict belongs with the run's verdicts, before the details.
+    let gap = match (&diagnosis, &gap_file) {
+        (Some(d), Some(p)) => Some(gap::section(&mut out, d, &p.display().to_string())?),
+        _ => None,
+    };
     out.push_str("<h2>Scenario and provenance</h2>\n");
     match &provenance {
         Some(p) => provenance_html(&mut out, p),
@@ -309,10 +314,6 @@ pub fn build(run: &Path, settings: &Settings) -> Result<Built> {
         out.push_str("<h2>Model</h2>\n");
         model_html(&mut out, p)?;
     }
-    let gap = match (&diagnosis, &gap_file) {
-        (Some(d), Some(p)) => Some(gap::section(&mut out, d, &p.display().to_string())?),
-        _ => None,
-    };
     let _ = writeln!(
         out,
         "<p><small>Written by wbv {}. Health: ISO 2631-1:1997 clause 7 and Annex B, \
