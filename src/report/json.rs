@@ -268,7 +268,7 @@ pub struct ReproductionRow {
     pub unit: String,
     /// Why it differs, or how it was computed.
     pub note: String,
-    /// Within [`crate::reproduce::TOLERANCE`] of the paper.
+    /// Within [`crate::study::table::TOLERANCE`] of the paper.
     pub reproduced: bool,
 }
 
@@ -286,7 +286,7 @@ pub struct Reproduction {
 
 impl Reproduction {
     /// The table `rows`, written to `written`.
-    pub fn of(rows: &[crate::reproduce::Row], written: Vec<Written>) -> Reproduction {
+    pub fn of(rows: &[crate::study::table::Row], written: Vec<Written>) -> Reproduction {
         Reproduction {
             rows: rows
                 .iter()
@@ -302,7 +302,7 @@ impl Reproduction {
                 .collect(),
             reproduced: rows.iter().filter(|r| r.reproduced()).count(),
             total: rows.len(),
-            tolerance_percent: 100.0 * crate::reproduce::TOLERANCE,
+            tolerance_percent: 100.0 * crate::study::table::TOLERANCE,
             written,
         }
     }
