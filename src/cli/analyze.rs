@@ -1,5 +1,6 @@
 use crate::analysis::{self, Options, Report, Segment, WelchOptions, Window};
 use crate::io::atomic::Overwrite;
+use crate::report::json::{WithFiles, Written};
 use std::path::PathBuf;
 
 /// Arguments of `wbv analyze`.
@@ -75,9 +76,12 @@ pub fn run(args: Args) -> crate::Result<()> {
         ..Options::default()
     };
     let report = Report::from_signals(&signals, &opts)?;
-    // What the reader decided, once the run is known to analyse (an error stays one line).
-    for n in &input.notes {
-        eprintln!("input: {n}");
+    // What the reader decided, once the run is known to analyse (an error stays one line); with
+    // --json these are the document's warnings.
+    if !args.json {
+        for n in &input.notes {
+            eprintln!("input: {n}");
+        }
     }
     if args.timing {
         eprintln!(
@@ -87,16 +91,23 @@ pub fn run(args: Args) -> crate::Result<()> {
             signals.names.len()
         );
     }
+    let mut written = Vec::new();
     if let Some((dir, ext)) = &plot {
         for p in analysis::plots::write_plots(&signals, &report, &welch, dir, ext, ow)? {
             eprintln!("wrote {}", p.display());
+            written.push(Written::of(&p)?);
         }
     }
     if args.json {
-        println!(
-            "{}",
-            serde_json::to_string_pretty(&report).expect("report serializes")
-        );
+        let notes: Vec<String> = input.notes.iter().map(|n| format!("input: {n}")).collect();
+        super::print_json(
+            "analyze",
+            &WithFiles {
+                result: &report,
+                written,
+            },
+            &notes,
+        )?;
     } else {
         print_table(&report);
     }

@@ -35,6 +35,9 @@ pub struct Args {
     /// Seed of the GA's random stream.
     #[arg(long, default_value_t = 1)]
     seed: u64,
+    /// Print the fits as JSON (`fits`: method, params with start values, goodness before/after).
+    #[arg(long)]
+    json: bool,
 }
 
 fn report(problem: &Problem, fit: &Fit) {
@@ -103,8 +106,13 @@ pub fn run(args: Args) -> crate::Result<()> {
             }
         }]
     };
-    for fit in calibrate::compare(&problem, &methods)? {
-        report(&problem, &fit);
+    let fits = calibrate::compare(&problem, &methods)?;
+    if args.json {
+        let out = crate::report::json::Calibrated::of(&problem, &fits);
+        return super::print_json("calibrate", &out, &[]);
+    }
+    for fit in &fits {
+        report(&problem, fit);
     }
     Ok(())
 }

@@ -4,12 +4,17 @@ use crate::error::Error;
 use crate::excitation::{ExcitationArgs, ExcitationSpec, builtin, resolve};
 use crate::io::atomic::Overwrite;
 use crate::io::csv_run;
+use crate::report::json::{ExcitationEntry, Files, Written};
 use crate::signals::Signals;
 use std::path::PathBuf;
 
 /// Arguments of `wbv excitations`.
 #[derive(Debug, clap::Args)]
-pub struct ListArgs {}
+pub struct ListArgs {
+    /// Print the list as JSON (`excitations`: name, description, origin, rms_m_s2).
+    #[arg(long)]
+    json: bool,
+}
 
 /// Arguments of `wbv excitation-export`.
 #[derive(Debug, clap::Args)]
@@ -31,10 +36,24 @@ pub struct ExportArgs {
     /// Replace an existing output file.
     #[arg(long)]
     force: bool,
+    /// Print what was written as JSON (`written`, `samples`, `sample_rate_hz`, `excitation`).
+    #[arg(long)]
+    json: bool,
 }
 
-pub fn list(_args: ListArgs) -> crate::Result<()> {
+pub fn list(args: ListArgs) -> crate::Result<()> {
     let names = builtin::names();
+    if args.json {
+        let list = names
+            .iter()
+            .map(|n| Ok(ExcitationEntry::of(n, &ExcitationSpec::load(n)?)))
+            .collect::<crate::Result<Vec<_>>>()?;
+        return super::print_json(
+            "excitations",
+            &serde_json::json!({ "excitations": list }),
+            &[],
+        );
+    }
     let width = names.iter().map(|n| n.len()).max().unwrap_or(0);
     for name in names {
         let spec = ExcitationSpec::load(name)?;
@@ -53,6 +72,9 @@ pub fn list(_args: ListArgs) -> crate::Result<()> {
 }
 
 pub fn export(args: ExportArgs) -> crate::Result<()> {
+    let overwrite = Overwrite::from_force(args.force);
+    // Refuse an overwrite before any work.
+    crate::io::atomic::check_overwrite(&args.out, overwrite)?;
     let spec = resolve(&args.excitation)?;
     if !(args.duration.is_finite() && args.duration > 0.0) {
         return Err(Error::parameter(
@@ -66,11 +88,6 @@ pub fn export(args: ExportArgs) -> crate::Result<()> {
     exc.fill(&mut samples);
     let mut signals = Signals::new(1.0 / args.dt, exc.describe());
     signals.push("a_base_z", samples)?;
-    let overwrite = if args.force {
-        Overwrite::Allow
-    } else {
-        Overwrite::Refuse
-    };
     csv_run::write(&args.out, &signals, overwrite)?;
     eprintln!(
         "wrote {} samples of {} to {}",
@@ -78,5 +95,14 @@ pub fn export(args: ExportArgs) -> crate::Result<()> {
         exc.describe(),
         args.out.display()
     );
+    if args.json {
+        let files = Files::new(vec![Written::of(&args.out)?])
+            .with("samples", n)
+            .with("sample_rate_hz", 1.0 / args.dt)
+            .with("duration_s", args.duration)
+            .with("seed", args.seed)
+            .with("excitation", exc.describe());
+        super::print_json("excitation-export", &files, &[])?;
+    }
     Ok(())
 }

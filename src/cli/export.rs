@@ -5,6 +5,7 @@
 use crate::analysis::{Weighting, WeightingFilter};
 use crate::error::Error;
 use crate::io::atomic::{Overwrite, write_atomic};
+use crate::report::json::{Files, Written};
 use serde_json::json;
 use std::io::Write;
 use std::path::PathBuf;
@@ -20,6 +21,10 @@ pub struct StateSpaceArgs {
     /// Replace an existing output file.
     #[arg(long)]
     force: bool,
+    /// The one JSON document of every command: the matrices with `command` and `warnings` added,
+    /// or with --out, what was written (`written`, `model`, `states`).
+    #[arg(long)]
+    json: bool,
 }
 
 /// Arguments of `wbv weighting`.
@@ -31,16 +36,37 @@ pub struct WeightingArgs {
     /// Sample rate in Hz.
     #[arg(long, default_value_t = 1000.0)]
     fs: f64,
+    /// The output is JSON either way; with --json it also has the `command` and `warnings` keys
+    /// of every command's document.
+    #[arg(long)]
+    json: bool,
 }
 
-fn emit(text: String, out: &Option<PathBuf>, force: bool) -> crate::Result<()> {
+/// Writes `value` to `out` (then, with `json`, prints what was written) or prints it (as the
+/// command's JSON document with `json`).
+fn emit(
+    command: &str,
+    value: &serde_json::Value,
+    out: &Option<PathBuf>,
+    force: bool,
+    json: bool,
+) -> crate::Result<()> {
+    let text = serde_json::to_string_pretty(value)
+        .map_err(|e| Error::parameter(command, e.to_string()))?;
     match out {
         Some(p) => {
             write_atomic(p, Overwrite::from_force(force), |w| {
                 w.write_all(text.as_bytes()).map_err(|e| Error::io(p, e))
             })?;
             eprintln!("wrote {}", p.display());
+            if json {
+                let files = Files::new(vec![Written::of(p)?])
+                    .with("model", &value["model"])
+                    .with("states", value["states"].as_array().map_or(0, |s| s.len()));
+                super::print_json(command, &files, &[])?;
+            }
         }
+        None if json => super::print_json(command, value, &[])?,
         None => println!("{text}"),
     }
     Ok(())
@@ -49,6 +75,10 @@ fn emit(text: String, out: &Option<PathBuf>, force: bool) -> crate::Result<()> {
 /// Prints `ẏ = A·y + B·a_base`, `a_abs = C·y` (absolute mass accelerations; D = 0) of the model
 /// linearised at rest ([`crate::system::System::state_space`]).
 pub fn state_space(args: StateSpaceArgs) -> crate::Result<()> {
+    if let Some(out) = &args.out {
+        // Refuse an overwrite before any work.
+        crate::io::atomic::check_overwrite(out, Overwrite::from_force(args.force))?;
+    }
     let model = args.model.resolve()?;
     let system = model.system();
     let ss = system.state_space();
@@ -91,11 +121,7 @@ pub fn state_space(args: StateSpaceArgs) -> crate::Result<()> {
         "B": ss.b.iter().collect::<Vec<_>>(),
         "C": c,
     });
-    emit(
-        serde_json::to_string_pretty(&text).expect("JSON"),
-        &args.out,
-        args.force,
-    )
+    emit("state-space", &text, &args.out, args.force, args.json)
 }
 
 /// Prints the digital filter of a weighting as second-order sections in scipy's `sos` layout
@@ -118,9 +144,5 @@ pub fn weighting(args: WeightingArgs) -> crate::Result<()> {
         .map(|s| [s.b[0], s.b[1], s.b[2], 1.0, s.a[0], s.a[1]])
         .collect();
     let text = json!({"weighting": w.name(), "fs_hz": args.fs, "sos": sos});
-    emit(
-        serde_json::to_string_pretty(&text).expect("JSON"),
-        &None,
-        false,
-    )
+    emit("weighting", &text, &None, false, args.json)
 }

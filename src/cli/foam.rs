@@ -24,6 +24,9 @@ pub struct Args {
     /// Frequency domain only: skip the time-domain SEAT, a_v and comfort class.
     #[arg(long)]
     no_time_domain: bool,
+    /// Print the table as JSON (`points` with the paper's values under `paper`).
+    #[arg(long)]
+    json: bool,
     /// Excitation of the time-domain figures (default: random 0.5–20 Hz, 0.4 m/s² r.m.s., the
     /// magnitude paper 000 states).
     #[command(flatten, next_help_heading = "Time-domain run")]
@@ -110,6 +113,10 @@ pub fn run(args: Args) -> crate::Result<()> {
         })
     };
     let points = thickness_study(&model, &foam, &thicknesses, iso.as_ref())?;
+    if args.json {
+        let table = crate::report::json::Foam::of(&model.name, &foam, iso.as_ref(), &points);
+        return super::print_json("foam", &table, &[]);
+    }
     println!(
         "foam thickness study (paper 000 Table 4, v-v): `{}` on a hyperfoam layer, A = {} m², \
          η = {} at {} Hz; paper values in parentheses",

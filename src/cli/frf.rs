@@ -1,5 +1,6 @@
 use crate::error::Error;
 use crate::io::atomic::{Overwrite, write_atomic};
+use crate::report::json::Written;
 use crate::response::frf;
 use std::io::Write;
 use std::path::PathBuf;
@@ -33,6 +34,10 @@ pub struct Args {
     /// Replace existing output files.
     #[arg(long)]
     force: bool,
+    /// Print a JSON summary on stdout instead of the CSV: every response's unit and peak, the
+    /// files written, and the curves (`freq_hz`, `mag`, `phase_deg`) when there is no `--out`.
+    #[arg(long)]
+    json: bool,
     /// Planar models: foam thickness of the cushion in m (paper 000: 0.06, 0.08, 0.10).
     #[arg(long)]
     foam_thickness: Option<f64>,
@@ -77,10 +82,15 @@ pub fn run(args: Args) -> crate::Result<()> {
     }
     let freqs = frf::grid(args.from, args.to, args.points, args.log)?;
     let set = frf::compute(model.system(), &freqs)?;
+    let mut written = Vec::new();
     match &args.out {
-        Some(path) => write_atomic(path, overwrite, |w| {
-            write_csv(&set, w).map_err(|e| Error::io(path, e))
-        })?,
+        Some(path) => {
+            write_atomic(path, overwrite, |w| {
+                write_csv(&set, w).map_err(|e| Error::io(path, e))
+            })?;
+            written.push(Written::of(path)?);
+        }
+        None if args.json => {}
         None => {
             write_csv(&set, &mut std::io::stdout().lock()).map_err(|e| Error::io("stdout", e))?
         }
@@ -88,6 +98,13 @@ pub fn run(args: Args) -> crate::Result<()> {
     if let Some(path) = &plot {
         crate::plot::frf_plot(&set, &model.name, args.log, path, overwrite)?;
         eprintln!("wrote {}", path.display());
+        written.push(Written::of(path)?);
+    }
+    if args.json {
+        let mut summary =
+            crate::report::json::Frf::of(&model.name, &set, args.log, args.out.is_none());
+        summary.written = written;
+        super::print_json("frf", &summary, &[])?;
     }
     Ok(())
 }

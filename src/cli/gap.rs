@@ -19,7 +19,8 @@ pub struct Args {
     /// How to read the runs (applies to every --run and --check).
     #[command(flatten)]
     input: crate::io::input::InputArgs,
-    /// Print the report as JSON (top-level `verdict`).
+    /// Print the report as JSON (top-level `verdict`, `named`, `warnings`, `written`); `wbv report
+    /// RUN --gap FILE` shows it as the report's gap section.
     #[arg(long)]
     json: bool,
     /// Write the gap-map and before/after plots into this directory.
@@ -86,15 +87,22 @@ pub fn run(args: Args) -> crate::Result<()> {
         .collect::<crate::Result<Vec<_>>>()?;
     let check = load(&args.check)?;
     let d = diagnose(&model, &train, &check)?;
+    let mut written = Vec::new();
     if let Some((dir, ext)) = &plot {
         plot::write_as(&d, dir, ext, ow)?;
         eprintln!("wrote {}", dir.display());
+        written = crate::report::json::Written::existing(&plot::files(dir, ext))?;
     }
     if args.json {
-        println!(
-            "{}",
-            serde_json::to_string_pretty(&report::json(&d)).expect("JSON value serializes")
-        );
+        // The diagnosis's own `warnings` are the document's; they go to stderr too.
+        for w in &d.warnings {
+            eprintln!("warning: {w}");
+        }
+        let body = crate::report::json::WithFiles {
+            result: report::json(&d),
+            written,
+        };
+        super::print_json("gap", &body, &[])?;
     } else {
         print!("{}", report::text(&d));
     }

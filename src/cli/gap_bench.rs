@@ -27,11 +27,11 @@ pub fn run(args: Args) -> crate::Result<()> {
         .collect::<crate::Result<Vec<_>>>()?;
     let s = summary(&scores, args.seed, t0.elapsed().as_secs_f64());
     if args.json {
-        println!(
-            "{}",
-            serde_json::to_string_pretty(&serde_json::json!({"cases": scores, "summary": s}))
-                .expect("JSON value serializes")
-        );
+        super::print_json(
+            "gap-bench",
+            &serde_json::json!({"cases": scores, "summary": s}),
+            &[],
+        )?;
     } else if args.markdown {
         print!("{}", s.markdown());
     } else {

@@ -6,6 +6,10 @@ use std::path::PathBuf;
 pub struct Args {
     /// A run recorded by wbv: its directory under `runs/` or the `.mcap` file.
     run: PathBuf,
+    /// Print the summary as JSON (`path`, `duration_s`, `topics`, `provenance`, `results`,
+    /// `attachments`).
+    #[arg(long)]
+    json: bool,
 }
 
 /// Metadata keys shown first, in this order; the model TOML is summarised, not printed.
@@ -26,6 +30,9 @@ const RUN_KEYS: [&str; 12] = [
 
 pub fn run(args: Args) -> crate::Result<()> {
     let s = inspect(&crate::record::run_file(&args.run))?;
+    if args.json {
+        return super::print_json("inspect", &crate::report::json::Inspected::of(&s), &[]);
+    }
     println!("{}  ({})", s.path.display(), s.library);
     let duration = s.end_ns.saturating_sub(s.start_ns) as f64 * 1e-9;
     println!(

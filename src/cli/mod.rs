@@ -135,6 +135,23 @@ impl TimeArgs {
     }
 }
 
+/// Prints the JSON document of `command` (see [`crate::report::json`]) as the only output on
+/// stdout; its `warnings` also go to stderr, like every status line.
+pub(crate) fn print_json<T: serde::Serialize>(
+    command: &str,
+    body: &T,
+    warnings: &[String],
+) -> crate::Result<()> {
+    for w in warnings {
+        eprintln!("warning: {w}");
+    }
+    println!(
+        "{}",
+        crate::report::json::document(command, body, warnings)?
+    );
+    Ok(())
+}
+
 /// Runs the command line; prints errors as one line on stderr.
 pub fn main() -> ExitCode {
     let cli = Cli::parse();

@@ -6,10 +6,20 @@ pub struct Args {
     /// Also list each model's parameter paths (for sweeps and calibration).
     #[arg(long)]
     params: bool,
+    /// Print the list as JSON (`models`: name, kind, dof, description, params).
+    #[arg(long)]
+    json: bool,
 }
 
 pub fn run(args: Args) -> crate::Result<()> {
     let models = catalog::all()?;
+    if args.json {
+        return super::print_json(
+            "models",
+            &serde_json::json!({ "models": crate::report::json::models(&models) }),
+            &[],
+        );
+    }
     let width = models.iter().map(|m| m.name.len()).max().unwrap_or(0);
     for (title, kind) in [
         ("Configurations (occupant on a seat):", Kind::System),

@@ -130,8 +130,7 @@ pub fn run(args: Args) -> crate::Result<()> {
                 })
                 .collect();
         }
-        println!("{}", serde_json::to_string_pretty(&json).expect("json"));
-        return Ok(());
+        return super::print_json("modes", &json, &[]);
     }
     println!("Model {} ({} DOF)", model.name, model.dof());
     println!("\nUndamped modes (dashpots locked): frequency [Hz] and shape (largest = 1)");

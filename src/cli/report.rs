@@ -17,8 +17,12 @@ pub struct Args {
     /// Replace an existing report.
     #[arg(long)]
     force: bool,
-    /// Print a JSON summary (`report_html`, `total_value`, `comfort`, `health`, `units`) on
-    /// stdout instead of the path.
+    /// Add a gap section from this sim-to-real gap diagnosis (the output of `wbv gap --json`);
+    /// without it, a `gap.json` in the run directory is used when there is one.
+    #[arg(long, value_name = "FILE")]
+    gap: Option<PathBuf>,
+    /// Print a JSON summary (`report_html`, `bytes`, `total_value`, `comfort`, `health`, `gap`,
+    /// `units`) on stdout instead of the path.
     #[arg(long)]
     json: bool,
 }
@@ -27,6 +31,7 @@ pub fn run(args: Args) -> crate::Result<()> {
     let out = args.out.clone().unwrap_or_else(|| default_path(&args.run));
     let settings = Settings {
         exposure_hours: args.exposure_hours,
+        gap: args.gap.clone(),
     };
     let built = write(
         &args.run,
@@ -35,20 +40,9 @@ pub fn run(args: Args) -> crate::Result<()> {
         Overwrite::from_force(args.force),
     )?;
     if args.json {
-        let v = serde_json::json!({
-            "report_html": out.display().to_string(),
-            "total_value": built.report.total_value,
-            "comfort": built.report.comfort,
-            "health": built.health,
-            "units": {"total_value": "m/s^2", "health.a8": "m/s^2",
-                      "health.vdv_exposure": "m/s^1.75", "health.exposure_hours": "h"},
-        });
-        println!(
-            "{}",
-            serde_json::to_string_pretty(&v).expect("JSON value serializes")
-        );
-    } else {
-        println!("{}", out.display());
+        let summary = crate::report::json::ReportSummary::of(&out, &built)?;
+        return super::print_json("report", &summary, &[]);
     }
+    println!("{}", out.display());
     Ok(())
 }

@@ -12,20 +12,26 @@ pub struct Args {
     /// Replace the existing file.
     #[arg(long)]
     force: bool,
+    /// Print every row and what was written as JSON (`rows`, `reproduced`, `total`, `written`).
+    #[arg(long)]
+    json: bool,
 }
 
 pub fn run(args: Args) -> crate::Result<()> {
+    let overwrite = Overwrite::from_force(args.force);
+    // Refuse an overwrite before the studies run.
+    crate::io::atomic::check_overwrite(&args.out, overwrite)?;
     let rows = crate::reproduce::rows()?;
     let md = crate::reproduce::markdown(&rows);
-    let overwrite = if args.force {
-        Overwrite::Allow
-    } else {
-        Overwrite::Refuse
-    };
     write_atomic(&args.out, overwrite, |w| {
         w.write_all(md.as_bytes())
             .map_err(|e| Error::io(&args.out, e))
     })?;
+    if args.json {
+        let written = vec![crate::report::json::Written::of(&args.out)?];
+        let table = crate::report::json::Reproduction::of(&rows, written);
+        return super::print_json("reproduce", &table, &[]);
+    }
     let n = rows.iter().filter(|r| r.reproduced()).count();
     println!(
         "{}: {n} of {} numbers reproduced within 5 %",

@@ -1,5 +1,6 @@
 use crate::analysis::health::{self, DEFAULT_EXPOSURE_HOURS};
 use crate::record::{RUN_FILE, RecordOptions};
+use crate::report::json::Written;
 use crate::scenario::default_scenario;
 use std::path::PathBuf;
 
@@ -12,6 +13,10 @@ pub struct Args {
     /// Daily exposure in hours assumed for the health assessment (default: a working day).
     #[arg(long, default_value_t = DEFAULT_EXPOSURE_HOURS)]
     exposure_hours: f64,
+    /// Print the result as JSON (`run_dir`, `written`, `analysis`, `health`, `report_html`);
+    /// status lines stay on stderr.
+    #[arg(long)]
+    json: bool,
 }
 
 /// The first run directory under `runs/` whose recording does not exist yet, so an earlier run
@@ -55,22 +60,18 @@ pub fn run(args: Args) -> crate::Result<()> {
         scenario.seed
     );
     let outcome = super::simulate::execute(&scenario, Some(&dir), RecordOptions::default(), None)?;
-    if let Some(r) = &outcome.report {
+    let health = outcome.report.as_ref().and_then(|r| {
         let axes: Vec<_> = r
             .channels
             .iter()
             .filter(|c| c.place == "seat")
             .map(|c| (c.axis.clone(), c.a_w, c.vdv))
             .collect();
-        if let Some(h) = health::assess(&axes, r.duration_s, args.exposure_hours) {
-            println!();
-            for line in h.statement() {
-                println!("{line}");
-            }
-        }
-    }
+        health::assess(&axes, r.duration_s, args.exposure_hours)
+    });
     let settings = crate::report::Settings {
         exposure_hours: args.exposure_hours,
+        gap: None,
     };
     crate::report::write(
         &mcap,
@@ -78,10 +79,29 @@ pub fn run(args: Args) -> crate::Result<()> {
         &settings,
         crate::io::atomic::Overwrite::Refuse,
     )?;
-    println!("\nReport: {}", html.display());
     eprintln!(
         "Open {} in Foxglove or Lichtblick (layout: tools/viewer/wbv-layout.json) or PlotJuggler.",
         mcap.display()
     );
+    if args.json {
+        let mut written = super::simulate::written(Some(&dir), None)?;
+        written.push(Written::of(&html)?);
+        let run = crate::report::json::Run {
+            run_dir: dir.display().to_string(),
+            simulated: crate::report::json::Simulated::of(&scenario, &outcome, written),
+            exposure_hours: args.exposure_hours,
+            health,
+            report_html: html.display().to_string(),
+        };
+        return super::print_json("run", &run, &[]);
+    }
+    super::simulate::print_table(&outcome);
+    if let Some(h) = &health {
+        println!();
+        for line in h.statement() {
+            println!("{line}");
+        }
+    }
+    println!("\nReport: {}", html.display());
     Ok(())
 }

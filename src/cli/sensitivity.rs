@@ -1,6 +1,7 @@
 use super::sweep::{progress, sibling};
 use crate::error::Error;
 use crate::io::atomic::{Overwrite, write_atomic};
+use crate::report::json::{Sensitivity, Written};
 use crate::response::frf;
 use crate::study::param::{Param, parse_values};
 use crate::study::sensitivity;
@@ -41,9 +42,21 @@ pub struct Args {
     /// Replace existing output files.
     #[arg(long)]
     force: bool,
+    /// Print the rows and influence weights as JSON (`rows`, `influence`, `written`) instead of
+    /// CSV.
+    #[arg(long)]
+    json: bool,
 }
 
 pub fn run(args: Args) -> crate::Result<()> {
+    let ow = Overwrite::from_force(args.force);
+    // Refuse an overwrite before any work (the weights file is written for unsharded runs only).
+    if let Some(out) = &args.out {
+        crate::io::atomic::check_overwrite(out, ow)?;
+        if args.shard.is_none() {
+            crate::io::atomic::check_overwrite(&sibling(out, "-weights"), ow)?;
+        }
+    }
     let model = args.model.resolve()?;
     let params = args
         .params
@@ -62,20 +75,21 @@ pub fn run(args: Args) -> crate::Result<()> {
     bar.set_position(0);
     let rows = sensitivity::run(&model, &params, &levels, &args.response, &freq, shard)?;
     bar.finish_and_clear();
-    let ow = if args.force {
-        Overwrite::Allow
-    } else {
-        Overwrite::Refuse
-    };
+    let mut written = Vec::new();
     if let Some(out) = &args.out {
         write_atomic(out, ow, |w| {
             sensitivity::write(&rows, w).map_err(|e| Error::io(out, e))
         })?;
+        written.push(Written::of(out)?);
     }
-    if shard.count > 1 {
+    let inf = if shard.count > 1 {
+        Vec::new()
+    } else {
+        sensitivity::influence(&rows)
+    };
+    if shard.count > 1 && !args.json {
         return Ok(());
     }
-    let inf = sensitivity::influence(&rows);
     let mut table = String::from("param,peak_freq_range_pct,peak_mag_range_pct,weight\n");
     for i in &inf {
         table += &format!(
@@ -84,18 +98,26 @@ pub fn run(args: Args) -> crate::Result<()> {
         );
     }
     match &args.out {
-        Some(out) => {
+        Some(out) if shard.count <= 1 => {
             let p = sibling(out, "-weights");
             write_atomic(&p, ow, |w| {
                 std::io::Write::write_all(w, table.as_bytes()).map_err(|e| Error::io(&p, e))
             })?;
+            written.push(Written::of(&p)?);
         }
+        _ if args.json => {}
+        Some(_) => {}
         None => {
             let mut so = std::io::stdout().lock();
             sensitivity::write(&rows, &mut so).map_err(|e| Error::io("stdout", e))?;
             std::io::Write::write_all(&mut so, format!("\n{table}").as_bytes())
                 .map_err(|e| Error::io("stdout", e))?;
         }
+    }
+    if args.json {
+        let mut out = Sensitivity::of(&model.name, &args.response, &rows, &inf);
+        out.written = written;
+        super::print_json("sensitivity", &out, &[])?;
     }
     Ok(())
 }

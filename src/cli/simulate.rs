@@ -16,7 +16,7 @@ pub struct Args {
     pub time: super::TimeArgs,
     /// Re-run a recorded run exactly (an MCAP file or run directory): its model TOML, excitation
     /// definition, integrator, step, duration, seed and recording options; only --out, --force,
-    /// --csv and --timing may be given with it. The new recording is byte-identical.
+    /// --csv, --timing and --json may be given with it. The new recording is byte-identical.
     #[arg(long)]
     pub from: Option<PathBuf>,
     /// Run directory; the recording is `<DIR>/run.mcap` (default `runs/<model>-s<seed>`).
@@ -45,6 +45,10 @@ pub struct Args {
     /// an extra run before the real one, and print both times on stderr.
     #[arg(long)]
     pub timing: bool,
+    /// Print the result as JSON on stdout (`analysis`, `written`, `elapsed_s`, …); status lines
+    /// stay on stderr.
+    #[arg(long)]
+    pub json: bool,
 }
 
 impl Args {
@@ -83,7 +87,8 @@ pub fn progress(steps: u64) -> indicatif::ProgressBar {
 
 /// The command line for provenance, normalised so that the same run gives the same bytes
 /// wherever it is written and whichever binary ran it: program name `wbv`, and without the
-/// output options `--out`, `--csv` (their values are paths of this machine) and `--force`.
+/// output options `--out`, `--csv` (their values are paths of this machine), `--force` and
+/// `--json` (how the result is printed).
 pub fn command_line() -> String {
     normalise(std::env::args().skip(1))
 }
@@ -100,7 +105,7 @@ fn normalise(args: impl Iterator<Item = String>) -> String {
             if !a.contains('=') {
                 args.next();
             }
-        } else if a != "--force" {
+        } else if a != "--force" && a != "--json" {
             out.push(a);
         }
     }
@@ -117,7 +122,7 @@ fn check_from_alone(args: impl Iterator<Item = String>) -> crate::Result<()> {
             if !a.contains('=') {
                 args.next();
             }
-        } else if !["simulate", "--force", "--timing"].contains(&a.as_str()) {
+        } else if !["simulate", "--force", "--timing", "--json"].contains(&a.as_str()) {
             return Err(crate::Error::parameter(
                 a,
                 "cannot be given with --from, which re-runs the recorded run exactly (only --out, \
@@ -199,7 +204,7 @@ pub fn from_run(run: &Path) -> crate::Result<(Scenario, RecordOptions, String)> 
     Ok((scenario, options, p.command_line))
 }
 
-/// Runs `scenario` into `dir` (unless `record` is false) and prints what it produced.
+/// Runs `scenario` into `dir` (unless `record` is false); its status lines go to stderr.
 pub fn execute(
     scenario: &Scenario,
     dir: Option<&Path>,
@@ -229,7 +234,7 @@ fn execute_as(
     let memory = crate::io::memory::peak_resident_bytes().map_or(String::new(), |b| {
         format!(", peak memory {:.0} MB", b as f64 / 1e6)
     });
-    println!(
+    eprintln!(
         "simulated {} s of `{}` under {} with {} in {:.2} s{memory}",
         scenario.settings.duration_s,
         scenario.model.name,
@@ -238,20 +243,50 @@ fn execute_as(
         outcome.elapsed_s
     );
     if let Some((p, _)) = &outputs.mcap {
-        println!("recorded {}", p.display());
+        eprintln!("recorded {}", p.display());
     }
     if let Some(p) = &outputs.csv {
-        println!("wrote {}", p.display());
-    }
-    match (&outcome.report, &outcome.report_skipped) {
-        (Some(r), _) => {
-            println!();
-            super::analyze::print_table(r);
-        }
-        (None, Some(why)) => println!("analysis skipped: {why}"),
-        (None, None) => {}
+        eprintln!("wrote {}", p.display());
     }
     Ok(outcome)
+}
+
+/// The files a run into `dir` (with `csv`) wrote.
+pub fn written(
+    dir: Option<&Path>,
+    csv: Option<&Path>,
+) -> crate::Result<Vec<crate::report::json::Written>> {
+    let files: Vec<PathBuf> = dir
+        .map(|d| d.join(RUN_FILE))
+        .into_iter()
+        .chain(csv.map(Path::to_path_buf))
+        .collect();
+    crate::report::json::Written::existing(&files)
+}
+
+/// The result of a run on stdout: its ISO 2631-1 table, or with `json` the JSON document.
+fn print_result(
+    scenario: &Scenario,
+    outcome: &Outcome,
+    dir: Option<&Path>,
+    csv: Option<&Path>,
+    json: bool,
+) -> crate::Result<()> {
+    if json {
+        let s = crate::report::json::Simulated::of(scenario, outcome, written(dir, csv)?);
+        return super::print_json("simulate", &s, &[]);
+    }
+    print_table(outcome);
+    Ok(())
+}
+
+/// The ISO 2631-1 table of a run on stdout (or why there is none, on stderr).
+pub fn print_table(outcome: &Outcome) {
+    match (&outcome.report, &outcome.report_skipped) {
+        (Some(r), _) => super::analyze::print_table(r),
+        (None, Some(why)) => eprintln!("analysis skipped: {why}"),
+        (None, None) => {}
+    }
 }
 
 /// Times, in extra runs, generating the excitation alone and the simulation core (excitation +
@@ -276,9 +311,28 @@ fn time_core(scenario: &Scenario) -> crate::Result<(f64, f64)> {
     Ok((excitation, start.elapsed().as_secs_f64()))
 }
 
+/// Refuses existing outputs before any input is read or anything simulated: the recording in
+/// `dir` and the CSV.
+fn refuse_existing(dir: Option<&Path>, csv: Option<&Path>, force: bool) -> crate::Result<()> {
+    let ow = Overwrite::from_force(force);
+    if let Some(d) = dir {
+        crate::io::atomic::check_overwrite(&d.join(RUN_FILE), ow)?;
+    }
+    if let Some(c) = csv {
+        crate::io::atomic::check_overwrite(c, ow)?;
+    }
+    Ok(())
+}
+
+/// The default run directory of `model` and `seed`: `runs/<model>-s<seed>`.
+fn default_dir(model: &str, seed: u64) -> PathBuf {
+    PathBuf::from("runs").join(format!("{}-s{seed}", model.replace('+', "_")))
+}
+
 pub fn run(args: Args) -> crate::Result<()> {
     if let Some(run) = &args.from {
         check_from_alone(std::env::args().skip(1))?;
+        refuse_existing(args.out.as_deref(), args.csv.as_deref(), args.force)?;
         let (scenario, options, line) = from_run(run)?;
         let options = RecordOptions {
             overwrite: Overwrite::from_force(args.force),
@@ -287,8 +341,14 @@ pub fn run(args: Args) -> crate::Result<()> {
         let dir = args.out.clone().ok_or_else(|| {
             crate::Error::parameter("--out", "required with --from (a new run directory)")
         })?;
-        execute_as(&scenario, Some(&dir), options, args.csv.clone(), line)?;
-        return Ok(());
+        let outcome = execute_as(&scenario, Some(&dir), options, args.csv.clone(), line)?;
+        return print_result(
+            &scenario,
+            &outcome,
+            Some(&dir),
+            args.csv.as_deref(),
+            args.json,
+        );
     }
     if args.no_record {
         for (set, flag) in [
@@ -303,6 +363,15 @@ pub fn run(args: Args) -> crate::Result<()> {
             }
         }
     }
+    let dir = match &args.out {
+        Some(d) => d.clone(),
+        None => default_dir(&args.model.resolve()?.name, args.time.seed),
+    };
+    refuse_existing(
+        (!args.no_record).then_some(dir.as_path()),
+        args.csv.as_deref(),
+        args.force,
+    )?;
     let scenario = args.scenario()?;
     let core = if args.timing {
         Some(time_core(&scenario)?)
@@ -316,13 +385,6 @@ pub fn run(args: Args) -> crate::Result<()> {
         overwrite: Overwrite::from_force(args.force),
         ..RecordOptions::default()
     };
-    let dir = args.out.clone().unwrap_or_else(|| {
-        PathBuf::from("runs").join(format!(
-            "{}-s{}",
-            scenario.model.name.replace('+', "_"),
-            scenario.seed
-        ))
-    });
     let outcome = execute(
         &scenario,
         (!args.no_record).then_some(dir.as_path()),
@@ -339,7 +401,13 @@ pub fn run(args: Args) -> crate::Result<()> {
             if args.no_record { "" } else { " and recording" }
         );
     }
-    Ok(())
+    print_result(
+        &scenario,
+        &outcome,
+        (!args.no_record).then_some(dir.as_path()),
+        args.csv.as_deref(),
+        args.json,
+    )
 }
 
 #[cfg(test)]
@@ -356,7 +424,7 @@ mod tests {
         };
         assert_eq!(
             normalise(args(
-                "simulate --out /tmp/a --model reference --force --csv=x.csv --seed 2"
+                "simulate --out /tmp/a --model reference --force --csv=x.csv --seed 2 --json"
             )),
             "wbv simulate --model reference --seed 2"
         );

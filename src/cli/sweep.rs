@@ -2,6 +2,7 @@ use crate::error::Error;
 use crate::excitation::ExcitationArgs;
 use crate::io::atomic::{Overwrite, write_atomic};
 use crate::plot::{Axis, Chart, Rule, Series, Style};
+use crate::report::json::{Files, Written};
 use crate::response::frf;
 use crate::study::heatmap::{self, HeatMap};
 use crate::study::iso::IsoRun;
@@ -53,6 +54,10 @@ pub struct Args {
     /// Replace existing output files.
     #[arg(long)]
     force: bool,
+    /// Print the peaks table as JSON (`points`: values, peak, time-domain `figures`; `written`)
+    /// instead of CSV.
+    #[arg(long)]
+    json: bool,
     /// With any excitation option, every point is also simulated (same seed at every point) and
     /// its ISO 2631-1 figures (a_w seat, a_v, SEAT, comfort) join the peaks table.
     #[command(
@@ -79,6 +84,9 @@ pub struct MergeArgs {
     /// Replace an existing output file.
     #[arg(long)]
     force: bool,
+    /// Print what was written as JSON (`written`, `shards`).
+    #[arg(long)]
+    json: bool,
 }
 
 fn overwrite(force: bool) -> Overwrite {
@@ -316,6 +324,7 @@ pub fn run(args: Args) -> crate::Result<()> {
     let bar = progress(shard.points(spec.grid().len()).len());
     let pts = sweep::run(&model, &spec, shard, &hooks, &|| bar.inc(1))?;
     bar.finish_and_clear();
+    let mut written = Vec::new();
     match &args.out {
         Some(out) => {
             write_atomic(out, ow, |w| {
@@ -325,7 +334,9 @@ pub fn run(args: Args) -> crate::Result<()> {
             write_atomic(&peaks, ow, |w| {
                 sweep::write_peaks(&spec, &pts, &hooks, w).map_err(|e| Error::io(&peaks, e))
             })?;
+            written = Written::existing(&[out.clone(), peaks])?;
         }
+        None if args.json => {}
         None => sweep::write_peaks(&spec, &pts, &hooks, &mut std::io::stdout().lock())
             .map_err(|e| Error::io("stdout", e))?,
     }
@@ -337,6 +348,18 @@ pub fn run(args: Args) -> crate::Result<()> {
         for f in files.iter().filter(|f| f.exists()) {
             eprintln!("wrote {}", f.display());
         }
+        written.extend(Written::existing(files)?);
+    }
+    if args.json {
+        let mut table = crate::report::json::Sweep::of(
+            &model.name,
+            &spec,
+            &pts,
+            &hooks,
+            response_unit(&spec.response),
+        );
+        table.written = written;
+        super::print_json("sweep", &table, &[])?;
     }
     Ok(())
 }
@@ -397,9 +420,18 @@ fn iso_plot(
 }
 
 pub fn merge(args: MergeArgs) -> crate::Result<()> {
+    // Refuse an overwrite before reading the shards.
+    crate::io::atomic::check_overwrite(&args.out, overwrite(args.force))?;
     let files: Vec<&Path> = args.files.iter().map(|p| p.as_path()).collect();
     let text = shard::merge(&files)?;
     write_atomic(&args.out, overwrite(args.force), |w| {
         std::io::Write::write_all(w, text.as_bytes()).map_err(|e| Error::io(&args.out, e))
-    })
+    })?;
+    if args.json {
+        let files = Files::new(vec![Written::of(&args.out)?])
+            .with("shards", args.files.len())
+            .with("rows", text.lines().count().saturating_sub(1));
+        super::print_json("merge-shards", &files, &[])?;
+    }
+    Ok(())
 }

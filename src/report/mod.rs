@@ -3,7 +3,13 @@
 //! verdicts in the words of ISO 2631-1 and Directive 2002/44/EC, every chart of
 //! [`crate::analysis::plots`], and for a simulated run the model's frequency responses and modes.
 //!
+//! With a sim-to-real gap diagnosis (`--gap FILE`, the JSON of `wbv gap --json`, or a `gap.json`
+//! in the run directory) the page also has a gap section ([`gap`]).
+//!
 //! The page holds no date or absolute time, so the same run gives the same bytes.
+
+pub mod gap;
+pub mod json;
 
 use crate::analysis::health::{self, Health};
 use crate::analysis::plots::{self, RunFigure};
@@ -20,6 +26,9 @@ use std::path::{Path, PathBuf};
 pub struct Settings {
     /// Daily exposure assumed for the health assessment, h.
     pub exposure_hours: f64,
+    /// A gap diagnosis to show (the JSON of `wbv gap --json`); without it, the run directory's
+    /// [`gap::FILE`] when there is one.
+    pub gap: Option<PathBuf>,
 }
 
 impl Default for Settings {
@@ -27,6 +36,7 @@ impl Default for Settings {
     fn default() -> Self {
         Settings {
             exposure_hours: health::DEFAULT_EXPOSURE_HOURS,
+            gap: None,
         }
     }
 }
@@ -37,6 +47,8 @@ pub struct Built {
     pub html: String,
     pub report: Report,
     pub health: Option<Health>,
+    /// The gap section's verdict, when the page has one.
+    pub gap: Option<gap::Summary>,
 }
 
 /// The default report file of a run: `report.html` beside its `run.mcap` (a run directory stands
@@ -199,6 +211,18 @@ pub fn build(run: &Path, settings: &Settings) -> Result<Built> {
         ));
     }
     let file = crate::record::run_file(run);
+    // The diagnosis is read first: a wrong file is refused before the run is analysed.
+    let gap_file = settings.gap.clone().or_else(|| {
+        let beside = file.with_file_name(gap::FILE);
+        let is_mcap = file
+            .extension()
+            .is_some_and(|e| e.eq_ignore_ascii_case("mcap"));
+        (is_mcap && beside.is_file()).then_some(beside)
+    });
+    let diagnosis = match &gap_file {
+        Some(p) => Some(gap::read(p)?),
+        None => None,
+    };
     let signals = crate::analysis::load_signals(&file)?;
     let provenance = if file
         .extension()
@@ -270,6 +294,11 @@ pub fn build(run: &Path, settings: &Settings) -> Result<Built> {
     for n in &report.notes {
         let _ = writeln!(out, "<p>Note: {}</p>", esc(n));
     }
+    // The gap verdict belongs with the run's verdicts, before the details.
+    let gap = match (&diagnosis, &gap_file) {
+        (Some(d), Some(p)) => Some(gap::section(&mut out, d, &p.display().to_string())?),
+        _ => None,
+    };
     out.push_str("<h2>Scenario and provenance</h2>\n");
     match &provenance {
         Some(p) => provenance_html(&mut out, p),
@@ -297,6 +326,7 @@ pub fn build(run: &Path, settings: &Settings) -> Result<Built> {
         html: out,
         report,
         health,
+        gap,
     })
 }
 
