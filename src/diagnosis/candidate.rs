@@ -149,9 +149,10 @@ impl Candidate {
     pub fn applies_to(self, model: &Chain) -> bool {
         match self {
             Candidate::BodySoftening => interface_link(model).is_some(),
-            Candidate::BodySofteningMagnitude => model.links.iter().any(|l| {
-                l.role == Role::Body && matches!(l.element, Element::KelvinVoigt { .. })
-            }),
+            Candidate::BodySofteningMagnitude => model
+                .links
+                .iter()
+                .any(|l| l.role == Role::Body && matches!(l.element, Element::KelvinVoigt { .. })),
             Candidate::CushionStiffening
             | Candidate::CushionContact
             | Candidate::CushionViscoelastic => role_link(model, Role::Cushion).is_some(),

@@ -342,7 +342,10 @@ fn fit_candidate(
     let sig: Vec<f64> = base.iter().map(|(p, _)| prior_sigma(p)).collect();
     let eff: Vec<Param> = effect_params(cands).concat();
     // Geometric mean of the training magnitudes: a magnitude schedule's reference.
-    let rms_ref = (train.iter().map(|r| r.base_rms.max(1e-12).ln()).sum::<f64>()
+    let rms_ref = (train
+        .iter()
+        .map(|r| r.base_rms.max(1e-12).ln())
+        .sum::<f64>()
         / train.len().max(1) as f64)
         .exp();
     let f = |u: &[f64]| -> Result<Vec<f64>> {

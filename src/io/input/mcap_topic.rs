@@ -15,15 +15,18 @@ use super::{Column, Options, Raw, Timing};
 use crate::error::{Error, Result};
 use serde_json::{Map, Value};
 use std::collections::HashMap;
+use std::sync::Arc;
 
 /// Largest ratio of a chunk's stated uncompressed size to its compressed size that is believed
 /// (zstd and lz4 stay far below it on sensor data); a larger one is a corrupt or hostile header,
 /// refused before the `mcap` crate would allocate its stated size.
 const MAX_CHUNK_RATIO: u64 = 1024;
 
-/// Checks every chunk's stated uncompressed size against its data before the messages are read.
-fn check_chunks(bytes: &[u8]) -> std::result::Result<(), String> {
+/// Checks every chunk's stated uncompressed size against its data before the messages are read;
+/// returns the largest believed record length (bytes) for [`Messages`].
+fn check_chunks(bytes: &[u8]) -> std::result::Result<usize, String> {
     let reader = mcap::read::LinearReader::new(bytes).map_err(|e| e.to_string())?;
+    let mut largest = bytes.len();
     for rec in reader {
         match rec {
             Ok(mcap::records::Record::Chunk { header, data }) => {
@@ -37,12 +40,118 @@ fn check_chunks(bytes: &[u8]) -> std::result::Result<(), String> {
                         data.len()
                     ));
                 }
+                largest = largest.max(usize::try_from(stated).unwrap_or(usize::MAX));
             }
             Ok(_) => {}
             Err(e) => return Err(e.to_string()),
         }
     }
-    Ok(())
+    Ok(largest)
+}
+
+/// The messages of an MCAP file with every record — inside chunks too — bounded to
+/// `record_limit` bytes. Written instead of `mcap::MessageStream` because that stream sets no
+/// record-length limit inside chunks (mcap 0.26), so a corrupt length in a compressed chunk makes
+/// it allocate the stated size and abort the process (found by fuzzing).
+struct Messages<'a> {
+    buf: &'a [u8],
+    reader: mcap::sans_io::LinearReader,
+    schemas: HashMap<u16, Arc<mcap::Schema<'static>>>,
+    channels: HashMap<u16, Arc<mcap::Channel<'static>>>,
+}
+
+impl<'a> Messages<'a> {
+    fn new(buf: &'a [u8], record_limit: usize) -> Self {
+        Messages {
+            buf,
+            reader: mcap::sans_io::LinearReader::new_with_options(
+                mcap::sans_io::LinearReaderOptions::default()
+                    .with_record_length_limit(record_limit),
+            ),
+            schemas: HashMap::new(),
+            channels: HashMap::new(),
+        }
+    }
+}
+
+impl Iterator for Messages<'_> {
+    type Item = std::result::Result<mcap::Message<'static>, String>;
+
+    fn next(&mut self) -> Option<Self::Item> {
+        use mcap::records::Record;
+        use mcap::sans_io::LinearReadEvent;
+        loop {
+            let record = match self.reader.next_event()? {
+                Err(e) => return Some(Err(e.to_string())),
+                Ok(LinearReadEvent::ReadRequest(need)) => {
+                    let len = need.min(self.buf.len());
+                    self.reader.insert(len).copy_from_slice(&self.buf[..len]);
+                    self.reader.notify_read(len);
+                    self.buf = &self.buf[len..];
+                    continue;
+                }
+                Ok(LinearReadEvent::Record { data, opcode }) => {
+                    match mcap::parse_record(opcode, data) {
+                        Ok(r) => r.into_owned(),
+                        Err(e) => return Some(Err(e.to_string())),
+                    }
+                }
+            };
+            match record {
+                Record::Schema { header, data } => {
+                    self.schemas.insert(
+                        header.id,
+                        Arc::new(mcap::Schema {
+                            id: header.id,
+                            name: header.name,
+                            encoding: header.encoding,
+                            data,
+                        }),
+                    );
+                }
+                Record::Channel(c) => {
+                    let schema = match c.schema_id {
+                        0 => None,
+                        id => match self.schemas.get(&id) {
+                            Some(s) => Some(s.clone()),
+                            None => {
+                                return Some(Err(format!(
+                                    "channel {} refers to schema {id}, which comes nowhere before it",
+                                    c.topic
+                                )));
+                            }
+                        },
+                    };
+                    self.channels.insert(
+                        c.id,
+                        Arc::new(mcap::Channel {
+                            id: c.id,
+                            topic: c.topic,
+                            schema,
+                            message_encoding: c.message_encoding,
+                            metadata: c.metadata,
+                        }),
+                    );
+                }
+                Record::Message { header, data } => {
+                    let Some(channel) = self.channels.get(&header.channel_id) else {
+                        return Some(Err(format!(
+                            "message {} on channel {}, which comes nowhere before it",
+                            header.sequence, header.channel_id
+                        )));
+                    };
+                    return Some(Ok(mcap::Message {
+                        channel: channel.clone(),
+                        sequence: header.sequence,
+                        log_time: header.log_time,
+                        publish_time: header.publish_time,
+                        data,
+                    }));
+                }
+                _ => {}
+            }
+        }
+    }
 }
 
 /// `topic (encoding, N messages)` for each channel of an MCAP file, for error messages; empty when
@@ -52,12 +161,10 @@ pub fn topics(bytes: &[u8]) -> Vec<String> {
 }
 
 fn list_topics(bytes: &[u8]) -> Vec<String> {
-    if check_chunks(bytes).is_err() {
-        return Vec::new();
-    }
-    let Ok(s) = mcap::MessageStream::new(bytes) else {
+    let Ok(limit) = check_chunks(bytes) else {
         return Vec::new();
     };
+    let s = Messages::new(bytes, limit);
     let mut seen: Vec<(String, String, usize)> = Vec::new();
     for m in s.take(1_000_000) {
         let Ok(m) = m else { break };
@@ -230,9 +337,8 @@ pub(crate) fn read(bytes: &[u8], source: &str, topic: &str, opts: &Options) -> R
 
 fn read_topic(bytes: &[u8], source: &str, topic: &str, opts: &Options) -> Result<Raw> {
     let err = |m: String| Error::data(source, None, m);
-    check_chunks(bytes).map_err(|e| err(format!("corrupt MCAP: {e}")))?;
-    let stream =
-        mcap::MessageStream::new(bytes).map_err(|e| err(format!("not a readable MCAP: {e}")))?;
+    let limit = check_chunks(bytes).map_err(|e| err(format!("corrupt MCAP: {e}")))?;
+    let stream = Messages::new(bytes, limit);
     let fields: Vec<&(String, String)> = opts.columns.iter().filter(|(c, _)| c != "t_s").collect();
     let time_field = opts
         .columns
