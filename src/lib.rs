@@ -13,6 +13,7 @@ pub mod error;
 pub mod excitation;
 pub mod integrator;
 pub mod io;
+pub mod measurement;
 pub mod model;
 #[cfg(feature = "plot")]
 pub mod plot;
