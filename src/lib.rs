@@ -15,6 +15,7 @@ pub mod integrator;
 pub mod io;
 pub mod measurement;
 pub mod model;
+pub mod numeric;
 #[cfg(feature = "plot")]
 pub mod plot;
 pub mod record;
