@@ -1,4 +1,4 @@
-//! Calibration of the planar model against paper 000's published figures — the four modes
+//! Calibration of paper 000's segment model against paper 000's published figures — the four modes
 //! (§3: 2.69, 4.70, 6.01, 9.08 Hz) and the v-v and v-h seat-transmissibility peaks for 60, 80 and
 //! 100 mm of foam (Table 4) — by the project's Levenberg–Marquardt
 //! ([`crate::numeric::lm`]) through the parameter paths ([`crate::model::params`]).
@@ -61,7 +61,7 @@ pub fn figures(model: &Model, points: usize) -> Result<Figures> {
         let pk = |name: &str| {
             set.get(name)
                 .and_then(|r| peak::global_peak(&grid, &r.magnitude()))
-                .ok_or_else(|| Error::parameter("planar", format!("no {name} response")))
+                .ok_or_else(|| Error::parameter("calibrate", format!("no {name} response")))
         };
         peaks.push((pk("seat")?, pk("seat_x")?));
     }
