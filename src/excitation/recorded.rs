@@ -27,17 +27,20 @@ impl Record {
     /// The base channel [`BASE_CHANNEL`] of a measurement already read (by
     /// `crate::measurement::read_record`, which reads any input format); `path` names it in errors.
     pub fn from_signals(signals: &Signals, path: &Path) -> Result<Record> {
-        let samples = signals.get(BASE_CHANNEL).map(<[f64]>::to_vec).ok_or_else(|| {
-            Error::data(
-                path,
-                None,
-                format!(
-                    "a recorded excitation needs channel `{BASE_CHANNEL}` (base acceleration, \
+        let samples = signals
+            .get(BASE_CHANNEL)
+            .map(<[f64]>::to_vec)
+            .ok_or_else(|| {
+                Error::data(
+                    path,
+                    None,
+                    format!(
+                        "a recorded excitation needs channel `{BASE_CHANNEL}` (base acceleration, \
                      m/s²); present: {}; map one with --column {BASE_CHANNEL}=SOURCE",
-                    signals.names.join(", ")
-                ),
-            )
-        })?;
+                        signals.names.join(", ")
+                    ),
+                )
+            })?;
         Ok(Record {
             samples,
             sample_rate_hz: signals.sample_rate_hz,

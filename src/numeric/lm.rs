@@ -26,15 +26,21 @@ pub struct Settings {
     pub jacobian_step: f64,
     /// The fit stops once an accepted step lowers Σr² by no more than this fraction.
     pub tolerance: f64,
+    /// Hold a parameter that sits on a bound, with the gradient pushing it out, out of the step
+    /// (an active set), so the free parameters are solved for without it; otherwise the full step
+    /// is only projected onto the box.
+    pub active_set: bool,
 }
 
 impl Default for Settings {
-    /// 100 iterations, Jacobian step 1e-4 of the range, relative tolerance 1e-6.
+    /// 100 iterations, Jacobian step 1e-4 of the range, relative tolerance 1e-6, projection only
+    /// (the gap diagnosis's settings).
     fn default() -> Self {
         Settings {
             max_iter: 100,
             jacobian_step: 1e-4,
             tolerance: 1e-6,
+            active_set: false,
         }
     }
 }
@@ -138,12 +144,27 @@ where
             jac.set_column(i, &DVector::from_vec(col));
         }
         let jtj = jac.transpose() * &jac;
-        let g = jac.transpose() * DVector::from_row_slice(&r);
+        let mut g = jac.transpose() * DVector::from_row_slice(&r);
+        // Parameters held on their bound: the descent direction −g points out of the box.
+        let held: Vec<bool> = (0..p)
+            .map(|i| {
+                settings.active_set
+                    && ((u[i] <= lo[i] && g[i] > 0.0) || (u[i] >= hi[i] && g[i] < 0.0))
+            })
+            .collect();
+        for i in (0..p).filter(|&i| held[i]) {
+            g[i] = 0.0;
+        }
         let mut improved = false;
         for _ in 0..12 {
             let mut a = jtj.clone();
             for i in 0..p {
                 a[(i, i)] += lambda * (jtj[(i, i)] + 1e-12);
+            }
+            for i in (0..p).filter(|&i| held[i]) {
+                a.row_mut(i).fill(0.0);
+                a.column_mut(i).fill(0.0);
+                a[(i, i)] = 1.0;
             }
             let Some(step) = a.lu().solve(&(-&g)) else {
                 lambda *= 10.0;

@@ -15,11 +15,13 @@ use crate::numeric::lm;
 use std::time::Instant;
 
 /// Levenberg–Marquardt settings of calibration in normalised coordinates `u ∈ [0, 1]`: a Jacobian
-/// step of 1e-6 and a relative tolerance of 1e-9 (a decrease of Σr² smaller than that ends the fit).
+/// step of 1e-6, an active set (parameters pushed against a bound leave the step) and the default
+/// relative tolerance of 1e-6 (smaller decreases of Σr² are below any calibration's meaning).
 pub const LM_SETTINGS: lm::Settings = lm::Settings {
     max_iter: 200,
     jacobian_step: 1e-6,
-    tolerance: 1e-9,
+    tolerance: 1e-6,
+    active_set: true,
 };
 
 /// Calibration method.
