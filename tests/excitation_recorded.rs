@@ -64,9 +64,18 @@ fn coarser_step_and_too_long_runs_are_refused() {
         "rec",
     )
     .unwrap();
-    let e = measurement::excitation(&spec, 0.004, 5.0, 0).err().unwrap().to_string();
+    // The excitation layer reads no file: a recorded spec is built by the measurement layer.
+    let e = spec.build(0.001, 5.0, 0).err().unwrap().to_string();
+    assert!(e.contains("measurement::excitation"), "{e}");
+    let e = measurement::excitation(&spec, 0.004, 5.0, 0)
+        .err()
+        .unwrap()
+        .to_string();
     assert!(e.contains("run.csv") && e.contains("alias"), "{e}");
-    let e = measurement::excitation(&spec, 0.001, 60.0, 0).err().unwrap().to_string();
+    let e = measurement::excitation(&spec, 0.001, 60.0, 0)
+        .err()
+        .unwrap()
+        .to_string();
     assert!(e.contains("run.csv") && e.contains("60"), "{e}");
     let missing = ExcitationSpec::new(
         Kind::Recorded {
@@ -76,6 +85,9 @@ fn coarser_step_and_too_long_runs_are_refused() {
         "rec",
     )
     .unwrap();
-    let e = measurement::excitation(&missing, 0.001, 1.0, 0).err().unwrap().to_string();
+    let e = measurement::excitation(&missing, 0.001, 1.0, 0)
+        .err()
+        .unwrap()
+        .to_string();
     assert!(e.contains("nope.csv"), "{e}");
 }
