@@ -1,6 +1,7 @@
-//! One input layer for measurements: [`read`] turns a file from a logger, a vibration meter or a
-//! test-and-measurement suite into named [`Signals`] in SI units, for `wbv analyze`, `wbv gap`,
-//! `wbv replay` and `wbv simulate --excitation recorded` alike (`docs/inputs.md`).
+//! The format readers of measurements: [`read_bytes`] turns a file from a logger, a vibration
+//! meter or a test-and-measurement suite into named [`Signals`] in SI units (`docs/inputs.md`).
+//! Runs recorded by wbv itself are read one layer up, by [`crate::measurement::read`], which
+//! `wbv analyze`, `wbv gap`, `wbv replay` and `wbv simulate --excitation recorded` all use.
 //!
 //! One module per format reads the file into raw columns (names, declared units, samples, and either
 //! a stated sample rate or time stamps); this module then, for every format the same way:
@@ -33,7 +34,7 @@ pub const MIN_DURATION_S: f64 = 10.0;
 /// resolution, as a fraction of the step (the measured-run spec's 1 % jitter allowance).
 pub const MAX_JITTER: f64 = 0.01;
 
-/// File formats [`read`] understands.
+/// File formats [`read_bytes`] understands.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 #[cfg_attr(feature = "cli", derive(clap::ValueEnum))]
 pub enum Format {
@@ -175,7 +176,8 @@ impl InputArgs {
     }
 }
 
-/// A measurement read by [`read`]: the channels in SI units and what the reader decided.
+/// A measurement read by [`read_bytes`] or `crate::measurement::read`: the channels in SI units
+/// and what the reader decided.
 #[derive(Debug, Clone)]
 pub struct Input {
     pub signals: Signals,
