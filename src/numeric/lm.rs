@@ -98,7 +98,10 @@ where
     F: Fn(&mut W, &[f64]) -> Result<Vec<f64>> + Sync,
 {
     let p = u0.len();
-    if lo.len() != p || hi.len() != p || (0..p).any(|i| !(lo[i] <= hi[i])) {
+    if lo.len() != p
+        || hi.len() != p
+        || (0..p).any(|i| lo[i].is_nan() || hi[i].is_nan() || lo[i] > hi[i])
+    {
         return Err(Error::parameter(
             "fit",
             "bounds must be one lo ≤ hi pair per parameter",
