@@ -13,7 +13,9 @@ pub mod error;
 pub mod excitation;
 pub mod integrator;
 pub mod io;
+pub mod measurement;
 pub mod model;
+pub mod numeric;
 #[cfg(feature = "plot")]
 pub mod plot;
 pub mod record;

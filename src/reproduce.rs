@@ -74,7 +74,7 @@ pub fn markdown(rows: &[Row]) -> String {
 const NOTES: &str = "
 ## Findings
 
-- **Planar model (paper 000, issue 8).** `planar-occupant` is a 7-coordinate sagittal model (paper
+- **Segment model (paper 000, issue 8).** `planar-occupant` is a 7-coordinate sagittal model (paper
   000's five segments, its Table 2 joints, de Leva 1996 segment inertia, hyperfoam cushion in series
   with seated tissue, backrest, footrest). Paper 000's modes are those of its body model before it
   is put on the seat (§3), so they are compared with the model on a rigid seat pan; its Table 4
@@ -119,7 +119,7 @@ const NOTES: &str = "
   coincidence, not agreement. The absolute a_v and the comfort class depend on the excitation band,
   which the paper does not state (0.5–20 Hz assumed at its 0.4 m/s² r.m.s.); the 80 mm a_v sits on
   the 0.315 m/s² Annex C boundary, hence \"a little uncomfortable\" where the paper says \"not
-  uncomfortable\". The v-h columns need the planar model.
+  uncomfortable\". The v-h columns need the segment model's fore-and-aft motion.
 ";
 
 #[cfg(test)]

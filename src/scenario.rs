@@ -46,7 +46,8 @@ impl Scenario {
         progress: Option<&dyn Fn(u64)>,
     ) -> Result<()> {
         self.settings.validate()?;
-        let mut exc = self.excitation.build(
+        let mut exc = crate::measurement::excitation(
+            &self.excitation,
             self.settings.excitation_step(),
             self.settings.duration_s,
             self.seed,

@@ -225,14 +225,6 @@ fn layers() -> BTreeMap<String, usize> {
     out
 }
 
-/// Known debt, named so that any other cycle or upward import fails: the input layer
-/// (`io::input`) reads wbv's own runs through `record`, and the `recorded` excitation reads its
-/// file through `io::input`, so `excitation → io → record → simulate → excitation` is a cycle.
-/// The fix (next step of issue 21): the recorded excitation takes samples loaded above it, and the
-/// input readers move above `record`.
-const KNOWN_CYCLE: [&str; 4] = ["excitation", "io", "record", "simulate"];
-const KNOWN_UPWARD: (&str, &str) = ("io", "record");
-
 #[test]
 fn the_module_graph_has_no_cycle() {
     let mods = modules();
@@ -242,15 +234,7 @@ fn the_module_graph_has_no_cycle() {
         "too few edges found ({}): parser broken?",
         e.len()
     );
-    let known: Vec<Module> = KNOWN_CYCLE.iter().map(|m| vec![m.to_string()]).collect();
-    let found: Vec<Vec<Module>> = cycles(&e)
-        .into_iter()
-        .filter(|c| {
-            let mut c = c.clone();
-            c.sort();
-            c != known
-        })
-        .collect();
+    let found = cycles(&e);
     let text: Vec<String> = found
         .iter()
         .map(|c| {
@@ -282,10 +266,7 @@ fn top_level_imports_point_down_the_documented_layers() {
     }
     let mut up = Vec::new();
     for (a, b) in edges(&mods) {
-        if a.len() == 1
-            && layer[&a[0]] < layer[&b[0]]
-            && (a[0].as_str(), b[0].as_str()) != KNOWN_UPWARD
-        {
+        if a.len() == 1 && layer[&a[0]] < layer[&b[0]] {
             up.push(format!(
                 "{} (layer {}) imports {} (layer {})",
                 a[0], layer[&a[0]], b[0], layer[&b[0]]

@@ -3,6 +3,7 @@
 use std::f64::consts::PI;
 use wbv::excitation::{ExcitationSpec, Kind};
 use wbv::io::{atomic::Overwrite, csv_run};
+use wbv::measurement;
 use wbv::signals::Signals;
 
 fn write_sine(path: &std::path::Path, fs: f64, f: f64, a: f64, seconds: f64) {
@@ -31,7 +32,7 @@ fn resampled_sine_within_stated_error() {
     // A step that is not a divisor of the record's 2 ms, to exercise interpolation everywhere.
     let dt = 0.000_3;
     let n = (11.0 / dt) as usize;
-    let mut exc = spec.build(dt, 11.0, 0).unwrap();
+    let mut exc = measurement::excitation(&spec, dt, 11.0, 0).unwrap();
     let mut x = vec![0.0; n];
     exc.fill(&mut x);
     let worst = (2..n) // away from the first sample, where the flat end extension applies
@@ -42,7 +43,7 @@ fn resampled_sine_within_stated_error() {
     eprintln!("worst resampling error {worst:.2e} m/s² for a 2 m/s² sine");
     assert!(worst < 2e-4, "{worst}");
     // Exactly at record samples the record is returned.
-    let mut exc = spec.build(0.002, 11.0, 0).unwrap();
+    let mut exc = measurement::excitation(&spec, 0.002, 11.0, 0).unwrap();
     let mut y = vec![0.0; 100];
     exc.fill(&mut y);
     let rec = csv_run::read(&path).unwrap();
@@ -63,9 +64,18 @@ fn coarser_step_and_too_long_runs_are_refused() {
         "rec",
     )
     .unwrap();
-    let e = spec.build(0.004, 5.0, 0).err().unwrap().to_string();
+    // The excitation layer reads no file: a recorded spec is built by the measurement layer.
+    let e = spec.build(0.001, 5.0, 0).err().unwrap().to_string();
+    assert!(e.contains("measurement::excitation"), "{e}");
+    let e = measurement::excitation(&spec, 0.004, 5.0, 0)
+        .err()
+        .unwrap()
+        .to_string();
     assert!(e.contains("run.csv") && e.contains("alias"), "{e}");
-    let e = spec.build(0.001, 60.0, 0).err().unwrap().to_string();
+    let e = measurement::excitation(&spec, 0.001, 60.0, 0)
+        .err()
+        .unwrap()
+        .to_string();
     assert!(e.contains("run.csv") && e.contains("60"), "{e}");
     let missing = ExcitationSpec::new(
         Kind::Recorded {
@@ -75,6 +85,9 @@ fn coarser_step_and_too_long_runs_are_refused() {
         "rec",
     )
     .unwrap();
-    let e = missing.build(0.001, 1.0, 0).err().unwrap().to_string();
+    let e = measurement::excitation(&missing, 0.001, 1.0, 0)
+        .err()
+        .unwrap()
+        .to_string();
     assert!(e.contains("nope.csv"), "{e}");
 }

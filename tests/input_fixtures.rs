@@ -4,7 +4,8 @@
 //! Without that variable the test says so and checks nothing else.
 
 use wbv::analysis::{Options, Report};
-use wbv::io::input::{InputArgs, read};
+use wbv::io::input::InputArgs;
+use wbv::measurement::read;
 
 fn strings(v: &serde_json::Value, key: &str) -> Vec<String> {
     v.get(key)

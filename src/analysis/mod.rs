@@ -31,12 +31,12 @@ pub fn load_signals(path: &Path) -> Result<Signals> {
     Ok(load_input(path, &crate::io::input::Options::default())?.signals)
 }
 
-/// Loads a measurement or a run through the input layer ([`crate::io::input::read`]): a measured-run
+/// Loads a measurement or a run ([`crate::measurement::read`]): a measured-run
 /// CSV or any delimited text, WAV, MAT, UFF58, another logger's MCAP topic, or an MCAP run recorded
 /// by wbv (its `a_*` and `f_*` channels; a run directory stands for its `run.mcap`).
 pub fn load_input(
     path: &Path,
     opts: &crate::io::input::Options,
 ) -> Result<crate::io::input::Input> {
-    crate::io::input::read(path, opts)
+    crate::measurement::read(path, opts)
 }

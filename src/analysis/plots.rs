@@ -6,7 +6,7 @@
 //! - `octave_bands`: frequency-weighted one-third-octave band r.m.s. per channel (ISO 2631-1
 //!   eq. 6, Tables 3–4) with the unweighted bands as markers;
 //! - `running_rms`: the weighted 1 s running r.m.s. (eq. 2) with the MTVV (eq. 4) marked;
-//! - `transmissibility`: H1 magnitude and phase of base → seat (z, and x for planar runs),
+//! - `transmissibility`: H1 magnitude and phase of base → seat (z, and x where a run has fore-and-aft channels),
 //!   seat → head (STHT) and the apparent mass F_seat/a_seat, drawn only where the coherence is
 //!   at least [`COHERENCE_MIN`] and the input has power, with the coherence panel;
 //! - `comfort`: the ISO 2631-1 Annex C ranges (they overlap) with the run's a_v;

@@ -83,7 +83,7 @@ pub fn export(args: ExportArgs) -> crate::Result<()> {
         ));
     }
     let n = (args.duration / args.dt).round() as usize;
-    let mut exc = spec.build(args.dt, args.duration, args.seed)?;
+    let mut exc = crate::measurement::excitation(&spec, args.dt, args.duration, args.seed)?;
     let mut samples = vec![0.0; n];
     exc.fill(&mut samples);
     let mut signals = Signals::new(1.0 / args.dt, exc.describe());

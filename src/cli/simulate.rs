@@ -60,7 +60,7 @@ impl Args {
         if self.time.duration.is_none()
             && let crate::excitation::Kind::Recorded { csv, input } = &excitation.kind
         {
-            let rec = crate::excitation::recorded::read_record(csv, input)?;
+            let rec = crate::measurement::read_record(csv, input)?;
             settings.duration_s = rec.samples.len() as f64 / rec.sample_rate_hz;
         }
         Ok(Scenario {
@@ -294,9 +294,12 @@ pub fn print_table(outcome: &Outcome) {
 fn time_core(scenario: &Scenario) -> crate::Result<(f64, f64)> {
     let s = &scenario.settings;
     let start = std::time::Instant::now();
-    let mut exc = scenario
-        .excitation
-        .build(s.excitation_step(), s.duration_s, scenario.seed)?;
+    let mut exc = crate::measurement::excitation(
+        &scenario.excitation,
+        s.excitation_step(),
+        s.duration_s,
+        scenario.seed,
+    )?;
     let mut buf = vec![0.0; 4096];
     let mut left = s.steps() as usize * s.method.substeps() + 1;
     while left > 0 {

@@ -10,7 +10,7 @@
 //! spectral cells; a second effect by forward selection when the best leaves a structural residual.
 
 pub mod candidate;
-pub mod fit;
+pub use crate::numeric::lm as fit;
 pub mod gapmap;
 pub mod measure;
 #[cfg(feature = "plot")]

@@ -9,7 +9,7 @@
 
 use super::Excitation;
 use crate::error::{Error, Result};
-use crate::io::input;
+use crate::signals::Signals;
 use std::path::Path;
 
 /// The base channel a recorded run must contain (measured-run spec).
@@ -23,26 +23,30 @@ pub struct Record {
     pub source: String,
 }
 
-/// Reads the base acceleration of a measurement through the input layer ([`input::read`]: CSV,
-/// WAV, MAT, UFF58, MCAP), with `opts` as given on the command line.
-pub fn read_record(path: &Path, opts: &input::Options) -> Result<Record> {
-    let run = input::read(path, opts)?;
-    let samples = run.signals.get(BASE_CHANNEL).map(<[f64]>::to_vec).ok_or_else(|| {
-        Error::data(
-            path,
-            None,
-            format!(
-                "a recorded excitation needs channel `{BASE_CHANNEL}` (base acceleration, m/s²); \
-                 present: {}; map one with --column {BASE_CHANNEL}=SOURCE",
-                run.signals.names.join(", ")
-            ),
-        )
-    })?;
-    Ok(Record {
-        samples,
-        sample_rate_hz: run.signals.sample_rate_hz,
-        source: path.display().to_string(),
-    })
+impl Record {
+    /// The base channel [`BASE_CHANNEL`] of a measurement already read (by
+    /// `crate::measurement::read_record`, which reads any input format); `path` names it in errors.
+    pub fn from_signals(signals: &Signals, path: &Path) -> Result<Record> {
+        let samples = signals
+            .get(BASE_CHANNEL)
+            .map(<[f64]>::to_vec)
+            .ok_or_else(|| {
+                Error::data(
+                    path,
+                    None,
+                    format!(
+                        "a recorded excitation needs channel `{BASE_CHANNEL}` (base acceleration, \
+                     m/s²); present: {}; map one with --column {BASE_CHANNEL}=SOURCE",
+                        signals.names.join(", ")
+                    ),
+                )
+            })?;
+        Ok(Record {
+            samples,
+            sample_rate_hz: signals.sample_rate_hz,
+            source: path.display().to_string(),
+        })
+    }
 }
 
 /// A recorded run streamed at a new step.

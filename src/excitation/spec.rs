@@ -14,7 +14,6 @@
 use super::Excitation;
 use super::builtin;
 use super::helicopter::Helicopter;
-use super::recorded::{self, Resampled};
 use super::road::{self, QuarterCar, Road};
 use super::shaped::{ShapedNoise, taps_for};
 use super::synth::{Sweep, SweepLaw, Synth, Tone};
@@ -402,8 +401,9 @@ impl ExcitationSpec {
         format!("{} ({}){rms}", self.description, self.origin)
     }
 
-    /// Builds the sample stream at `step_s` (s) for a run of `duration_s` (s), seeded by `seed`.
-    pub fn build(&self, step_s: f64, duration_s: f64, seed: u64) -> Result<Box<dyn Excitation>> {
+    /// Refuses a sample step `step_s` (s) that is not positive or a run length `duration_s` (s)
+    /// that is negative, before any excitation is built.
+    pub fn check_run(step_s: f64, duration_s: f64) -> Result<()> {
         if !(step_s.is_finite() && step_s > 0.0) {
             return Err(Error::parameter(
                 "step",
@@ -416,11 +416,25 @@ impl ExcitationSpec {
                 format!("{duration_s} s must be ≥ 0"),
             ));
         }
+        Ok(())
+    }
+
+    /// Builds the sample stream at `step_s` (s) for a run of `duration_s` (s), seeded by `seed`.
+    /// A recorded excitation streams samples read from its file, which this layer does not read:
+    /// `crate::measurement::excitation` builds every kind, that one included.
+    pub fn build(&self, step_s: f64, duration_s: f64, seed: u64) -> Result<Box<dyn Excitation>> {
+        Self::check_run(step_s, duration_s)?;
         let fs = 1.0 / step_s;
         let nyquist = fs / 2.0;
-        if let Kind::Recorded { csv, input } = &self.kind {
-            let record = recorded::read_record(csv, input)?;
-            return Ok(Box::new(Resampled::new(record, step_s, duration_s)?));
+        if let Kind::Recorded { csv, .. } = &self.kind {
+            return Err(Error::parameter(
+                "excitation",
+                format!(
+                    "recorded excitation {}: its samples are read by wbv::measurement::excitation, \
+                     not by ExcitationSpec::build",
+                    csv.display()
+                ),
+            ));
         }
         if let Some([_, hi]) = self.band_hz()
             && hi > nyquist

@@ -141,14 +141,20 @@ impl PsdTable {
             return 0.0;
         }
         let k = self.freq_hz.partition_point(|&f| f <= f_hz).clamp(1, n - 1);
+        let (f1, _, s1, b) = self.segment(k);
+        s1 * (f_hz / f1).powf(b)
+    }
+
+    /// Segment `k` (from point k − 1 to k): its end frequencies f1, f2 (Hz), the PSD s1 at f1 and
+    /// the log-log slope b = ln(s2/s1)/ln(f2/f1), so that PSD(f) = s1 (f/f1)^b on it.
+    fn segment(&self, k: usize) -> (f64, f64, f64, f64) {
         let (f1, f2, s1, s2) = (
             self.freq_hz[k - 1],
             self.freq_hz[k],
             self.psd[k - 1],
             self.psd[k],
         );
-        let b = (s2 / s1).ln() / (f2 / f1).ln();
-        s1 * (f_hz / f1).powf(b)
+        (f1, f2, s1, (s2 / s1).ln() / (f2 / f1).ln())
     }
 
     /// Mean square in (m/s²)², the exact integral of the log-log segments:
@@ -156,13 +162,7 @@ impl PsdTable {
     pub fn mean_square(&self) -> f64 {
         (1..self.freq_hz.len())
             .map(|k| {
-                let (f1, f2, s1, s2) = (
-                    self.freq_hz[k - 1],
-                    self.freq_hz[k],
-                    self.psd[k - 1],
-                    self.psd[k],
-                );
-                let b = (s2 / s1).ln() / (f2 / f1).ln();
+                let (f1, f2, s1, b) = self.segment(k);
                 if (b + 1.0).abs() < 1e-12 {
                     s1 * f1 * (f2 / f1).ln()
                 } else {

@@ -64,11 +64,16 @@ impl Partial {
     /// Creates and locks `<path>.partial` (and the parent directory), refusing an existing
     /// `path` unless allowed; returns the guard and the open file.
     pub fn create(path: &Path, overwrite: Overwrite) -> Result<(Self, fs::File)> {
+        Self::create_at(path, partial_path(path), overwrite)
+    }
+
+    /// [`Partial::create`] with the temporary name `tmp` beside `path` (for writers that pick the
+    /// format from the extension, such as the plot backends).
+    pub fn create_at(path: &Path, tmp: PathBuf, overwrite: Overwrite) -> Result<(Self, fs::File)> {
         check_overwrite(path, overwrite)?;
         if let Some(dir) = path.parent().filter(|d| !d.as_os_str().is_empty()) {
             fs::create_dir_all(dir).map_err(|e| Error::io(dir, e))?;
         }
-        let tmp = partial_path(path);
         let busy = || {
             Error::parameter(
                 path.display().to_string(),

@@ -90,6 +90,10 @@ pub const BUILTIN: &[(&str, &str)] = &[
 /// The name of the default model used by examples and the default scenario.
 pub const DEFAULT: &str = "reference";
 
+/// The built-in segment model of paper 000 (sagittal plane, foam cushion), the model of its rows
+/// in the reproduction table.
+pub const PAPER_000: &str = "planar-occupant";
+
 /// What a model file describes (for listings).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Kind {

@@ -1,5 +1,5 @@
 //! Foam material law: cushion stiffness and damping of a foam layer from its hyperfoam parameters
-//! and thickness (paper 000 eq. 1), used by the planar cushion and the foam-thickness study.
+//! and thickness (paper 000 eq. 1), used by the segment model's cushion and the foam-thickness study.
 //!
 //! Derivation. Paper 000 eq. 1 (Ogden–Storåkers "hyperfoam"):
 //! `W = Σ_i 2a_i/m_i² [λ̂₁^{m_i} + λ̂₂^{m_i} + λ̂₃^{m_i} − 3 + (1/n_i)(J^{−m_i n_i} − 1)]`.

@@ -627,7 +627,8 @@ pub fn plot_dir(dir: &Path, format: &str) -> Result<(PathBuf, &'static str)> {
 }
 
 /// Writes `figure` at `size` pixels to `path` (`.svg` or `.png`, with the embedded font),
-/// atomically: it is drawn under a partial name and renamed when complete.
+/// atomically: it is drawn under a partial name ([`Partial`](crate::io::atomic::Partial), keeping
+/// the extension the backend reads the format from) and moved into place when complete.
 pub fn write_figure(
     figure: &impl Figure,
     size: (u32, u32),
@@ -636,24 +637,20 @@ pub fn write_figure(
 ) -> Result<()> {
     register_font();
     let ext = format_of(path)?;
-    crate::io::atomic::check_overwrite(path, overwrite)?;
-    if let Some(dir) = path.parent().filter(|d| !d.as_os_str().is_empty()) {
-        std::fs::create_dir_all(dir).map_err(|e| Error::io(dir, e))?;
-    }
     let tmp: PathBuf = path.with_file_name(format!(
         ".{}.partial.{ext}",
         path.file_stem().unwrap_or_default().to_string_lossy()
     ));
+    // The backend writes the file by name (truncating the one the guard holds); the guard removes
+    // it if drawing fails.
+    let (guard, file) = crate::io::atomic::Partial::create_at(path, tmp.clone(), overwrite)?;
     let result = match ext {
         "svg" => figure.render(SVGBackend::new(&tmp, size).into_drawing_area()),
         _ => figure.render(BitMapBackend::new(&tmp, size).into_drawing_area()),
     };
     match result {
-        Ok(()) => std::fs::rename(&tmp, path).map_err(|e| Error::io(path, e)),
-        Err(e) => {
-            let _ = std::fs::remove_file(&tmp);
-            Err(plot_err(path, e))
-        }
+        Ok(()) => guard.commit(file, overwrite),
+        Err(e) => Err(plot_err(path, e)),
     }
 }
 

@@ -158,7 +158,7 @@ type Group<'a> = (Option<&'a str>, Option<u32>, Vec<(u32, usize)>);
 pub struct ProtoTemplate {
     /// Before each value: the sub-message header where a group starts, and the field key.
     /// Fields go out in leaf order, which is the field-number order prost writes except for the
-    /// planar measured channels (`a_seat_x` before `a_head_z`): protobuf readers take fields in
+    /// fore-and-aft measured channels (`a_seat_x` before `a_head_z`): protobuf readers take fields in
     /// any order, and [`ProtoTable`] keeps the order of the bytes so that a run reads back with
     /// its channels in the same order in both encodings.
     fragments: Vec<Vec<u8>>,
@@ -465,7 +465,7 @@ mod tests {
         let links = vec!["k1".to_string()];
         let fds = run_descriptor(&masses, &links).unwrap();
         let v = [-0.0, 1e-300, -2.5, f64::MAX, 3.0, 0.1];
-        // Measured in a planar run's leaf order (not field-number order)
+        // Measured in a fore-and-aft run's leaf order (not field-number order)
         let leaves: Vec<Leaf> = [
             "t", "a_base_z", "a_seat_z", "a_seat_x", "a_head_z", "f_seat_z",
         ]

@@ -368,7 +368,7 @@ mod scene_tests {
 
     #[test]
     fn pitching_scene_is_valid_json_and_turns_only_the_moved_segment() {
-        let model = catalog::resolve("planar-occupant").unwrap();
+        let model = catalog::resolve(catalog::PAPER_000).unwrap();
         let settings = Settings {
             dt: 1e-3,
             duration_s: 1.0,

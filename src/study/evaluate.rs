@@ -189,7 +189,7 @@ mod tests {
             "reference",
             "seed001-full",
             "seed002-maxwell",
-            "planar-occupant",
+            catalog::PAPER_000,
         ] {
             let model = catalog::resolve(name).unwrap();
             let sys = model.system();

@@ -14,7 +14,7 @@ use crate::simulate::Settings;
 use rayon::prelude::*;
 
 /// One thickness of paper 000 Table 4 as the paper predicts it (its optimised FE model), v-v and
-/// total columns; the v-h (fore-and-aft cross-axis) columns need a planar model.
+/// total columns; the v-h (fore-and-aft cross-axis) columns need a model with fore-and-aft motion (channel `a_seat_x`).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct PaperRow {
     /// Foam thickness in m.

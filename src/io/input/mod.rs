@@ -1,6 +1,7 @@
-//! One input layer for measurements: [`read`] turns a file from a logger, a vibration meter or a
-//! test-and-measurement suite into named [`Signals`] in SI units, for `wbv analyze`, `wbv gap`,
-//! `wbv replay` and `wbv simulate --excitation recorded` alike (`docs/inputs.md`).
+//! The format readers of measurements: [`read_bytes`] turns a file from a logger, a vibration
+//! meter or a test-and-measurement suite into named [`Signals`] in SI units (`docs/inputs.md`).
+//! Runs recorded by wbv itself are read one layer up, by [`crate::measurement::read`], which
+//! `wbv analyze`, `wbv gap`, `wbv replay` and `wbv simulate --excitation recorded` all use.
 //!
 //! One module per format reads the file into raw columns (names, declared units, samples, and either
 //! a stated sample rate or time stamps); this module then, for every format the same way:
@@ -33,7 +34,7 @@ pub const MIN_DURATION_S: f64 = 10.0;
 /// resolution, as a fraction of the step (the measured-run spec's 1 % jitter allowance).
 pub const MAX_JITTER: f64 = 0.01;
 
-/// File formats [`read`] understands.
+/// File formats [`read_bytes`] understands.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 #[cfg_attr(feature = "cli", derive(clap::ValueEnum))]
 pub enum Format {
@@ -175,7 +176,8 @@ impl InputArgs {
     }
 }
 
-/// A measurement read by [`read`]: the channels in SI units and what the reader decided.
+/// A measurement read by [`read_bytes`] or `crate::measurement::read`: the channels in SI units
+/// and what the reader decided.
 #[derive(Debug, Clone)]
 pub struct Input {
     pub signals: Signals,
@@ -306,21 +308,13 @@ pub fn detect(bytes: &[u8], path: &Path) -> Format {
     }
 }
 
-/// Reads a measurement file (a run directory stands for its `run.mcap`) into channels in SI units.
-/// Errors name the file and, for text formats, the line.
-pub fn read(path: &Path, opts: &Options) -> Result<Input> {
-    let path = crate::record::run_file(path);
-    let bytes = std::fs::read(&path).map_err(|e| Error::io(&path, e))?;
-    read_bytes(&bytes, &path, opts)
-}
-
 fn refuse(flag: &str, why: &str) -> Error {
     Error::parameter(flag, why.to_string())
 }
 
-/// [`read`] on bytes already in memory; `path` names them (and gives the extension).
-pub fn read_bytes(bytes: &[u8], path: &Path, opts: &Options) -> Result<Input> {
-    let source = path.display().to_string();
+/// The format of `bytes` (given by `opts` or detected), after refusing the options that cannot act
+/// on it (`--topic` off MCAP, `--sensitivity` off WAV).
+pub fn format_of(bytes: &[u8], path: &Path, opts: &Options) -> Result<Format> {
     let format = opts.format.unwrap_or_else(|| detect(bytes, path));
     if format != Format::Mcap && opts.topic.is_some() {
         return Err(refuse("--topic", "applies only to MCAP files"));
@@ -331,21 +325,18 @@ pub fn read_bytes(bytes: &[u8], path: &Path, opts: &Options) -> Result<Input> {
             "applies only to WAV files (samples relative to full scale)",
         ));
     }
-    let raw = match format {
-        Format::Csv => delimited::read(bytes, &source, opts)?,
-        Format::Wav => wav::read(bytes, &source)?,
-        Format::Mat => mat::read(bytes, &source)?,
-        Format::Uff => uff::read(bytes, &source)?,
-        Format::Mcap => match &opts.topic {
-            Some(topic) => mcap_topic::read(bytes, &source, topic, opts)?,
-            None => return own_run(path, bytes, opts),
-        },
-    };
-    assemble(raw, &source, opts)
+    Ok(format)
 }
 
-/// A run recorded by wbv: its `a_*` and `f_*` channels as recorded (SI, stated rate).
-fn own_run(path: &Path, bytes: &[u8], opts: &Options) -> Result<Input> {
+/// Whether a file of `format` read with `opts` is a run recorded by wbv (an MCAP file without
+/// `--topic`), whose schema belongs to the recorder: [`crate::measurement::read`] reads those.
+pub fn is_wbv_run(format: Format, opts: &Options) -> bool {
+    format == Format::Mcap && opts.topic.is_none()
+}
+
+/// Refuses the options a run recorded by wbv has no use for: it states its channels, units and
+/// rate.
+pub fn check_wbv_run_options(opts: &Options) -> Result<()> {
     for (given, flag) in [
         (!opts.columns.is_empty(), "--column"),
         (!opts.units.is_empty(), "--units"),
@@ -359,32 +350,33 @@ fn own_run(path: &Path, bytes: &[u8], opts: &Options) -> Result<Input> {
             ));
         }
     }
-    let run = crate::record::read_run(path).map_err(|e| {
-        let topics = mcap_topic::topics(bytes);
-        if topics.is_empty() {
-            e
-        } else {
-            Error::data(
-                path,
-                None,
-                format!(
-                    "{e}; to read another logger's MCAP give --topic and --column \
-                     CHANNEL=FIELD (topics: {})",
-                    topics.join(", ")
-                ),
-            )
-        }
-    })?;
-    let mut out = Signals::new(run.signals.sample_rate_hz, path.display().to_string());
-    for (name, data) in run.signals.names.iter().zip(run.signals.data) {
-        if name.starts_with("a_") || name.starts_with("f_") {
-            out.push(name.clone(), data)?;
-        }
-    }
-    Ok(Input {
-        signals: out,
-        notes: Vec::new(),
-    })
+    Ok(())
+}
+
+/// Reads a measurement of another tool held in memory into channels in SI units; `path` names the
+/// bytes (and gives the extension). Errors name the file and, for text formats, the line. A run
+/// recorded by wbv (MCAP without `--topic`, see [`is_wbv_run`]) is refused here: it is read through
+/// the recorder's reader by [`crate::measurement::read`], which also takes files by path.
+pub fn read_bytes(bytes: &[u8], path: &Path, opts: &Options) -> Result<Input> {
+    let source = path.display().to_string();
+    let raw = match format_of(bytes, path, opts)? {
+        Format::Csv => delimited::read(bytes, &source, opts)?,
+        Format::Wav => wav::read(bytes, &source)?,
+        Format::Mat => mat::read(bytes, &source)?,
+        Format::Uff => uff::read(bytes, &source)?,
+        Format::Mcap => match &opts.topic {
+            Some(topic) => mcap_topic::read(bytes, &source, topic, opts)?,
+            None => {
+                return Err(Error::data(
+                    path,
+                    None,
+                    "an MCAP file without --topic is a wbv run, read by \
+                     wbv::measurement::read; for another logger's MCAP give --topic",
+                ));
+            }
+        },
+    };
+    assemble(raw, &source, opts)
 }
 
 /// Words that name a time column when no `--column t_s=…` is given (case-insensitive).

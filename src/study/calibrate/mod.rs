@@ -1,17 +1,28 @@
 //! Calibration: fit chosen model parameters within bounds so that a response matches a target
 //! (paper 000 §5.2). Methods: the genetic algorithm of paper 000 ([`ga`]), its cubic polynomial
-//! surrogate ([`surrogate`], eqs. 9–10) and Levenberg–Marquardt ([`lm`]) as the gradient method;
+//! surrogate ([`surrogate`], eqs. 9–10) and Levenberg–Marquardt ([`lm`], wbv's one solver) as the
+//! gradient method;
 //! all minimise the squared error of [`objective`] (eq. 11) in log-scaled normalised parameters.
 
 pub mod ga;
-pub mod lm;
 pub mod objective;
 pub mod surrogate;
 
 pub use objective::{Goodness, Problem, Target};
 
 use crate::error::{Error, Result};
+use crate::numeric::lm;
 use std::time::Instant;
+
+/// Levenberg–Marquardt settings of calibration in normalised coordinates `u ∈ [0, 1]`: a Jacobian
+/// step of 1e-6, an active set (parameters pushed against a bound leave the step) and the default
+/// relative tolerance of 1e-6 (smaller decreases of Σr² are below any calibration's meaning).
+pub const LM_SETTINGS: lm::Settings = lm::Settings {
+    max_iter: 200,
+    jacobian_step: 1e-6,
+    tolerance: 1e-6,
+    active_set: true,
+};
 
 /// Calibration method.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -87,13 +98,21 @@ pub fn calibrate(problem: &Problem, method: Method) -> Result<Fit> {
     let (values, evaluations) = match method {
         Method::Ga(s) => ga_full(problem, s, &u0)?,
         Method::Lm => {
-            let mut ws = problem.workspace()?;
             let m = problem.target.residual_count();
-            let out = lm::minimise(&u0, m, 200, |u, r| {
-                problem
-                    .residuals(&mut ws, &problem.to_physical(u), r)
-                    .is_ok()
-            });
+            let (lo, hi) = (vec![0.0; u0.len()], vec![1.0; u0.len()]);
+            let proto = problem.workspace()?;
+            let out = lm::minimise(
+                || Ok(proto.clone()),
+                |ws, u| {
+                    let mut r = vec![0.0; m];
+                    problem.residuals(ws, &problem.to_physical(u), &mut r)?;
+                    Ok(r)
+                },
+                &u0,
+                &lo,
+                &hi,
+                &LM_SETTINGS,
+            )?;
             (problem.to_physical(&out.u), out.evaluations)
         }
         Method::Surrogate(s) => surrogate::fit(problem, s, 7)?,

@@ -1,13 +1,14 @@
-//! Calibration of the planar model against paper 000's published figures — the four modes
+//! Calibration of paper 000's segment model against paper 000's published figures — the four modes
 //! (§3: 2.69, 4.70, 6.01, 9.08 Hz) and the v-v and v-h seat-transmissibility peaks for 60, 80 and
 //! 100 mm of foam (Table 4) — by the project's Levenberg–Marquardt
-//! ([`crate::study::calibrate::lm`]) through the parameter paths ([`crate::model::params`]).
+//! ([`crate::numeric::lm`]) through the parameter paths ([`crate::model::params`]).
 //! The paper's joints (Table 2), the anthropometry and the hyperfoam stay as stated; only the
 //! assumed quantities are fitted: tissue modulus and loss factors, backrest and footrest stiffness.
 //! Residuals are relative errors, so every target weighs the same.
 
 use crate::error::{Error, Result};
 use crate::model::Model;
+use crate::numeric::lm;
 use crate::response::{frf, peak};
 
 /// Paper 000 §3 mode frequencies, Hz.
@@ -60,7 +61,7 @@ pub fn figures(model: &Model, points: usize) -> Result<Figures> {
         let pk = |name: &str| {
             set.get(name)
                 .and_then(|r| peak::global_peak(&grid, &r.magnitude()))
-                .ok_or_else(|| Error::parameter("planar", format!("no {name} response")))
+                .ok_or_else(|| Error::parameter("calibrate", format!("no {name} response")))
         };
         peaks.push((pk("seat")?, pk("seat_x")?));
     }
@@ -126,15 +127,22 @@ pub fn calibrate(model: &Model) -> Result<Calibration> {
         .map(|(v, (_, lo, hi))| (v / lo).ln() / (hi / lo).ln())
         .collect();
     let m = residuals(&figures(model, POINTS)?).len();
-    let out = crate::study::calibrate::lm::minimise(&u0, m, 60, |u, r| {
-        match apply(model, &to_physical(u)).and_then(|mm| figures(&mm, POINTS)) {
-            Ok(f) => {
-                r.copy_from_slice(&residuals(&f));
-                r.iter().all(|v| v.is_finite())
-            }
-            Err(_) => false,
+    let (lo, hi) = (vec![0.0; u0.len()], vec![1.0; u0.len()]);
+    let settings = lm::Settings {
+        max_iter: 60,
+        ..crate::study::calibrate::LM_SETTINGS
+    };
+    let eval = |_: &mut (), u: &[f64]| -> Result<Vec<f64>> {
+        let r = residuals(&figures(&apply(model, &to_physical(u))?, POINTS)?);
+        if r.len() != m || r.iter().any(|v| !v.is_finite()) {
+            return Err(Error::parameter(
+                "calibrate",
+                "paper 000's figures could not be evaluated at this point",
+            ));
         }
-    });
+        Ok(r)
+    };
+    let out = lm::minimise(|| Ok(()), eval, &u0, &lo, &hi, &settings)?;
     let fitted = to_physical(&out.u);
     let calibrated = apply(model, &fitted)?;
     let sq = |m: &Model| -> Result<f64> {

@@ -1,4 +1,4 @@
-//! Paper 000 rows of the reproduction table for the planar model (issue 8): the four modes and
+//! Paper 000 rows of the reproduction table for its segment model (issue 8): the four modes and
 //! the v-v / v-h seat-transmissibility peaks per foam thickness, for the model as stated and after
 //! the calibration of [`super::calibrate`]. Kept here so the table's other rows merge cleanly.
 
@@ -42,7 +42,7 @@ fn rows_of(rows: &mut Vec<Row>, tag: &str, model: &Model, f: &Figures, note: &st
     {
         rows.push(Row {
             source: "000 §3, Fig. 5".into(),
-            quantity: format!("planar{tag}: mode {} (rigid seat pan)", i + 1),
+            quantity: format!("segment model{tag}: mode {} (rigid seat pan)", i + 1),
             paper: p,
             wbv: *m,
             unit: "Hz",
@@ -59,7 +59,7 @@ fn rows_of(rows: &mut Vec<Row>, tag: &str, model: &Model, f: &Figures, note: &st
         ] {
             rows.push(Row {
                 source: "000 Table 4".into(),
-                quantity: format!("planar{tag}, foam {mm:.0} mm: {what}"),
+                quantity: format!("segment model{tag}, foam {mm:.0} mm: {what}"),
                 paper,
                 wbv,
                 unit,
@@ -74,7 +74,7 @@ fn rows_of(rows: &mut Vec<Row>, tag: &str, model: &Model, f: &Figures, note: &st
     ] {
         rows.push(Row {
             source: "000 Table 4".into(),
-            quantity: format!("planar{tag}, foam 60→100 mm: change of the {what} peak frequency"),
+            quantity: format!("segment model{tag}, foam 60→100 mm: change of the {what} peak frequency"),
             paper,
             wbv,
             unit: "%",
@@ -84,16 +84,19 @@ fn rows_of(rows: &mut Vec<Row>, tag: &str, model: &Model, f: &Figures, note: &st
     Ok(())
 }
 
-/// The planar rows: stated model, then calibrated.
+/// The rows of paper 000's segment model: stated model, then calibrated.
 pub fn rows(rows: &mut Vec<Row>) -> Result<()> {
-    let model = catalog::resolve("planar-occupant")?;
+    let model = catalog::resolve(catalog::PAPER_000)?;
     let stated = figures(&model, POINTS)?;
     rows_of(
         rows,
         "",
         &model,
         &stated,
-        "models/planar-occupant.toml as stated (posture, contact areas, tissue, backrest and footrest assumed)",
+        &format!(
+            "models/{}.toml as stated (posture, contact areas, tissue, backrest and footrest assumed)",
+            catalog::PAPER_000
+        ),
     )?;
     let Calibration {
         model: cal,
