@@ -116,16 +116,24 @@ pub fn run_descriptor(masses: &[String], links: &[String]) -> Result<FileDescrip
     for (shell, item, keys) in [
         ("State", ".wbv.MassState", masses),
         ("Links", ".wbv.LinkState", links),
+        ("StateBatch", ".wbv.MassStateBatch", masses),
+        ("LinksBatch", ".wbv.LinkStateBatch", links),
     ] {
         let m = (file.message_type.iter_mut())
             .find(|m| m.name() == shell)
             .expect("wbv.proto declares the shells");
+        // After the shell's own fields (the batches' `t = 1`).
+        let first = m.field.len() as i32 + 1;
         for (i, key) in keys.iter().enumerate() {
             if !is_identifier(key) {
                 return Err(Error::parameter(
                     format!(
                         "{} name `{key}`",
-                        if shell == "State" { "mass" } else { "link" }
+                        if shell.starts_with("State") {
+                            "mass"
+                        } else {
+                            "link"
+                        }
                     ),
                     "is not a protobuf field name (it must start with a letter or `_`); rename it \
                      or record with --encoding json",
@@ -133,7 +141,7 @@ pub fn run_descriptor(masses: &[String], links: &[String]) -> Result<FileDescrip
             }
             m.field.push(FieldDescriptorProto {
                 name: Some(key.clone()),
-                number: Some(i as i32 + 1),
+                number: Some(first + i as i32),
                 label: Some(Label::Optional as i32),
                 r#type: Some(Type::Message as i32),
                 type_name: Some(item.to_string()),
@@ -245,6 +253,110 @@ impl ProtoTemplate {
     }
 }
 
+/// Writes the batched message of a topic (`wbv.*Batch`, `--layout batched`) for `n` samples:
+/// every leaf a packed `repeated double` (key, byte length, the `n` values little-endian), nested
+/// leaves inside a length-delimited sub-message, in the leaf order of [`ProtoTemplate`]. Only the
+/// lengths depend on `n`, so the keys are kept and the lengths written per message.
+#[derive(Debug, Clone, PartialEq)]
+pub struct BatchTemplate {
+    /// Per run of leaves sharing a parent: the parent's field number (`None`: top level) and the
+    /// field number of each leaf, in leaf order.
+    groups: Vec<(Option<u32>, Vec<u32>)>,
+    len: usize,
+}
+
+impl BatchTemplate {
+    /// The encoder of the batched message `full_name` of `fds` for `leaves` (paths as for
+    /// [`ProtoTemplate::new`]).
+    pub fn new(fds: &FileDescriptorSet, full_name: &str, leaves: &[Leaf]) -> Result<Self> {
+        let missing = |what: String| {
+            Error::parameter(
+                "protobuf schema",
+                format!("`{full_name}` has no field {what} (proto/wbv.proto)"),
+            )
+        };
+        let msg = message(fds, full_name).ok_or_else(|| missing(String::new()))?;
+        let mut groups: Vec<(Option<&str>, Option<u32>, Vec<u32>)> = Vec::new();
+        for leaf in leaves {
+            let (parent, name, inner_type) = match leaf.path.as_slice() {
+                [name] => (None, name.as_str(), full_name.to_string()),
+                [parent, name] => {
+                    let f = (msg.field.iter())
+                        .find(|f| f.name() == parent)
+                        .ok_or_else(|| missing(format!("`{parent}`")))?;
+                    let t = f.type_name().trim_start_matches('.').to_string();
+                    (Some(parent.as_str()), name.as_str(), t)
+                }
+                _ => return Err(missing(format!("`{}`", leaf.path.join(".")))),
+            };
+            let number = field_number(fds, &inner_type, name)
+                .ok_or_else(|| missing(format!("`{}`", leaf.path.join("."))))?;
+            match groups.last_mut() {
+                Some((p, _, fields)) if *p == parent => fields.push(number),
+                _ => {
+                    let outer = match parent {
+                        None => None,
+                        Some(p) => Some(
+                            field_number(fds, full_name, p)
+                                .ok_or_else(|| missing(format!("`{p}`")))?,
+                        ),
+                    };
+                    groups.push((parent, outer, vec![number]));
+                }
+            }
+        }
+        Ok(BatchTemplate {
+            groups: groups.into_iter().map(|(_, o, f)| (o, f)).collect(),
+            len: leaves.len(),
+        })
+    }
+
+    /// Number of values a sample takes.
+    pub fn len(&self) -> usize {
+        self.len
+    }
+
+    /// Whether a sample takes no values.
+    pub fn is_empty(&self) -> bool {
+        self.len == 0
+    }
+
+    /// Appends the message of `n` samples: value `j` of sample `k` is
+    /// `values[k * stride + offset + j]` (the row-major block of the recorder).
+    pub fn render(
+        &self,
+        values: &[f64],
+        stride: usize,
+        offset: usize,
+        n: usize,
+        out: &mut Vec<u8>,
+    ) {
+        use prost::encoding::encoded_len_varint;
+        let bytes = 8 * n as u64;
+        let packed = |f: u32| key_len(f) + encoded_len_varint(bytes) + 8 * n;
+        let mut j = offset;
+        for (outer, fields) in &self.groups {
+            if let Some(outer) = outer {
+                encode_key(*outer, WireType::LengthDelimited, out);
+                let body: usize = fields.iter().map(|&f| packed(f)).sum();
+                encode_varint(body as u64, out);
+            }
+            for &f in fields {
+                encode_key(f, WireType::LengthDelimited, out);
+                encode_varint(bytes, out);
+                // column j of the row-major block, written in place (no per-value capacity check)
+                let start = out.len();
+                out.resize(start + 8 * n, 0);
+                let column = values[j..].iter().step_by(stride);
+                for (dst, v) in out[start..].chunks_exact_mut(8).zip(column) {
+                    dst.copy_from_slice(&v.to_le_bytes());
+                }
+                j += 1;
+            }
+        }
+    }
+}
+
 /// What a reader makes of one field of a message: a double leaf (its column) or a sub-message.
 #[derive(Debug, Clone)]
 enum Node {
@@ -265,6 +377,8 @@ pub struct ProtoTable {
     /// Columns in the order their fields come in the first message.
     first: Vec<usize>,
     messages: usize,
+    /// Samples read so far (= messages of the per-sample layout).
+    rows: usize,
 }
 
 impl ProtoTable {
@@ -281,6 +395,7 @@ impl ProtoTable {
             columns,
             first: Vec::new(),
             messages: 0,
+            rows: 0,
         })
     }
 
@@ -300,7 +415,7 @@ impl ProtoTable {
         for f in &m.field {
             path.push(f.name().to_string());
             match f.r#type() {
-                Type::Double if f.label() != Label::Repeated => {
+                Type::Double => {
                     out.push((f.number() as u32, Node::Leaf(names.len())));
                     names.push(path.clone());
                 }
@@ -316,20 +431,28 @@ impl ProtoTable {
         Ok(out)
     }
 
-    /// Adds one message.
+    /// Adds one message: one sample (a double per field) or, batched, the same number of samples
+    /// (a packed array per field) in every field.
     pub fn add(&mut self, mut data: &[u8]) -> std::result::Result<(), String> {
         Self::walk(&self.root, &mut data, &mut self.columns, &mut self.first)?;
         self.messages += 1;
+        let rows = self.columns.iter().map(Vec::len).max().unwrap_or(0);
+        let bad = |name: &[String], n: usize| {
+            Err(format!(
+                "field `{}` has {n} samples where others have {rows} after {} messages",
+                name.join("."),
+                self.messages
+            ))
+        };
+        if rows <= self.rows && self.first.iter().any(|&k| !self.columns[k].is_empty()) {
+            return bad(&self.names[self.first[0]], self.rows);
+        }
         for (name, col) in self.names.iter().zip(&self.columns) {
-            if !col.is_empty() && col.len() != self.messages {
-                return Err(format!(
-                    "field `{}` is in {} of {} messages",
-                    name.join("."),
-                    col.len(),
-                    self.messages
-                ));
+            if !col.is_empty() && col.len() != rows {
+                return bad(name, col.len());
             }
         }
+        self.rows = rows;
         Ok(())
     }
 
@@ -352,6 +475,22 @@ impl ProtoTable {
                     columns[*col].push(f64::from_le_bytes(*v));
                     *buf = rest;
                 }
+                (Some((_, Node::Leaf(col))), WireType::LengthDelimited) => {
+                    // packed repeated doubles (the batched layout)
+                    let len = decode_varint(buf).map_err(e)?;
+                    if len > buf.len() as u64 || len % 8 != 0 {
+                        return Err("truncated or misaligned packed doubles".into());
+                    }
+                    let (packed, rest) = buf.split_at(len as usize);
+                    if columns[*col].is_empty() && !packed.is_empty() {
+                        first.push(*col);
+                    }
+                    columns[*col].extend(
+                        (packed.chunks_exact(8))
+                            .map(|b| f64::from_le_bytes(b.try_into().expect("8 bytes"))),
+                    );
+                    *buf = rest;
+                }
                 (Some((_, Node::Message(sub))), WireType::LengthDelimited) => {
                     let len = decode_varint(buf).map_err(e)?;
                     if len > buf.len() as u64 {
@@ -370,7 +509,7 @@ impl ProtoTable {
 
     /// The columns present in every message, with their names, in the order of the bytes.
     pub fn into_columns(self) -> (Vec<Vec<String>>, Vec<Vec<f64>>) {
-        let messages = self.messages;
+        let rows = self.rows;
         let (mut names, mut columns) = (self.names, self.columns);
         (self.first.iter())
             .map(|&k| {
@@ -379,7 +518,7 @@ impl ProtoTable {
                     std::mem::take(&mut columns[k]),
                 )
             })
-            .filter(|(_, c)| messages > 0 && c.len() == messages)
+            .filter(|(_, c)| rows > 0 && c.len() == rows)
             .unzip()
     }
 }
