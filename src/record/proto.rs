@@ -334,7 +334,10 @@ impl BatchTemplate {
         use prost::encoding::encoded_len_varint;
         let bytes = 8 * n as u64;
         let packed = |f: u32| key_len(f) + encoded_len_varint(bytes) + 8 * n;
-        let mut j = offset;
+        // Headers and room for every column first, then the block's rows read once, in order,
+        // each value put into its column: one pass over the row-major block instead of one per
+        // column (the strided reads were 13 % of a batched run's CPU).
+        let mut columns = Vec::with_capacity(self.len);
         for (outer, fields) in &self.groups {
             if let Some(outer) = outer {
                 encode_key(*outer, WireType::LengthDelimited, out);
@@ -344,14 +347,14 @@ impl BatchTemplate {
             for &f in fields {
                 encode_key(f, WireType::LengthDelimited, out);
                 encode_varint(bytes, out);
-                // column j of the row-major block, written in place (no per-value capacity check)
-                let start = out.len();
-                out.resize(start + 8 * n, 0);
-                let column = values[j..].iter().step_by(stride);
-                for (dst, v) in out[start..].chunks_exact_mut(8).zip(column) {
-                    dst.copy_from_slice(&v.to_le_bytes());
-                }
-                j += 1;
+                columns.push(out.len());
+                out.resize(out.len() + 8 * n, 0);
+            }
+        }
+        for k in 0..n {
+            let row = &values[k * stride + offset..][..self.len];
+            for (&at, v) in columns.iter().zip(row) {
+                out[at + 8 * k..at + 8 * k + 8].copy_from_slice(&v.to_le_bytes());
             }
         }
     }
@@ -687,6 +690,65 @@ mod tests {
             .flat_map(|m| fields.iter().map(move |f| Leaf::new(&[m, f], "")))
             .collect();
         ProtoTemplate::new(fds, "wbv.State", &leaves).unwrap()
+    }
+
+    /// `wbv.MassStateBatch` as prost derives it (packed `repeated double`), the independent
+    /// encoder the batched bytes are compared with.
+    #[derive(Clone, PartialEq, Message)]
+    struct MassStateBatch {
+        #[prost(double, repeated, tag = "1")]
+        x: Vec<f64>,
+        #[prost(double, repeated, tag = "2")]
+        v: Vec<f64>,
+        #[prost(double, repeated, tag = "3")]
+        a: Vec<f64>,
+        #[prost(double, repeated, tag = "4")]
+        x_abs: Vec<f64>,
+        #[prost(double, repeated, tag = "5")]
+        v_abs: Vec<f64>,
+        #[prost(double, repeated, tag = "6")]
+        a_abs: Vec<f64>,
+    }
+
+    #[test]
+    fn batched_state_equals_the_prost_encoding_and_reads_back() {
+        let masses = vec!["head".to_string(), "seat_1".to_string()];
+        let fds = run_descriptor(&masses, &[]).unwrap();
+        let fields = ["x", "v", "a", "x_abs", "v_abs", "a_abs"];
+        let mut leaves = vec![Leaf::new(&["t"], "")];
+        leaves.extend(
+            (masses.iter()).flat_map(|m| fields.iter().map(move |f| Leaf::new(&[m, f], ""))),
+        );
+        let t = BatchTemplate::new(&fds, "wbv.StateBatch", &leaves).unwrap();
+        // a block of 3 rows of [pad, t, 12 values, pad]: stride 15, offset 1
+        let (stride, n) = (15, 3);
+        let block: Vec<f64> = (0..stride * n).map(|i| i as f64 * -0.25 + 1e-300).collect();
+        let mut out = Vec::new();
+        t.render(&block, stride, 1, n, &mut out);
+        let col = |j: usize| -> Vec<f64> { (0..n).map(|k| block[k * stride + 1 + j]).collect() };
+        let mut expected = Vec::new();
+        prost::encoding::double::encode_packed(1, &col(0), &mut expected);
+        for (i, _) in masses.iter().enumerate() {
+            let c = |f: usize| col(1 + 6 * i + f);
+            let m = MassStateBatch {
+                x: c(0),
+                v: c(1),
+                a: c(2),
+                x_abs: c(3),
+                v_abs: c(4),
+                a_abs: c(5),
+            };
+            // masses are numbered from 2 after `t = 1`
+            prost::encoding::message::encode(i as u32 + 2, &m, &mut expected);
+        }
+        assert_eq!(out, expected);
+        let mut table = ProtoTable::new(&fds.encode_to_vec(), "wbv.StateBatch").unwrap();
+        table.add(&out).unwrap();
+        table.add(&out[..0]).unwrap_err(); // a message without samples
+        let (names, cols) = table.into_columns();
+        assert_eq!(names[0], ["t"]);
+        assert_eq!(names[8], ["seat_1", "x"]);
+        assert_eq!(cols[8], col(7));
     }
 
     #[test]
