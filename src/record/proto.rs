@@ -153,6 +153,53 @@ pub fn run_descriptor(masses: &[String], links: &[String]) -> Result<FileDescrip
     Ok(fds)
 }
 
+/// The leaves of message `full_name` of `fds` grouped by parent (see [`ProtoTemplate::new`]): per run
+/// of leaves sharing a parent, the parent's field number (`None`: top level) and the field number
+/// and leaf index of each.
+fn leaf_groups(
+    fds: &FileDescriptorSet,
+    full_name: &str,
+    leaves: &[Leaf],
+) -> Result<Vec<(Option<u32>, Vec<(u32, usize)>)>> {
+    let missing = |what: String| {
+        Error::parameter(
+            "protobuf schema",
+            format!("`{full_name}` has no field {what} (proto/wbv.proto)"),
+        )
+    };
+    let msg = message(fds, full_name).ok_or_else(|| missing(String::new()))?;
+    // (parent field number, [(leaf field number)]) per run of leaves sharing a parent
+    let mut groups: Vec<Group> = Vec::new();
+    for (index, leaf) in leaves.iter().enumerate() {
+        let (parent, name, inner_type) = match leaf.path.as_slice() {
+            [name] => (None, name.as_str(), full_name.to_string()),
+            [parent, name] => {
+                let f = (msg.field.iter())
+                    .find(|f| f.name() == parent)
+                    .ok_or_else(|| missing(format!("`{parent}`")))?;
+                let t = f.type_name().trim_start_matches('.').to_string();
+                (Some(parent.as_str()), name.as_str(), t)
+            }
+            _ => return Err(missing(format!("`{}`", leaf.path.join(".")))),
+        };
+        let number = field_number(fds, &inner_type, name)
+            .ok_or_else(|| missing(format!("`{}`", leaf.path.join("."))))?;
+        match groups.last_mut() {
+            Some((p, _, fields)) if *p == parent => fields.push((number, index)),
+            _ => {
+                let outer = match parent {
+                    None => None,
+                    Some(p) => Some(
+                        field_number(fds, full_name, p).ok_or_else(|| missing(format!("`{p}`")))?,
+                    ),
+                };
+                groups.push((parent, outer, vec![(number, index)]));
+            }
+        }
+    }
+    Ok(groups.into_iter().map(|(_, o, f)| (o, f)).collect())
+}
+
 /// Leaves sharing a parent: the parent's name and field number (`None` at the top level) and
 /// the field number and leaf index of each.
 type Group<'a> = (Option<&'a str>, Option<u32>, Vec<(u32, usize)>);
@@ -178,45 +225,9 @@ impl ProtoTemplate {
     /// sub-message field `key`; leaves of one sub-message are adjacent. Every name must exist in
     /// the descriptor.
     pub fn new(fds: &FileDescriptorSet, full_name: &str, leaves: &[Leaf]) -> Result<Self> {
-        let missing = |what: String| {
-            Error::parameter(
-                "protobuf schema",
-                format!("`{full_name}` has no field {what} (proto/wbv.proto)"),
-            )
-        };
-        let msg = message(fds, full_name).ok_or_else(|| missing(String::new()))?;
-        // (parent field number, [(leaf field number)]) per run of leaves sharing a parent
-        let mut groups: Vec<Group> = Vec::new();
-        for (index, leaf) in leaves.iter().enumerate() {
-            let (parent, name, inner_type) = match leaf.path.as_slice() {
-                [name] => (None, name.as_str(), full_name.to_string()),
-                [parent, name] => {
-                    let f = (msg.field.iter())
-                        .find(|f| f.name() == parent)
-                        .ok_or_else(|| missing(format!("`{parent}`")))?;
-                    let t = f.type_name().trim_start_matches('.').to_string();
-                    (Some(parent.as_str()), name.as_str(), t)
-                }
-                _ => return Err(missing(format!("`{}`", leaf.path.join(".")))),
-            };
-            let number = field_number(fds, &inner_type, name)
-                .ok_or_else(|| missing(format!("`{}`", leaf.path.join("."))))?;
-            match groups.last_mut() {
-                Some((p, _, fields)) if *p == parent => fields.push((number, index)),
-                _ => {
-                    let outer = match parent {
-                        None => None,
-                        Some(p) => Some(
-                            field_number(fds, full_name, p)
-                                .ok_or_else(|| missing(format!("`{p}`")))?,
-                        ),
-                    };
-                    groups.push((parent, outer, vec![(number, index)]));
-                }
-            }
-        }
+        let groups = leaf_groups(fds, full_name, leaves)?;
         let mut fragments = Vec::with_capacity(leaves.len());
-        for (_, outer, fields) in groups {
+        for (outer, fields) in groups {
             for (k, &(f, index)) in fields.iter().enumerate() {
                 let mut frag = Vec::new();
                 if let (0, Some(outer)) = (k, outer) {
@@ -269,44 +280,11 @@ impl BatchTemplate {
     /// The encoder of the batched message `full_name` of `fds` for `leaves` (paths as for
     /// [`ProtoTemplate::new`]).
     pub fn new(fds: &FileDescriptorSet, full_name: &str, leaves: &[Leaf]) -> Result<Self> {
-        let missing = |what: String| {
-            Error::parameter(
-                "protobuf schema",
-                format!("`{full_name}` has no field {what} (proto/wbv.proto)"),
-            )
-        };
-        let msg = message(fds, full_name).ok_or_else(|| missing(String::new()))?;
-        let mut groups: Vec<(Option<&str>, Option<u32>, Vec<u32>)> = Vec::new();
-        for leaf in leaves {
-            let (parent, name, inner_type) = match leaf.path.as_slice() {
-                [name] => (None, name.as_str(), full_name.to_string()),
-                [parent, name] => {
-                    let f = (msg.field.iter())
-                        .find(|f| f.name() == parent)
-                        .ok_or_else(|| missing(format!("`{parent}`")))?;
-                    let t = f.type_name().trim_start_matches('.').to_string();
-                    (Some(parent.as_str()), name.as_str(), t)
-                }
-                _ => return Err(missing(format!("`{}`", leaf.path.join(".")))),
-            };
-            let number = field_number(fds, &inner_type, name)
-                .ok_or_else(|| missing(format!("`{}`", leaf.path.join("."))))?;
-            match groups.last_mut() {
-                Some((p, _, fields)) if *p == parent => fields.push(number),
-                _ => {
-                    let outer = match parent {
-                        None => None,
-                        Some(p) => Some(
-                            field_number(fds, full_name, p)
-                                .ok_or_else(|| missing(format!("`{p}`")))?,
-                        ),
-                    };
-                    groups.push((parent, outer, vec![number]));
-                }
-            }
-        }
+        let groups = leaf_groups(fds, full_name, leaves)?;
         Ok(BatchTemplate {
-            groups: groups.into_iter().map(|(_, o, f)| (o, f)).collect(),
+            groups: (groups.into_iter())
+                .map(|(outer, fields)| (outer, fields.into_iter().map(|(f, _)| f).collect()))
+                .collect(),
             len: leaves.len(),
         })
     }
