@@ -156,11 +156,10 @@ pub fn run_descriptor(masses: &[String], links: &[String]) -> Result<FileDescrip
 /// The leaves of message `full_name` of `fds` grouped by parent (see [`ProtoTemplate::new`]): per run
 /// of leaves sharing a parent, the parent's field number (`None`: top level) and the field number
 /// and leaf index of each.
-fn leaf_groups(
-    fds: &FileDescriptorSet,
-    full_name: &str,
-    leaves: &[Leaf],
-) -> Result<Vec<(Option<u32>, Vec<(u32, usize)>)>> {
+/// Per run of leaves sharing a parent: the parent's field number and (field number, leaf index).
+type LeafGroups = Vec<(Option<u32>, Vec<(u32, usize)>)>;
+
+fn leaf_groups(fds: &FileDescriptorSet, full_name: &str, leaves: &[Leaf]) -> Result<LeafGroups> {
     let missing = |what: String| {
         Error::parameter(
             "protobuf schema",
