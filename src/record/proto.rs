@@ -724,8 +724,8 @@ mod tests {
         table.add(&out[..0]).unwrap_err(); // a message without samples
         let (names, cols) = table.into_columns();
         assert_eq!(names[0], ["t"]);
-        assert_eq!(names[8], ["seat_1", "x"]);
-        assert_eq!(cols[8], col(7));
+        assert_eq!(names[7], ["seat_1", "x"]);
+        assert_eq!(cols[7], col(7));
     }
 
     #[test]
