@@ -1,5 +1,6 @@
 //! Recording throughput of `McapRecorder` for the synthetic 5-mass layout at 1 kHz (3 messages
-//! per step + the 30 Hz scene), protobuf (the default) and JSON, and what it is made of:
+//! per step + the 30 Hz scene), protobuf (the default, batched: one message per topic per 1024
+//! steps) and JSON (per sample), and what it is made of:
 //! formatting the JSON floats alone and framing + compressing the rendered messages alone
 //! (through the mcap writer, as the recorder does). Every figure is also printed per simulated hour (3.6 M steps), with the CPU time, so
 //! that the cost on an idle machine (wall ≈ CPU / cores) can be told from a loaded one.

@@ -4,7 +4,7 @@
 use std::path::Path;
 use wbv::record::demo::{self, State};
 use wbv::record::{
-    Compression, Encoding, McapRecorder, Overwrite, Provenance, RecordOptions,
+    Compression, Encoding, McapRecorder, MessageLayout, Overwrite, Provenance, RecordOptions,
     check_lichtblick_subset, inspect, read_run,
 };
 use wbv::simulate::observer::Observer;
@@ -46,17 +46,29 @@ fn opts(compression: Compression, encoding: Encoding) -> RecordOptions {
 #[test]
 fn recorded_signals_read_back_bit_identically() {
     let dir = tempfile::tempdir().unwrap();
+    let (batched, per_sample) = (Some(MessageLayout::Batched), Some(MessageLayout::PerSample));
     let cases = [
-        (Compression::Zstd, Encoding::Protobuf),
-        (Compression::Lz4, Encoding::Protobuf),
-        (Compression::None, Encoding::Protobuf),
-        (Compression::Zstd, Encoding::Json),
-        (Compression::None, Encoding::Json),
+        (Compression::Zstd, Encoding::Protobuf, None),
+        (Compression::Lz4, Encoding::Protobuf, batched),
+        (Compression::None, Encoding::Protobuf, batched),
+        (Compression::Zstd, Encoding::Protobuf, per_sample),
+        (Compression::None, Encoding::Protobuf, per_sample),
+        (Compression::Zstd, Encoding::Json, None),
+        (Compression::None, Encoding::Json, per_sample),
     ];
-    for (c, e) in cases {
-        let name = format!("run-{}-{}", c.as_str(), e.as_str());
+    for (c, e, layout) in cases {
+        let kind = layout.unwrap_or(MessageLayout::default_for(e));
+        let name = format!("run-{}-{}-{}", c.as_str(), e.as_str(), kind.as_str());
         let path = dir.path().join(format!("{name}.mcap"));
-        record(&path, opts(c, e), 2001).unwrap();
+        record(
+            &path,
+            RecordOptions {
+                layout,
+                ..opts(c, e)
+            },
+            2001,
+        )
+        .unwrap();
         let run = read_run(&path).unwrap();
         let s = &run.signals;
         assert_eq!(s.len(), 2001);
@@ -108,13 +120,47 @@ fn recorded_signals_read_back_bit_identically() {
 }
 
 #[test]
+fn batched_layout_is_one_message_per_topic_per_block_and_protobuf_only() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("run.mcap");
+    // 2001 samples: blocks of 1024 and 977
+    record(&path, opts(Compression::Zstd, Encoding::Protobuf), 2001).unwrap();
+    let summary = wbv::record::inspect(&path).unwrap();
+    let expected = 2001usize.div_ceil(wbv::record::BATCH_SAMPLES) as u64;
+    for topic in ["/wbv/measured", "/wbv/state", "/wbv/links"] {
+        let t = summary.topics.iter().find(|t| t.topic == topic).unwrap();
+        assert_eq!(t.messages, expected, "{topic}");
+        assert!(t.schema.ends_with("Batch"), "{}", t.schema);
+    }
+    assert_eq!(summary.metadata["wbv.run"]["layout"], "batched");
+    let json = RecordOptions {
+        layout: Some(MessageLayout::Batched),
+        ..opts(Compression::Zstd, Encoding::Json)
+    };
+    let e = McapRecorder::create(&dir.path().join("json.mcap"), provenance(), json)
+        .err()
+        .expect("batched JSON is refused");
+    assert!(e.to_string().contains("protobuf only"), "{e}");
+    assert!(!dir.path().join("json.mcap.partial").exists());
+}
+
+#[test]
 fn same_inputs_give_a_byte_identical_file() {
     let dir = tempfile::tempdir().unwrap();
     let a = dir.path().join("a.mcap");
     let b = dir.path().join("b.mcap");
-    for e in [Encoding::Protobuf, Encoding::Json] {
-        record(&a, opts(Compression::Zstd, e), 5000).unwrap();
-        record(&b, opts(Compression::Zstd, e), 5000).unwrap();
+    let per_sample = Some(MessageLayout::PerSample);
+    for (e, layout) in [
+        (Encoding::Protobuf, None),
+        (Encoding::Protobuf, per_sample),
+        (Encoding::Json, None),
+    ] {
+        let o = RecordOptions {
+            layout,
+            ..opts(Compression::Zstd, e)
+        };
+        record(&a, o.clone(), 5000).unwrap();
+        record(&b, o, 5000).unwrap();
         assert_eq!(std::fs::read(&a).unwrap(), std::fs::read(&b).unwrap());
         std::fs::remove_file(&a).unwrap();
         std::fs::remove_file(&b).unwrap();

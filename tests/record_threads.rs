@@ -4,14 +4,22 @@
 
 use std::path::Path;
 use wbv::record::{
-    Compression, McapRecorder, Overwrite, Provenance, RecordOptions, demo, read_run,
+    BATCH_SAMPLES, Compression, McapRecorder, MessageLayout, Overwrite, Provenance, RecordOptions,
+    demo, read_run,
 };
 
 const FS: f64 = 1000.0;
 
-fn record(path: &Path, compression: Compression, rate: Option<f64>, threads: usize, steps: u64) {
+fn record(
+    path: &Path,
+    (compression, layout): (Compression, MessageLayout),
+    rate: Option<f64>,
+    threads: usize,
+    steps: u64,
+) {
     let options = RecordOptions {
         compression,
+        layout: Some(layout),
         record_rate_hz: rate,
         overwrite: Overwrite::Allow,
         threads: Some(threads),
@@ -24,32 +32,38 @@ fn record(path: &Path, compression: Compression, rate: Option<f64>, threads: usi
 #[test]
 fn the_file_is_byte_identical_for_any_thread_count() {
     let dir = tempfile::tempdir().unwrap();
-    // 20 001 steps: 20 blocks, and more than one 8 MiB chunk of protobuf (≈ 0.5 kB per step).
-    for (compression, rate, steps) in [
-        (Compression::Zstd, None, 20_001),
-        (Compression::Lz4, None, 3_001),
-        (Compression::None, Some(250.0), 5_001),
+    // 20 001 steps per sample: 20 blocks, and more than one 8 MiB chunk of protobuf (≈ 0.5 kB
+    // per step).
+    let (batched, per_sample) = (MessageLayout::Batched, MessageLayout::PerSample);
+    for (compression, layout, rate, steps) in [
+        (Compression::Zstd, per_sample, None, 20_001),
+        (Compression::Zstd, batched, None, 5_001),
+        (Compression::Lz4, batched, None, 3_001),
+        (Compression::None, batched, Some(250.0), 5_001),
     ] {
         let files: Vec<Vec<u8>> = [1, 2, 3]
             .iter()
             .map(|&threads| {
-                let path = dir
-                    .path()
-                    .join(format!("{}-{threads}.mcap", compression.as_str()));
-                record(&path, compression, rate, threads, steps);
+                let path = dir.path().join(format!(
+                    "{}-{}-{threads}.mcap",
+                    compression.as_str(),
+                    layout.as_str()
+                ));
+                record(&path, (compression, layout), rate, threads, steps);
                 std::fs::read(&path).unwrap()
             })
             .collect();
-        let name = compression.as_str();
+        let name = format!("{} {}", compression.as_str(), layout.as_str());
         assert!(files[0] == files[1], "{name}: 1 and 2 threads differ");
         assert!(files[0] == files[2], "{name}: 1 and 3 threads differ");
     }
-    let run = read_run(&dir.path().join("zstd-2.mcap")).unwrap();
+    let run = read_run(&dir.path().join("zstd-per-sample-2.mcap")).unwrap();
     assert_eq!(run.signals.len(), 20_001);
-    let chunks = mcap::Summary::read(&std::fs::read(dir.path().join("zstd-2.mcap")).unwrap())
-        .unwrap()
-        .unwrap()
-        .chunk_indexes;
+    let chunks =
+        mcap::Summary::read(&std::fs::read(dir.path().join("zstd-per-sample-2.mcap")).unwrap())
+            .unwrap()
+            .unwrap()
+            .chunk_indexes;
     assert!(chunks.len() >= 2, "{} chunk(s)", chunks.len());
     assert!(chunks.iter().all(|c| c.compression == "zstd"));
 }
@@ -57,9 +71,15 @@ fn the_file_is_byte_identical_for_any_thread_count() {
 #[test]
 fn messages_are_in_time_order_with_the_scene_interleaved() {
     let dir = tempfile::tempdir().unwrap();
-    let path = dir.path().join("run.mcap");
-    record(&path, Compression::Zstd, None, 3, 2_500);
-    let bytes = std::fs::read(&path).unwrap();
+    for layout in [MessageLayout::PerSample, MessageLayout::Batched] {
+        let path = dir.path().join(format!("{}.mcap", layout.as_str()));
+        record(&path, (Compression::Zstd, layout), None, 3, 2_500);
+        in_time_order(&path, layout);
+    }
+}
+
+fn in_time_order(path: &Path, layout: MessageLayout) {
+    let bytes = std::fs::read(path).unwrap();
     let mut last = 0;
     let mut per_topic = std::collections::BTreeMap::<String, u64>::new();
     for m in mcap::MessageStream::new(&bytes).unwrap() {
@@ -75,9 +95,13 @@ fn messages_are_in_time_order_with_the_scene_interleaved() {
         *per_topic.entry(m.channel.topic.clone()).or_default() += 1;
     }
     // 2 500 steps at 1 kHz: t = 0 … 2.499 s; the scene at 30 Hz from t = 0.
-    assert_eq!(per_topic["/wbv/measured"], 2_500);
-    assert_eq!(per_topic["/wbv/state"], 2_500);
-    assert_eq!(per_topic["/wbv/links"], 2_500);
+    let messages = match layout {
+        MessageLayout::PerSample => 2_500,
+        MessageLayout::Batched => 2_500usize.div_ceil(BATCH_SAMPLES) as u64,
+    };
+    assert_eq!(per_topic["/wbv/measured"], messages);
+    assert_eq!(per_topic["/wbv/state"], messages);
+    assert_eq!(per_topic["/wbv/links"], messages);
     assert_eq!(per_topic["/wbv/scene"], 75);
     assert_eq!(per_topic["/tf"], 75);
     assert_eq!(per_topic.len(), 5, "{per_topic:?}");

@@ -1,6 +1,6 @@
 use crate::excitation::{ExcitationArgs, args::resolve};
 use crate::io::atomic::Overwrite;
-use crate::record::{Compression, Encoding, RUN_FILE, RecordOptions};
+use crate::record::{Compression, Encoding, MessageLayout, RUN_FILE, RecordOptions};
 use crate::scenario::{Outcome, Outputs, Scenario};
 use std::path::{Path, PathBuf};
 
@@ -32,6 +32,11 @@ pub struct Args {
     /// Lichtblick, PlotJuggler and Rerun) or json (text).
     #[arg(long, default_value = "protobuf")]
     pub encoding: String,
+    /// Message layout of the time series: batched (one message per topic per 1024 samples, packed
+    /// arrays; the protobuf default, a full-rate hour in seconds) or per-sample (one message per
+    /// sample: every field a time series in every viewer; the JSON layout). See the README.
+    #[arg(long)]
+    pub layout: Option<String>,
     /// MCAP chunk compression: zstd, lz4 or none.
     #[arg(long, default_value = "zstd")]
     pub compression: String,
@@ -190,6 +195,10 @@ pub fn from_run(run: &Path) -> crate::Result<(Scenario, RecordOptions, String)> 
     let options = RecordOptions {
         encoding: Encoding::parse(get("encoding").map_or("json", |s| s.as_str()))?,
         compression: Compression::parse(get("compression")?)?,
+        // runs from before the option were recorded per sample
+        layout: Some(MessageLayout::parse(
+            get("layout").map_or("per-sample", |s| s.as_str()),
+        )?),
         record_rate_hz: (rate != fs).then_some(rate),
         scene_rate_hz: num("scene_rate_hz")?,
         magnification: num("display_magnification")?,
@@ -356,6 +365,7 @@ pub fn run(args: Args) -> crate::Result<()> {
     if args.no_record {
         for (set, flag) in [
             (args.record_rate.is_some(), "--record-rate"),
+            (args.layout.is_some(), "--layout"),
             (args.out.is_some(), "--out"),
         ] {
             if set {
@@ -384,6 +394,11 @@ pub fn run(args: Args) -> crate::Result<()> {
     let options = RecordOptions {
         encoding: Encoding::parse(&args.encoding)?,
         compression: Compression::parse(&args.compression)?,
+        layout: args
+            .layout
+            .as_deref()
+            .map(MessageLayout::parse)
+            .transpose()?,
         record_rate_hz: args.record_rate,
         overwrite: Overwrite::from_force(args.force),
         ..RecordOptions::default()

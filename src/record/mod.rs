@@ -135,6 +135,55 @@ impl Encoding {
     }
 }
 
+/// How the time-series topics (`/wbv/measured`, `/wbv/state`, `/wbv/links`) are cut into
+/// messages. The 3-D scene is one message per frame in both.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum MessageLayout {
+    /// One message per topic per recorded sample (`wbv.Measured`, `wbv.State`, `wbv.Links`):
+    /// every field a time series in every viewer (`/wbv/state.head.a_abs`). Three MCAP messages per
+    /// step: a full-rate hour costs ≈ 19 CPU-s, mostly per-message framing and compressor calls.
+    PerSample,
+    /// One message per topic per block of up to [`BATCH_SAMPLES`] samples with a packed array per
+    /// field (`wbv.MeasuredBatch`, `wbv.StateBatch`, `wbv.LinksBatch`; protobuf only): a
+    /// thousandth of the messages, so the hour costs the compression of its doubles and little
+    /// else. Viewers see arrays (`/wbv/state.head.a_abs[:]`, against `/wbv/state.t[:]`).
+    Batched,
+}
+
+/// Samples per message of the batched layout (the recorder's block of steps).
+pub const BATCH_SAMPLES: usize = pipeline::BLOCK_STEPS;
+
+impl MessageLayout {
+    /// Parses `per-sample` or `batched`.
+    pub fn parse(s: &str) -> crate::Result<Self> {
+        match s {
+            "per-sample" => Ok(MessageLayout::PerSample),
+            "batched" => Ok(MessageLayout::Batched),
+            _ => Err(crate::Error::parameter(
+                "layout",
+                format!("`{s}` is not one of batched, per-sample"),
+            )),
+        }
+    }
+
+    /// The name used on the command line and in the metadata.
+    pub fn as_str(&self) -> &'static str {
+        match self {
+            MessageLayout::PerSample => "per-sample",
+            MessageLayout::Batched => "batched",
+        }
+    }
+
+    /// The layout of `encoding` when none is asked for: batched for protobuf (a full-rate hour
+    /// within seconds), per-sample for JSON (the text layout, which is not batched).
+    pub fn default_for(encoding: Encoding) -> Self {
+        match encoding {
+            Encoding::Protobuf => MessageLayout::Batched,
+            Encoding::Json => MessageLayout::PerSample,
+        }
+    }
+}
+
 /// How a run is recorded.
 #[derive(Debug, Clone, PartialEq)]
 pub struct RecordOptions {
@@ -142,6 +191,9 @@ pub struct RecordOptions {
     pub encoding: Encoding,
     /// Chunk compression.
     pub compression: Compression,
+    /// Message layout of the time series; `None`: [`MessageLayout::default_for`] the encoding.
+    /// `Batched` is protobuf only.
+    pub layout: Option<MessageLayout>,
     /// Rate of the time-series topics in Hz; `None` records every step. A lower rate must divide
     /// the simulation rate `1/dt` by an integer `N`; the signals then pass a 4th-order Butterworth
     /// low-pass at [`LowPass::CUTOFF_FRACTION`]` · record_rate_hz` before keeping every `N`-th step,
@@ -165,6 +217,7 @@ impl Default for RecordOptions {
         RecordOptions {
             encoding: Encoding::Protobuf,
             compression: Compression::Zstd,
+            layout: None,
             record_rate_hz: None,
             scene_rate_hz: 30.0,
             magnification: 20.0,

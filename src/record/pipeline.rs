@@ -10,7 +10,7 @@
 
 use super::Compression;
 use super::json::Template;
-use super::proto::ProtoTemplate;
+use super::proto::{BatchTemplate, ProtoTemplate};
 use mcap::records::MessageHeader;
 use std::collections::BTreeMap;
 use std::fs::File;
@@ -84,6 +84,8 @@ pub fn protobuf_channel(
 pub enum Encoder {
     Json(Template),
     Protobuf(ProtoTemplate),
+    /// One message per block (`--layout batched`).
+    Batched(BatchTemplate),
 }
 
 impl Encoder {
@@ -92,6 +94,7 @@ impl Encoder {
         match self {
             Encoder::Json(t) => t.len(),
             Encoder::Protobuf(t) => t.len(),
+            Encoder::Batched(t) => t.len(),
         }
     }
 
@@ -100,6 +103,7 @@ impl Encoder {
         match self {
             Encoder::Json(t) => t.render_finite(values, out),
             Encoder::Protobuf(t) => t.render(values, out),
+            Encoder::Batched(_) => unreachable!("batched channels are rendered per block"),
         }
     }
 }
@@ -161,7 +165,8 @@ impl Batch {
     }
 
     /// Renders `block`: per step its channels in order, each pre-rendered message right after the
-    /// step it follows.
+    /// step it follows; batched channels as one message each, stamped with the block's first
+    /// step, before the block's first step.
     fn render(&mut self, channels: &[Channel], block: &Block) {
         self.data.clear();
         self.messages.clear();
@@ -178,12 +183,23 @@ impl Batch {
             let Some(&(sequence, time_ns)) = block.steps.get(k) else {
                 break;
             };
-            let mut values = &block.values[k * per_step..(k + 1) * per_step];
+            let mut offset = 0;
             for c in channels {
-                let (v, rest) = values.split_at(c.template.len());
-                c.template.render(v, &mut self.data);
-                self.push(c.id, sequence, time_ns);
-                values = rest;
+                let n = c.template.len();
+                match &c.template {
+                    Encoder::Batched(t) if k == 0 => {
+                        let steps = block.steps.len();
+                        t.render(&block.values, per_step, offset, steps, &mut self.data);
+                        self.push(c.id, sequence, time_ns);
+                    }
+                    Encoder::Batched(_) => {}
+                    t => {
+                        let at = k * per_step + offset;
+                        t.render(&block.values[at..at + n], &mut self.data);
+                        self.push(c.id, sequence, time_ns);
+                    }
+                }
+                offset += n;
             }
         }
     }

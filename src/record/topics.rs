@@ -53,6 +53,21 @@ pub struct Topic {
     pub quantities: Vec<Quantity>,
 }
 
+impl Topic {
+    /// The topic with the simulation time `t` as its first field, if it has none: the batched
+    /// layout gives every batch its sample times, so that each topic plots on its own. (Batched
+    /// topics are protobuf only; the JSON schema is left as it was.)
+    pub fn timed(mut self) -> Self {
+        if self.quantities.first() != Some(&Quantity::Time) {
+            self.leaves
+                .insert(0, Leaf::new(&["t"], "simulation time, s"));
+            self.quantities.insert(0, Quantity::Time);
+            self.template = Template::new(&self.leaves);
+        }
+        self
+    }
+}
+
 /// A key a user can type into a plot path (`/wbv/state.upper_torso.a_abs`): ASCII letters, digits
 /// and `_`; anything else becomes `_`.
 pub fn plot_key(name: &str) -> String {

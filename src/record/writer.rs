@@ -10,10 +10,10 @@ use super::pipeline::{
     self, BLOCK_STEPS, Block, Channel, Encoder, McapWriter, Pipeline, json_channel,
     protobuf_channel,
 };
-use super::proto::{self, ProtoTemplate};
+use super::proto::{self, BatchTemplate, ProtoTemplate};
 use super::scene::{self, FRAME_TRANSFORMS_SCHEMA, SCENE_UPDATE_SCHEMA, Scene};
 use super::topics::{Quantity, Topic, channel_name, eval, plot_key, topics};
-use super::{Encoding, Provenance, RecordOptions};
+use super::{Encoding, MessageLayout, Provenance, RecordOptions};
 use crate::error::{Error, Result};
 use crate::io::atomic::{Overwrite, Partial};
 use crate::simulate::observer::{Layout, Observer, Step};
@@ -124,6 +124,13 @@ impl McapRecorder {
                 format!("{}: expected a positive factor", options.magnification),
             ));
         }
+        if options.encoding == Encoding::Json && options.layout == Some(MessageLayout::Batched) {
+            return Err(Error::parameter(
+                "layout",
+                "`batched` is protobuf only: JSON runs are recorded per sample (drop --layout \
+                 or record with --encoding protobuf)",
+            ));
+        }
         interrupt_flag();
         let (guard, file) = Partial::create(path, options.overwrite)?;
         let partial = guard.tmp().to_path_buf();
@@ -184,9 +191,15 @@ impl McapRecorder {
         &self.path
     }
 
+    /// The message layout of the time series (see [`RecordOptions::layout`]).
+    fn layout_kind(&self) -> MessageLayout {
+        (self.options.layout).unwrap_or_else(|| MessageLayout::default_for(self.options.encoding))
+    }
+
     fn setup(&mut self, layout: &Layout) -> Result<()> {
         let partial = self.partial.clone();
         let err = mcap_err(&partial);
+        let kind = self.layout_kind();
         let w = self
             .writer
             .as_mut()
@@ -194,7 +207,10 @@ impl McapRecorder {
         let fs = 1.0 / layout.dt;
         let rate = self.options.record_rate_hz.unwrap_or(fs);
         self.every = decimation(fs, rate)?;
-        let topics = topics(layout)?;
+        let batched = kind == MessageLayout::Batched;
+        let topics: Vec<Topic> = (topics(layout)?.into_iter())
+            .map(|t| if batched { t.timed() } else { t })
+            .collect();
         self.quantities = topics.iter().flat_map(|t| t.quantities.clone()).collect();
         self.time_slots = (self.quantities.iter().enumerate())
             .filter(|(_, q)| **q == Quantity::Time)
@@ -226,6 +242,7 @@ impl McapRecorder {
             ("scene_rate_hz", o.scene_rate_hz.to_string()),
             ("display_magnification", o.magnification.to_string()),
             ("encoding", o.encoding.as_str().to_string()),
+            ("layout", kind.as_str().to_string()),
             ("compression", o.compression.as_str().to_string()),
             ("steps", layout.steps.to_string()),
             ("masses", layout.masses.join(",")),
@@ -281,9 +298,16 @@ impl McapRecorder {
                 let fds = proto::run_descriptor(&keys(&layout.masses), &keys(&layout.links))?;
                 let bytes = prost::Message::encode_to_vec(&fds);
                 for t in topics {
-                    let cid = protobuf_channel(w, t.topic, t.schema_name, &bytes).map_err(&err)?;
-                    let template = ProtoTemplate::new(&fds, t.schema_name, &t.leaves)?;
-                    self.encoders.push(Encoder::Protobuf(template));
+                    let (name, encoder) = if batched {
+                        let name = format!("{}Batch", t.schema_name);
+                        let template = BatchTemplate::new(&fds, &name, &t.leaves)?;
+                        (name, Encoder::Batched(template))
+                    } else {
+                        let template = ProtoTemplate::new(&fds, t.schema_name, &t.leaves)?;
+                        (t.schema_name.to_string(), Encoder::Protobuf(template))
+                    };
+                    let cid = protobuf_channel(w, t.topic, &name, &bytes).map_err(&err)?;
+                    self.encoders.push(encoder);
                     self.topics.push((t, cid));
                 }
                 let mut ids = [0; 2];

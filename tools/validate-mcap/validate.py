@@ -35,11 +35,28 @@ WBV_FIELDS = {
     "wbv.MassState": {"x", "v", "a", "x_abs", "v_abs", "a_abs"},
     "wbv.LinkState": {"deflection", "force"},
 }
+# The batched layout (`--layout batched`): the same fields as packed arrays, `t` in every topic.
+WBV_FIELDS.update({f"{k}Batch": v for k, v in WBV_FIELDS.items()})
+BATCHES = {"wbv.MeasuredBatch", "wbv.StateBatch", "wbv.LinksBatch"}
+
+
+def array_lengths(msg, out):
+    """Lengths of every repeated double field of a batched message, at any depth."""
+    for field, value in msg.ListFields():
+        if field.type == FieldDescriptor.TYPE_DOUBLE:
+            out.add(len(value))
+        elif field.type == FieldDescriptor.TYPE_MESSAGE:
+            array_lengths(value, out)
+    return out
 
 
 def check_protobuf(msg, at, fail):
     """Every double finite; wbv messages only use their .proto fields."""
     name = msg.DESCRIPTOR.full_name
+    if name in BATCHES:
+        lengths = array_lengths(msg, set())
+        if len(lengths) != 1 or 0 in lengths:
+            fail(f"{at}: batched arrays of lengths {sorted(lengths)}, expected one non-zero length")
     for field, value in msg.ListFields():
         if name in WBV_FIELDS and field.name not in WBV_FIELDS[name]:
             fail(f"{at}: {name} has an unexpected field {field.name}")
