@@ -9,24 +9,10 @@ use super::contact::{Coefficients, Law};
 use super::linearise::{contact_gradient, stiffness};
 use super::posture::pitch_dof;
 use crate::error::{Error, Result};
+/// Load of one contact at equilibrium (role `cushion`, `backrest` or `footrest`; the tangential
+/// force acts on the body along the contact tangent): the system's support load.
+pub use crate::system::Load;
 use nalgebra::DVector;
-
-/// Load of one contact at equilibrium.
-#[derive(Debug, Clone, PartialEq)]
-pub struct Load {
-    /// Contact name.
-    pub name: String,
-    /// `cushion`, `backrest` or `footrest`.
-    pub role: String,
-    /// Body point at equilibrium, m.
-    pub point: [f64; 2],
-    /// Normal (compressive) load, N.
-    pub normal: f64,
-    /// Tangential force on the body along the contact tangent, N.
-    pub tangential: f64,
-    /// Force on the body in seat axes `(F_x, F_z)`, N.
-    pub force: [f64; 2],
-}
 
 /// The seated equilibrium.
 #[derive(Debug, Clone, PartialEq)]

@@ -12,8 +12,8 @@
 use super::Planar;
 use super::posture::pitch_dof;
 use crate::system::{
-    Channel, Dof, Link, Load, Motion, Output, ResponseDef, Role, Rule, Scene, SceneBody, Statics,
-    System, Unit, stamp,
+    Channel, Dof, Link, Motion, Output, ResponseDef, Role, Rule, Scene, SceneBody, Statics, System,
+    Unit, stamp,
 };
 
 fn sparse(row: &[f64]) -> Vec<(usize, f64)> {
@@ -177,18 +177,7 @@ impl Planar {
             statics: Some(Statics {
                 iterations: eq.iterations,
                 weight: eq.weight,
-                loads: eq
-                    .loads
-                    .iter()
-                    .map(|l| Load {
-                        name: l.name.clone(),
-                        role: l.role.clone(),
-                        point: l.point,
-                        normal: l.normal,
-                        tangential: l.tangential,
-                        force: l.force,
-                    })
-                    .collect(),
+                loads: eq.loads.clone(),
                 gravity_moment: eq.gravity_moment,
                 support_moment: eq.contact_moment(),
             }),
