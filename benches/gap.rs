@@ -23,7 +23,7 @@ fn gap(c: &mut Criterion) {
         },
     )
     .expect("case");
-    let model = catalog::resolve_chain("reference").expect("reference model");
+    let model = catalog::resolve("reference").expect("reference model");
     let mut g = c.benchmark_group("gap");
     g.sample_size(10).measurement_time(Duration::from_secs(60));
     g.bench_function("diagnose 3 × 120 s at 500 Hz", |b| {

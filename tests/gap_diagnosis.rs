@@ -34,11 +34,11 @@ fn replayed_h1_matches_the_analytic_frf_within_its_error_band() {
     // frequency response D(ω)⁻¹ of the same linear model, on every path including apparent mass
     // (which checks the force sign convention of both sides).
     let case = null_case();
-    let model = catalog::resolve_chain("reference").unwrap();
+    let model = catalog::resolve("reference").unwrap();
     let base = case.check.require("a_base_z").unwrap();
-    let sim = replay(&model, base, case.check.sample_rate_hz, "replay").unwrap();
+    let sim = replay(model.system(), base, case.check.sample_rate_hz, "replay").unwrap();
     let spec = estimate(&sim).unwrap();
-    let pred = predict(&Variant::plain(model), &spec).unwrap();
+    let pred = predict(&Variant::plain(model.system().clone()), &spec).unwrap();
     for (pe, pv) in spec.paths.iter().zip(&pred) {
         for (b, (&f, &h)) in spec.freq_hz.iter().zip(pv).enumerate() {
             if !(1.0..=20.0).contains(&f) {
@@ -65,7 +65,7 @@ fn no_structural_gap_is_reported_as_none_despite_a_different_occupant() {
     let case = null_case();
     assert!(case.label.effects.is_empty());
     assert!(case.label.nuisance.mass_error_percent > 3.0);
-    let model = catalog::resolve_chain("reference").unwrap();
+    let model = catalog::resolve("reference").unwrap();
     let d = diagnose(&model, &case.train, &case.check).unwrap();
     assert_eq!(d.verdict, "none", "{}", d.verdict_text);
     assert!(d.named.is_empty());
@@ -89,7 +89,7 @@ fn with_channels(s: &Signals, keep: impl Fn(&str) -> bool, len: Option<usize>) -
 #[test]
 fn runs_with_different_channels_are_an_error() {
     let case = null_case();
-    let model = catalog::resolve_chain("reference").unwrap();
+    let model = catalog::resolve("reference").unwrap();
     let check = with_channels(&case.check, |n| n != "a_head_z", None);
     let err = diagnose(&model, &case.train, &check)
         .unwrap_err()
@@ -100,7 +100,7 @@ fn runs_with_different_channels_are_an_error() {
 #[test]
 fn a_short_run_trades_resolution_and_a_too_short_one_is_an_error() {
     let case = null_case();
-    let model = catalog::resolve_chain("reference").unwrap();
+    let model = catalog::resolve("reference").unwrap();
     // 30 s at 500 Hz: analysed at 0.4 Hz resolution, with a warning, not refused.
     let mut short = with_channels(&case.check, |_| true, Some(15_000));
     short.source = "short.csv".into();
@@ -141,7 +141,7 @@ fn a_road_spectrum_is_diagnosed_on_its_coherent_bands() {
         },
     )
     .unwrap();
-    let model = catalog::resolve_chain("reference").unwrap();
+    let model = catalog::resolve("reference").unwrap();
     let d = diagnose(&model, &case.train, &case.check).unwrap();
     assert!(!d.bands.is_empty());
     assert!(d.bands.iter().all(|b| !b.judged_hz.is_empty()));
@@ -151,7 +151,7 @@ fn a_road_spectrum_is_diagnosed_on_its_coherent_bands() {
 #[test]
 fn outputs_unrelated_to_the_base_are_an_error() {
     let case = null_case();
-    let model = catalog::resolve_chain("reference").unwrap();
+    let model = catalog::resolve("reference").unwrap();
     // Swap in another realisation's outputs: no coherence with this base.
     let other = &case.train[0];
     let mut bad = Signals::new(case.check.sample_rate_hz, "incoherent.csv");
@@ -172,7 +172,7 @@ fn outputs_unrelated_to_the_base_are_an_error() {
 fn check_run_outside_the_training_magnitudes_is_warned() {
     // Train on the low and the middle magnitude, check on the high one.
     let case = null_case();
-    let model = catalog::resolve_chain("reference").unwrap();
+    let model = catalog::resolve("reference").unwrap();
     let train = vec![case.train[0].clone(), case.check.clone()];
     let d = diagnose(&model, &train, &case.train[1]).unwrap();
     assert!(

@@ -52,16 +52,6 @@ pub fn run(args: Args) -> crate::Result<()> {
         None => None,
     };
     let model = catalog::resolve(&args.model)?;
-    // The candidate effects edit a chain's masses and links (issue 15 brings them onto the system).
-    let model = model.chain().cloned().ok_or_else(|| {
-        crate::Error::parameter(
-            "--model",
-            format!(
-                "`{}` is not a chain of masses; the gap diagnosis's candidate effects modify chain links",
-                model.name
-            ),
-        )
-    })?;
     let opts = args.input.options()?;
     let load = |p: &PathBuf| -> crate::Result<crate::signals::Signals> {
         let s = crate::analysis::load_input(p, &opts)?.signals;

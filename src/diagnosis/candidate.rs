@@ -3,7 +3,9 @@
 
 use super::predict::{MagnitudeSchedule, Variant};
 use crate::error::{Error, Result};
-use crate::model::{Chain, Element, Law, Link, Mass, Node, Role};
+use crate::model::{Model, Quantity};
+use crate::system::{Dof, Element, Law, Link, Role, System, Unit};
+use nalgebra::{DMatrix, DVector};
 use std::f64::consts::PI;
 
 /// Bound of the base-parameter re-fit: ±30 % around nominal (physical prior width).
@@ -145,28 +147,29 @@ impl Candidate {
         Candidate::ALL.into_iter().find(|c| c.id() == id)
     }
 
-    /// Whether the model has the part this candidate extends.
-    pub fn applies_to(self, model: &Chain) -> bool {
+    /// Whether the system has the part this candidate extends.
+    pub fn applies_to(self, system: &System) -> bool {
         match self {
-            Candidate::BodySoftening => interface_link(model).is_some(),
-            Candidate::BodySofteningMagnitude => model
+            Candidate::BodySoftening => interface_link(system).is_some(),
+            Candidate::BodySofteningMagnitude => system
                 .links
                 .iter()
                 .any(|l| l.role == Role::Body && matches!(l.element, Element::KelvinVoigt { .. })),
             Candidate::CushionStiffening
             | Candidate::CushionContact
-            | Candidate::CushionViscoelastic => role_link(model, Role::Cushion).is_some(),
+            | Candidate::CushionViscoelastic => !cushion_links(system).is_empty(),
             Candidate::SuspensionFriction | Candidate::EndStop => {
-                role_link(model, Role::Suspension).is_some()
+                role_link(system, Role::Suspension).is_some()
             }
             Candidate::SensorDelay
             | Candidate::SensorLowpass
             | Candidate::SensorGain
             | Candidate::SensorMountSeat => true,
-            Candidate::SensorMountHead => model.measure.head.is_some(),
-            Candidate::MissingDof => role_link(model, Role::Cushion)
-                .is_some_and(|i| model.links[i].a == Node::Base || model.links[i].b == Node::Base),
-            Candidate::BodyMode => heaviest_body_mass(model).is_some(),
+            Candidate::SensorMountHead => system.channel_index("a_head_z").is_some(),
+            Candidate::MissingDof => cushion_links(system)
+                .iter()
+                .any(|&i| on_base(&system.links[i])),
+            Candidate::BodyMode => heaviest_body_mass(system).is_some(),
         }
     }
 
@@ -232,24 +235,38 @@ impl Candidate {
         }
     }
 
-    /// The variant with effect parameter values `p` applied to `model`.
-    pub fn apply(self, model: &Chain, p: &[f64]) -> Result<Variant> {
-        let mut v = Variant::plain(model.clone());
+    /// The variant with effect parameter values `p` applied to `system`.
+    pub fn apply(self, system: &System, p: &[f64]) -> Result<Variant> {
+        let mut v = Variant::plain(system.clone());
         self.apply_to(&mut v, p)?;
         Ok(v)
     }
 
-    /// Applies the effect with parameter values `p` to `v` (model and measuring chain), so that
-    /// effects can be stacked (forward selection).
+    /// Applies the effect with parameter values `p` to `v` (system and measuring chain), so that
+    /// effects can be stacked (forward selection). Cushion effects act on every Kelvin–Voigt
+    /// cushion link (a planar model's foam under each contact, in both axes) with one relative
+    /// law: k3 is stated for the first such link and scaled by each link's stiffness, so every
+    /// link stiffens at the same deflection.
     pub fn apply_to(self, v: &mut Variant, p: &[f64]) -> Result<()> {
         let need = |i: Option<usize>, what: &str| {
             i.ok_or_else(|| Error::parameter(self.id(), format!("the model has no {what} link")))
         };
-        let m = &mut v.model;
+        let s = &mut v.system;
+        let cushion = cushion_links(s);
+        if cushion.is_empty()
+            && matches!(
+                self,
+                Candidate::CushionStiffening
+                    | Candidate::CushionContact
+                    | Candidate::CushionViscoelastic
+            )
+        {
+            return Err(Error::parameter(self.id(), "the model has no cushion link"));
+        }
         match self {
             Candidate::BodySoftening => {
-                let i = need(interface_link(m), "body–seat interface")?;
-                m.links[i].law = Some(Law::Softening { d_ref: p[0] });
+                let i = need(interface_link(s), "body–seat interface")?;
+                s.links[i].law = Some(Law::Softening { d_ref: p[0] });
             }
             Candidate::BodySofteningMagnitude => {
                 v.schedule = Some(MagnitudeSchedule {
@@ -259,28 +276,32 @@ impl Candidate {
                 });
             }
             Candidate::CushionStiffening => {
-                let i = need(role_link(m, Role::Cushion), "cushion")?;
-                m.links[i].law = Some(Law::Cubic { k3: p[0] });
+                let k_first = s.links[cushion[0]].element.static_stiffness();
+                for &i in &cushion {
+                    let k3 = p[0] * s.links[i].element.static_stiffness() / k_first;
+                    s.links[i].law = Some(Law::Cubic { k3 });
+                }
             }
             Candidate::CushionContact => {
-                let i = need(role_link(m, Role::Cushion), "cushion")?;
-                m.links[i].law = Some(Law::Contact { d0: p[0] });
+                for &i in &cushion {
+                    s.links[i].law = Some(Law::Contact { d0: p[0] });
+                }
             }
             Candidate::CushionViscoelastic => {
-                let i = need(role_link(m, Role::Cushion), "cushion")?;
-                let l = m.links[i].clone();
-                let k_m = p[0] * l.element.static_stiffness();
-                m.links.push(Link {
-                    name: format!("{}-arm", l.name),
-                    a: l.a,
-                    b: l.b,
-                    element: Element::Maxwell {
-                        k: k_m,
-                        c: k_m * p[1],
-                    },
-                    law: None,
-                    role: l.role,
-                });
+                for &i in &cushion {
+                    let l = s.links[i].clone();
+                    let k_m = p[0] * l.element.static_stiffness();
+                    s.links.push(Link {
+                        name: format!("{}-arm", l.name),
+                        element: Element::Maxwell {
+                            k: k_m,
+                            c: k_m * p[1],
+                        },
+                        law: None,
+                        record_deflection: false,
+                        ..l
+                    });
+                }
             }
             Candidate::SensorDelay => {
                 v.seat.delay_s += p[0];
@@ -298,43 +319,40 @@ impl Candidate {
             Candidate::SensorMountSeat => v.seat.mount = Some((p[0], p[1])),
             Candidate::SensorMountHead => v.head.mount = Some((p[0], p[1])),
             Candidate::SuspensionFriction => {
-                let i = need(role_link(m, Role::Suspension), "suspension")?;
-                m.links[i].law = Some(Law::Friction {
+                let i = need(role_link(s, Role::Suspension), "suspension")?;
+                s.links[i].law = Some(Law::Friction {
                     f_c: p[0],
                     v_ref: FRICTION_V_REF,
                 });
             }
             Candidate::EndStop => {
-                let i = need(role_link(m, Role::Suspension), "suspension")?;
-                let k = m.links[i].element.static_stiffness();
-                m.links[i].law = Some(Law::EndStop {
+                let i = need(role_link(s, Role::Suspension), "suspension")?;
+                let k = s.links[i].element.static_stiffness();
+                s.links[i].law = Some(Law::EndStop {
                     gap: p[0],
                     k_stop: END_STOP_RATIO * k,
                 });
             }
-            Candidate::MissingDof => add_frame(m, p[0], p[1], p[2])?,
+            Candidate::MissingDof => add_frame(s, p[0], p[1], p[2])?,
             Candidate::BodyMode => {
-                let t = heaviest_body_mass(m)
+                let t = heaviest_body_mass(s)
                     .ok_or_else(|| Error::parameter(self.id(), "the model has no body mass"))?;
-                let mv = p[0] * m.masses[t].m;
-                m.masses[t].m -= mv;
-                let j = m.masses.len();
-                m.masses.push(Mass {
-                    name: "viscera".into(),
-                    m: mv,
-                    role: Role::Body,
-                });
+                let mv = p[0] * s.m[(t, t)];
+                s.m[(t, t)] -= mv;
+                let j = add_dof(s, "viscera", Role::Body, mv, s.r[t], s.r_x[t]);
                 let w = 2.0 * PI * p[1];
-                m.links.push(Link {
+                let upper = s.dofs[t].name.clone();
+                s.links.push(Link {
                     name: "viscera".into(),
-                    a: Node::Mass(j),
-                    b: Node::Mass(t),
+                    role: Role::Body,
+                    nodes: ("viscera".into(), upper),
+                    row: vec![(j, 1.0), (t, -1.0)],
                     element: Element::KelvinVoigt {
                         k: mv * w * w,
                         c: 2.0 * p[2] * mv * w,
                     },
                     law: None,
-                    role: Role::Body,
+                    record_deflection: false,
                 });
             }
         }
@@ -342,97 +360,151 @@ impl Candidate {
     }
 }
 
-/// Index of the heaviest body mass (the upper torso in the reference body).
-pub fn heaviest_body_mass(model: &Chain) -> Option<usize> {
-    model
-        .masses
-        .iter()
-        .enumerate()
-        .filter(|(_, m)| m.role == Role::Body)
-        .max_by(|a, b| a.1.m.total_cmp(&b.1.m))
-        .map(|(i, _)| i)
+/// Index of the heaviest body coordinate that is a point mass of its own (a diagonal row of M, a
+/// translation): the upper torso in the reference body; `None` for a segment model, whose
+/// coordinates share inertia.
+pub fn heaviest_body_mass(system: &System) -> Option<usize> {
+    let n = system.dof();
+    (0..n)
+        .filter(|&i| system.dofs[i].role == Role::Body && system.dofs[i].unit == Unit::Metre)
+        .filter(|&i| (0..n).all(|j| j == i || system.m[(i, j)] == 0.0))
+        .max_by(|&a, &b| system.m[(a, a)].total_cmp(&system.m[(b, b)]))
 }
 
-/// Inserts a seat-frame mass of `mass_kg` between the base and the cushion, tuned to `f_hz` (on a
-/// rigid base, cushion removed) with damping ratio `zeta`.
-pub fn add_frame(m: &mut Chain, f_hz: f64, zeta: f64, mass_kg: f64) -> Result<()> {
-    let i = role_link(m, Role::Cushion)
-        .ok_or_else(|| Error::parameter("missing-dof", "the model has no cushion link"))?;
-    let j = m.masses.len();
-    m.masses.push(Mass {
-        name: "frame".into(),
-        m: mass_kg,
-        role: Role::Frame,
+/// Appends a translational coordinate of mass `mass_kg` with base influences `r`, `r_x` (no
+/// coupling to the others yet) and returns its index.
+fn add_dof(s: &mut System, name: &str, role: Role, mass_kg: f64, r: f64, r_x: f64) -> usize {
+    let n = s.dof();
+    let grow = |m: &DMatrix<f64>| m.clone().resize(n + 1, n + 1, 0.0);
+    s.m = grow(&s.m);
+    s.m[(n, n)] = mass_kg;
+    s.k0 = grow(&s.k0);
+    s.c0 = grow(&s.c0);
+    let push =
+        |v: &DVector<f64>, x: f64| DVector::from_iterator(n + 1, v.iter().copied().chain([x]));
+    s.r = push(&s.r, r);
+    s.r_x = push(&s.r_x, r_x);
+    s.dofs.push(Dof {
+        name: name.into(),
+        role,
+        unit: Unit::Metre,
     });
-    let l = &mut m.links[i];
-    if l.a == Node::Base {
-        l.a = Node::Mass(j);
-    } else if l.b == Node::Base {
-        l.b = Node::Mass(j);
+    for m in &mut s.motions {
+        m.row.push(0.0);
+    }
+    n
+}
+
+/// Whether a link's lower or upper end is the seat base.
+fn on_base(l: &Link) -> bool {
+    l.nodes.0 == "base" || l.nodes.1 == "base"
+}
+
+/// Inserts a seat-frame mass of `mass_kg` under the cushion, tuned to `f_hz` (on a rigid base,
+/// cushion removed) with damping ratio `zeta`: a vertical coordinate z_f on its own spring–damper to
+/// the base, and every cushion link on the base now deflects by −(row·r)·z_f more (row·r is the
+/// link's deflection per unit vertical motion of the body relative to the base: 1 for a chain
+/// link to the base, the normal's vertical component for a contact axis).
+pub fn add_frame(s: &mut System, f_hz: f64, zeta: f64, mass_kg: f64) -> Result<()> {
+    let on: Vec<usize> = cushion_links(s)
+        .into_iter()
+        .filter(|&i| on_base(&s.links[i]))
+        .collect();
+    if on.is_empty() {
+        return Err(Error::parameter(
+            "missing-dof",
+            "the model has no cushion link on the base",
+        ));
+    }
+    let j = add_dof(s, "frame", Role::Frame, mass_kg, 1.0, 0.0);
+    for i in on {
+        let l = &mut s.links[i];
+        let vertical: f64 = l.row.iter().map(|&(q, c)| c * s.r[q]).sum();
+        if vertical != 0.0 {
+            l.row.push((j, -vertical));
+        }
+        if l.nodes.0 == "base" {
+            l.nodes.0 = "frame".into();
+        } else {
+            l.nodes.1 = "frame".into();
+        }
     }
     let w = 2.0 * PI * f_hz;
-    m.links.push(Link {
+    s.links.push(Link {
         name: "frame".into(),
-        a: Node::Mass(j),
-        b: Node::Base,
+        role: Role::Frame,
+        nodes: ("frame".into(), "base".into()),
+        row: vec![(j, 1.0)],
         element: Element::KelvinVoigt {
             k: mass_kg * w * w,
             c: 2.0 * zeta * mass_kg * w,
         },
         law: None,
-        role: Role::Frame,
+        record_deflection: false,
     });
     Ok(())
 }
 
+/// Every Kelvin–Voigt cushion link, in link order.
+pub fn cushion_links(system: &System) -> Vec<usize> {
+    (0..system.links.len())
+        .filter(|&i| {
+            system.links[i].role == Role::Cushion
+                && matches!(system.links[i].element, Element::KelvinVoigt { .. })
+        })
+        .collect()
+}
+
 /// Index of the first link with `role`.
-pub fn role_link(model: &Chain, role: Role) -> Option<usize> {
-    model.links.iter().position(|l| l.role == role)
+pub fn role_link(system: &System, role: Role) -> Option<usize> {
+    system.links.iter().position(|l| l.role == role)
 }
 
-/// Index of the first body–seat interface link.
-pub fn interface_link(model: &Chain) -> Option<usize> {
-    model.measure.interface.first().copied()
+/// Index of the first body link that carries the seat force (`f_seat_z`): the body–seat interface
+/// of a chain (a segment model's contacts are cushion links and have none).
+pub fn interface_link(system: &System) -> Option<usize> {
+    let c = system.channel_index("f_seat_z")?;
+    match &system.channels[c].rule {
+        crate::system::Rule::Force { links } => links
+            .first()
+            .map(|&(l, _)| l)
+            .filter(|&l| system.links[l].role == Role::Body),
+        _ => None,
+    }
 }
 
-/// The base parameters re-fitted by the null candidate: every mass and the k and c of every
-/// Kelvin–Voigt link, as `(path, nominal value)` for [`crate::model::params`]. A real occupant's
+/// The base parameters re-fitted by the null candidate, `(path, nominal value, quantity)`: the
+/// parameters in which a subject and a seat scatter about the model (each model kind says which,
+/// [`crate::model::Model::scatter_params`]), those with a non-zero nominal value. A real occupant's
 /// masses are never the model's; with `f_seat_z` measured the apparent mass's static limit (the
 /// supported mass) pins their sum, otherwise only the prior does.
-pub fn base_params(model: &Chain) -> Vec<(String, f64)> {
-    let mut out: Vec<(String, f64)> = model
-        .masses
-        .iter()
-        .map(|m| (format!("mass.{}.m", m.name), m.m))
-        .collect();
-    for l in &model.links {
-        if let Element::KelvinVoigt { k, c } = l.element {
-            out.push((format!("link.{}.k", l.name), k));
-            if c > 0.0 {
-                out.push((format!("link.{}.c", l.name), c));
-            }
-        }
-    }
-    out
+pub fn base_params(model: &Model) -> Vec<(String, f64, Quantity)> {
+    model
+        .scatter_params()
+        .into_iter()
+        .filter_map(|(path, q)| {
+            let v = model.get(&path).ok()?;
+            (v > 0.0).then_some((path, v, q))
+        })
+        .collect()
 }
 
-/// Standard deviation of the Gaussian prior on ln(value/nominal) of base parameter `path`: 0.10 for
+/// Standard deviation of the Gaussian prior on ln(value/nominal) of a base parameter: 0.10 for
 /// masses, 0.25 for dampers, 0.15 for springs (a subject's and a seat's scatter about the model).
-pub fn prior_sigma(path: &str) -> f64 {
-    if path.starts_with("mass.") {
-        0.10
-    } else if path.ends_with(".c") {
-        0.25
-    } else {
-        0.15
+pub fn prior_sigma(q: Quantity) -> f64 {
+    match q {
+        Quantity::Mass => 0.10,
+        Quantity::Damping => 0.25,
+        Quantity::Stiffness => 0.15,
     }
 }
 
-/// `model` with base parameters scaled by `exp(u)`.
-pub fn scaled(model: &Chain, base: &[(String, f64)], u: &[f64]) -> Result<Chain> {
-    let mut m = model.clone();
-    for ((path, nominal), ui) in base.iter().zip(u) {
-        m.set(path, nominal * ui.exp())?;
-    }
-    Ok(m)
+/// The system of `model` with base parameters scaled by `exp(u)` (rebuilt once).
+pub fn scaled(model: &Model, base: &[(String, f64, Quantity)], u: &[f64]) -> Result<System> {
+    let values: Vec<(String, f64)> = base
+        .iter()
+        .zip(u)
+        .map(|((path, nominal, _), ui)| (path.clone(), nominal * ui.exp()))
+        .collect();
+    Ok(model.with_values(&values)?.system().clone())
 }

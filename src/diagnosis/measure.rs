@@ -29,15 +29,22 @@ pub enum Path {
     BaseHead,
     /// Apparent mass f_seat/a_seat in kg.
     ApparentMass,
+    /// Vertical base to fore-and-aft seat acceleration a_seat_x/a_base_z (1): the cross-axis
+    /// response of a pitching occupant (a planar model's seat point).
+    BaseSeatX,
+    /// Vertical base to fore-and-aft head acceleration a_head_x/a_base_z (1).
+    BaseHeadX,
 }
 
 impl Path {
     /// Every path, in report order.
-    pub const ALL: [Path; 4] = [
+    pub const ALL: [Path; 6] = [
         Path::BaseSeat,
         Path::SeatHead,
         Path::BaseHead,
         Path::ApparentMass,
+        Path::BaseSeatX,
+        Path::BaseHeadX,
     ];
     /// Short name used in reports and JSON.
     pub fn name(self) -> &'static str {
@@ -46,6 +53,8 @@ impl Path {
             Path::SeatHead => "seat-head",
             Path::BaseHead => "base-head",
             Path::ApparentMass => "apparent-mass",
+            Path::BaseSeatX => "base-seat-x",
+            Path::BaseHeadX => "base-head-x",
         }
     }
     /// Input and output channel names.
@@ -55,6 +64,8 @@ impl Path {
             Path::SeatHead => ("a_seat_z", "a_head_z"),
             Path::BaseHead => ("a_base_z", "a_head_z"),
             Path::ApparentMass => ("a_seat_z", "f_seat_z"),
+            Path::BaseSeatX => ("a_base_z", "a_seat_x"),
+            Path::BaseHeadX => ("a_base_z", "a_head_x"),
         }
     }
     /// Whether the path is used in fitting (base→head is the product of the first two).

@@ -22,7 +22,7 @@ pub mod score;
 pub mod truth;
 
 use crate::error::{Error, Result};
-use crate::model::Chain;
+use crate::model::{Model, Quantity};
 use crate::signals::Signals;
 use candidate::{BASE_BOUND, Candidate, Param, base_params, prior_sigma, scaled};
 use gapmap::{BandCell, Weighted};
@@ -302,13 +302,26 @@ fn effect_params(cands: &[Candidate]) -> Vec<Vec<Param>> {
     cands.iter().map(|c| c.params()).collect()
 }
 
-/// The variant for optimiser vector `u` (base parameters, then each candidate's).
+/// The model under diagnosis and its re-fitted base parameters, found once.
+struct Base<'a> {
+    model: &'a Model,
+    params: Vec<(String, f64, Quantity)>,
+}
+
+impl<'a> Base<'a> {
+    fn of(model: &'a Model) -> Self {
+        Base {
+            model,
+            params: base_params(model),
+        }
+    }
+}
+
 /// The variant for parameter vector `u` (base parameters, then each candidate's); `rms_ref` (m/s²)
 /// is the reference magnitude of a magnitude schedule.
-fn build(model: &Chain, cands: &[Candidate], u: &[f64], rms_ref: f64) -> Result<Variant> {
-    let base = base_params(model);
-    let nb = base.len();
-    let mut v = Variant::plain(scaled(model, &base, &u[..nb])?);
+fn build(base: &Base, cands: &[Candidate], u: &[f64], rms_ref: f64) -> Result<Variant> {
+    let nb = base.params.len();
+    let mut v = Variant::plain(scaled(base.model, &base.params, &u[..nb])?);
     v.rms_ref = rms_ref;
     let mut at = nb;
     for (c, ps) in cands.iter().zip(effect_params(cands)) {
@@ -332,14 +345,17 @@ const FIT_ITERATIONS: usize = 40;
 /// the starting base parameters and any leading effect parameters (forward selection), the rest
 /// start from each parameter's multistart values.
 fn fit_candidate(
-    model: &Chain,
+    base: &Base,
     cands: &[Candidate],
     train: &[RunSpectra],
     warm: &[f64],
 ) -> Result<Fitted> {
-    let base = base_params(model);
-    let nb = base.len();
-    let sig: Vec<f64> = base.iter().map(|(p, _)| prior_sigma(p)).collect();
+    let nb = base.params.len();
+    let sig: Vec<f64> = base
+        .params
+        .iter()
+        .map(|(_, _, q)| prior_sigma(*q))
+        .collect();
     let eff: Vec<Param> = effect_params(cands).concat();
     // Geometric mean of the training magnitudes: a magnitude schedule's reference.
     let rms_ref = (train
@@ -350,10 +366,10 @@ fn fit_candidate(
         .exp();
     let f = |u: &[f64]| -> Result<Vec<f64>> {
         let mut r: Vec<f64> = u[..nb].iter().zip(&sig).map(|(x, s)| x / s).collect();
-        score::residuals(&build(model, cands, u, rms_ref)?, train, &mut r)?;
+        score::residuals(&build(base, cands, u, rms_ref)?, train, &mut r)?;
         Ok(r)
     };
-    let (lo, hi) = bounds(model, cands);
+    let (lo, hi) = bounds(base, cands);
     // Multistart over the effect parameters not warm-started (their Cartesian product).
     let mut starts: Vec<Vec<f64>> = vec![warm.to_vec()];
     for p in &eff[warm.len() - nb..] {
@@ -386,24 +402,24 @@ fn fit_candidate(
         fit::levenberg_marquardt(&f, &scout.u, &lo, &hi, FIT_ITERATIONS)?
     };
     Ok(Fitted {
-        variant: build(model, cands, &fit.u, rms_ref)?,
+        variant: build(base, cands, &fit.u, rms_ref)?,
         fit,
     })
 }
 
-fn estimates(model: &Chain, cands: &[Candidate], ft: &fit::Fit) -> Vec<Estimate> {
-    let (lo, hi) = bounds(model, cands);
-    let base = base_params(model);
-    let nb = base.len();
+fn estimates(base: &Base, cands: &[Candidate], ft: &fit::Fit) -> Vec<Estimate> {
+    let (lo, hi) = bounds(base, cands);
+    let nb = base.params.len();
     let near = |i: usize| {
         let r = (hi[i] - lo[i]).max(1e-12);
         (ft.u[i] - lo[i]) < 1e-3 * r || (hi[i] - ft.u[i]) < 1e-3 * r
     };
     if cands.is_empty() {
         return base
+            .params
             .iter()
             .enumerate()
-            .map(|(i, (name, nominal))| {
+            .map(|(i, (name, nominal, _))| {
                 let v = nominal * ft.u[i].exp();
                 Estimate {
                     name: name.clone(),
@@ -437,8 +453,8 @@ fn estimates(model: &Chain, cands: &[Candidate], ft: &fit::Fit) -> Vec<Estimate>
         .collect()
 }
 
-fn bounds(model: &Chain, cands: &[Candidate]) -> (Vec<f64>, Vec<f64>) {
-    let nb = base_params(model).len();
+fn bounds(base: &Base, cands: &[Candidate]) -> (Vec<f64>, Vec<f64>) {
+    let nb = base.params.len();
     let b = BASE_BOUND.ln();
     let (mut lo, mut hi) = (vec![-b; nb], vec![b; nb]);
     for p in effect_params(cands).concat() {
@@ -457,8 +473,11 @@ fn sizes(st: &Stage, r: &Stage) -> (f64, f64, f64) {
     )
 }
 
-/// Runs the diagnosis of `model` against training runs and one held-out check run.
-pub fn diagnose(model: &Chain, train: &[Signals], check: &Signals) -> Result<Diagnosis> {
+/// Runs the diagnosis of `model` (any kind: the candidates act on its [`crate::system::System`])
+/// against training runs and one held-out check run.
+pub fn diagnose(model: &Model, train: &[Signals], check: &Signals) -> Result<Diagnosis> {
+    let base = Base::of(model);
+    let system = model.system();
     let mut tr: Vec<RunSpectra> = train.iter().map(measure::estimate).collect::<Result<_>>()?;
     let mut ck = measure::estimate(check)?;
     let mut warnings = Vec::new();
@@ -488,7 +507,7 @@ pub fn diagnose(model: &Chain, train: &[Signals], check: &Signals) -> Result<Dia
         .chain(std::iter::once((check, &ck, "check")))
     {
         let sim = replay::replay(
-            model,
+            system,
             sig.require("a_base_z")?,
             sig.sample_rate_hz,
             "replay",
@@ -541,15 +560,15 @@ pub fn diagnose(model: &Chain, train: &[Signals], check: &Signals) -> Result<Dia
         }
     }
 
-    let nominal = stage(&Variant::plain(model.clone()), &ck)?;
-    let nb = base_params(model).len();
-    let null_fit = fit_candidate(model, &[], &tr, &vec![0.0; nb])?;
+    let nominal = stage(&Variant::plain(system.clone()), &ck)?;
+    let nb = base.params.len();
+    let null_fit = fit_candidate(&base, &[], &tr, &vec![0.0; nb])?;
     let null_stage = stage(&null_fit.variant, &ck)?;
     let bic = |s: &Stage, p: usize| s.chi2_red * n_check + p as f64 * n_check.ln();
     let null_bic = bic(&null_stage, nb);
     let mut null = Ranked {
         id: "null".into(),
-        params: estimates(model, &[], &null_fit.fit),
+        params: estimates(&base, &[], &null_fit.fit),
         train_chi2_red: null_fit.fit.cost / n_train,
         delta_bic: 0.0,
         delta_bic_all: 0.0,
@@ -565,12 +584,12 @@ pub fn diagnose(model: &Chain, train: &[Signals], check: &Signals) -> Result<Dia
     // The candidates' fits are independent: fitted in parallel, ranked in a fixed order after.
     let applicable: Vec<Candidate> = Candidate::ALL
         .into_iter()
-        .filter(|c| c.applies_to(model))
+        .filter(|c| c.applies_to(system))
         .collect();
     let fitted: Vec<(Candidate, Fitted, Stage)> = applicable
         .par_iter()
         .map(|&c| {
-            let ft = fit_candidate(model, &[c], &tr, &null_fit.fit.u)?;
+            let ft = fit_candidate(&base, &[c], &tr, &null_fit.fit.u)?;
             let st = stage(&ft.variant, &ck)?;
             Ok((c, ft, st))
         })
@@ -583,7 +602,7 @@ pub fn diagnose(model: &Chain, train: &[Signals], check: &Signals) -> Result<Dia
             + c.params().len() as f64 * (n_train + n_check).ln();
         cands.push(Ranked {
             id: c.id().into(),
-            params: estimates(model, &[c], &ft.fit),
+            params: estimates(&base, &[c], &ft.fit),
             train_chi2_red: ft.fit.cost / n_train,
             delta_bic: bic(&st, p) - null_bic,
             delta_bic_all: all,
@@ -629,7 +648,7 @@ pub fn diagnose(model: &Chain, train: &[Signals], check: &Signals) -> Result<Dia
             let pairs: Vec<(Candidate, Fitted, Stage)> = others
                 .par_iter()
                 .map(|&other| {
-                    let ft = fit_candidate(model, &[bc, other], &tr, warm)?;
+                    let ft = fit_candidate(&base, &[bc, other], &tr, warm)?;
                     let st = stage(&ft.variant, &ck)?;
                     Ok((other, ft, st))
                 })
@@ -646,7 +665,7 @@ pub fn diagnose(model: &Chain, train: &[Signals], check: &Signals) -> Result<Dia
                     let (aw, seat, db) = sizes(&st, &best.check);
                     second = Some(Ranked {
                         id: format!("{}+{}", bc.id(), other.id()),
-                        params: estimates(model, &pair, &ft.fit),
+                        params: estimates(&base, &pair, &ft.fit),
                         train_chi2_red: ft.fit.cost / n_train,
                         delta_bic: d,
                         delta_bic_all: d,

@@ -11,8 +11,7 @@
 
 use super::measure::{Path, RunSpectra};
 use crate::error::{Error, Result};
-use crate::model::{Chain, Element, Law, Node};
-use crate::system::System;
+use crate::system::{Element, Law, Role, System};
 use num_complex::Complex64;
 use std::f64::consts::PI;
 
@@ -64,26 +63,11 @@ impl Channel {
     }
 }
 
-/// Absolute mass accelerations and the interface force on the body (N), per unit base
-/// acceleration at `f` Hz ([`crate::response::frf`] on the chain's system).
-pub fn solve_point(model: &Chain, f: f64) -> Result<(Vec<Complex64>, Complex64)> {
-    let system = model.system();
-    let (acc, force, _) = solve_system(&system, f)?;
-    Ok((acc, force))
-}
-
-/// [`solve_point`] on a system already built (the fits call this per bin, so the system is built
-/// once per prediction and D(ω) factorised once per bin), plus the base-relative displacements.
-fn solve_system(system: &System, f: f64) -> Result<(Vec<Complex64>, Complex64, Vec<Complex64>)> {
+/// Every channel of `system` per unit base acceleration at `f` Hz, and the base-relative
+/// displacements ([`crate::response::frf::solve_full`]: one factorisation of D(ω) per bin).
+pub fn solve_point(system: &System, f: f64) -> Result<(Vec<Complex64>, Vec<Complex64>)> {
     let (channels, x) = crate::response::frf::solve_full(system, f)?;
-    let omega = 2.0 * PI * f;
-    let acc = (0..system.dof())
-        .map(|i| crate::response::frf::dof_value(system, i, omega, x.as_slice()))
-        .collect();
-    let force = system
-        .channel_index("f_seat_z")
-        .map_or(Complex64::new(0.0, 0.0), |c| channels[c]);
-    Ok((acc, force, x.as_slice().to_vec()))
+    Ok((channels, x.as_slice().to_vec()))
 }
 
 /// Body stiffness and damping scheduled with a run's magnitude (gap.md §3.4 E1): linear within a
@@ -103,13 +87,13 @@ pub struct MagnitudeSchedule {
 }
 
 impl MagnitudeSchedule {
-    /// `model` as it behaves in a run of base r.m.s. `rms` (m/s²).
-    pub fn at(&self, model: &Chain, rms: f64) -> Chain {
+    /// `system` as it behaves in a run of base r.m.s. `rms` (m/s²).
+    pub fn at(&self, system: &System, rms: f64) -> System {
         let r = (rms / self.rms_ref).max(1e-9);
         let (fk, fc) = (r.powf(-self.alpha_k), r.powf(-self.alpha_c));
-        let mut m = model.clone();
+        let mut m = system.clone();
         for l in &mut m.links {
-            if l.role == crate::model::Role::Body
+            if l.role == Role::Body
                 && let Element::KelvinVoigt { k, c } = l.element
             {
                 l.element = Element::KelvinVoigt {
@@ -122,11 +106,11 @@ impl MagnitudeSchedule {
     }
 }
 
-/// A model plus the measuring chain: the thing a candidate evaluates.
+/// A model's system plus the measuring chain: the thing a candidate evaluates.
 #[derive(Debug, Clone)]
 pub struct Variant {
-    /// The (possibly nonlinear) model.
-    pub model: Chain,
+    /// The (possibly nonlinear) mechanical system.
+    pub system: System,
     /// Magnitude schedule of the body between runs, if any.
     pub schedule: Option<MagnitudeSchedule>,
     /// Reference magnitude for a schedule (m/s²): the training runs' geometric-mean base r.m.s.
@@ -141,9 +125,9 @@ pub struct Variant {
 
 impl Variant {
     /// A variant with ideal sensors.
-    pub fn plain(model: Chain) -> Self {
+    pub fn plain(system: System) -> Self {
         Variant {
-            model,
+            system,
             schedule: None,
             rms_ref: 1.0,
             base: Channel::default(),
@@ -184,19 +168,14 @@ pub fn equivalent(law: &Law, k: f64, c: f64, sigma_d: f64, sigma_v: f64) -> (f64
     (k_eq, c_eq)
 }
 
-fn rel(x: &[Complex64], n: Node) -> Complex64 {
-    match n {
-        Node::Base => Complex64::new(0.0, 0.0),
-        Node::Mass(i) => x[i],
-    }
-}
-
-/// The statistically linearised model for a base acceleration PSD given on `(freq, psd)` bins.
-pub fn linearise(model: &Chain, base_psd: &(Vec<f64>, Vec<f64>)) -> Result<Chain> {
-    let nl: Vec<usize> = (0..model.links.len())
-        .filter(|&i| model.links[i].law.is_some())
+/// The statistically linearised system for a base acceleration PSD given on `(freq, psd)` bins:
+/// every link with a law becomes the Kelvin–Voigt link of its equivalent k and c, its deflection
+/// variance σ_d² = Σ |row·X(f)|² G(f) Δf iterated to a fixed point (8 passes).
+pub fn linearise(system: &System, base_psd: &(Vec<f64>, Vec<f64>)) -> Result<System> {
+    let nl: Vec<usize> = (0..system.links.len())
+        .filter(|&i| system.links[i].law.is_some())
         .collect();
-    let mut lin = model.clone();
+    let mut lin = system.clone();
     for l in &mut lin.links {
         l.law = None;
     }
@@ -217,29 +196,31 @@ pub fn linearise(model: &Chain, base_psd: &(Vec<f64>, Vec<f64>)) -> Result<Chain
     let grid: Vec<usize> = bins.iter().step_by(stride).cloned().collect();
     let params: Vec<(f64, f64)> = nl
         .iter()
-        .map(|&i| match model.links[i].element {
+        .map(|&i| match system.links[i].element {
             Element::KelvinVoigt { k, c } => Ok((k, c)),
             _ => Err(Error::parameter(
-                format!("link.{}", model.links[i].name),
+                format!("link.{}", system.links[i].name),
                 "a nonlinear law needs a Kelvin–Voigt element",
             )),
         })
         .collect::<Result<_>>()?;
     for _ in 0..8 {
         let mut var = vec![(0.0, 0.0); nl.len()];
-        let system = lin.system();
         for &i in &grid {
-            let (_, _, x) = solve_system(&system, freq[i])?;
+            let (_, x) = solve_point(&lin, freq[i])?;
             let w2 = (2.0 * PI * freq[i]).powi(2);
             for (j, &li) in nl.iter().enumerate() {
-                let l = &lin.links[li];
-                let d2 = (rel(&x, l.a) - rel(&x, l.b)).norm_sqr() * psd[i] * df * stride as f64;
+                let d = lin.links[li]
+                    .row
+                    .iter()
+                    .fold(Complex64::new(0.0, 0.0), |s, &(q, c)| s + x[q] * c);
+                let d2 = d.norm_sqr() * psd[i] * df * stride as f64;
                 var[j].0 += d2;
                 var[j].1 += d2 * w2;
             }
         }
         for (j, &li) in nl.iter().enumerate() {
-            let law = model.links[li].law.expect("filtered on law");
+            let law = system.links[li].law.expect("filtered on law");
             let (k, c) = params[j];
             let (sd, sv) = (var[j].0.sqrt(), var[j].1.sqrt());
             let (ke, ce) = equivalent(&law, k, c, sd, sv);
@@ -249,34 +230,69 @@ pub fn linearise(model: &Chain, base_psd: &(Vec<f64>, Vec<f64>)) -> Result<Chain
     Ok(lin)
 }
 
-/// Predicted H of each of `paths` at `f` Hz for an already linear model (one solve per frequency).
+/// Indices of the channels the paths read, found once per prediction.
+struct Taps {
+    seat_z: usize,
+    head_z: Option<usize>,
+    force: Option<usize>,
+    seat_x: Option<usize>,
+    head_x: Option<usize>,
+}
+
+impl Taps {
+    fn of(system: &System) -> Result<Taps> {
+        Ok(Taps {
+            seat_z: system.channel_index("a_seat_z").ok_or_else(|| {
+                Error::parameter(
+                    "model",
+                    format!("`{}` has no a_seat_z channel", system.name),
+                )
+            })?,
+            head_z: system.channel_index("a_head_z"),
+            force: system.channel_index("f_seat_z"),
+            seat_x: system.channel_index("a_seat_x"),
+            head_x: system.channel_index("a_head_x"),
+        })
+    }
+}
+
+/// Predicted H of each of `paths` at `f` Hz for an already linear system (one solve per
+/// frequency): the system's channels through the measuring chain (the seat and head
+/// accelerometers are triaxial, so one channel response applies to both axes).
 fn path_values(
-    model: &Chain,
     system: &System,
+    taps: &Taps,
     v: &Variant,
     f: f64,
     paths: &[Path],
     out: &mut [Complex64],
 ) -> Result<()> {
-    let (acc, force, _) = solve_system(system, f)?;
-    let seat = match model.measure.seat {
-        Node::Base => Complex64::new(1.0, 0.0),
-        Node::Mass(i) => acc[i],
-    };
-    let head = model.measure.head.map(|h| acc[h]);
+    let (ch, _) = solve_point(system, f)?;
+    let seat = ch[taps.seat_z];
     let (lb, ls, lh) = (v.base.response(f), v.seat.response(f), v.head.response(f));
     for (o, &path) in out.iter_mut().zip(paths) {
-        let missing = || {
-            Error::parameter(
-                "model",
-                format!("`{}` has no head mass for {}", model.name, path.name()),
-            )
+        let tap = |i: Option<usize>| {
+            i.map(|i| ch[i]).ok_or_else(|| {
+                Error::parameter(
+                    "model",
+                    format!(
+                        "`{}` has no channel {} for path {}",
+                        system.name,
+                        path.channels().1,
+                        path.name()
+                    ),
+                )
+            })
         };
         *o = match path {
             Path::BaseSeat => seat * ls / lb,
-            Path::SeatHead => head.ok_or_else(missing)? / seat * lh / ls,
-            Path::BaseHead => head.ok_or_else(missing)? * lh / lb,
-            Path::ApparentMass => force / seat / ls,
+            Path::SeatHead => tap(taps.head_z)? / seat * lh / ls,
+            Path::BaseHead => tap(taps.head_z)? * lh / lb,
+            Path::ApparentMass => {
+                taps.force.map_or(Complex64::new(0.0, 0.0), |c| ch[c]) / seat / ls
+            }
+            Path::BaseSeatX => tap(taps.seat_x)? * ls / lb,
+            Path::BaseHeadX => tap(taps.head_x)? * lh / lb,
         };
     }
     Ok(())
@@ -285,15 +301,15 @@ fn path_values(
 /// Predictions of every path `run` measured, on the run's analysis bins: `[path][bin]`.
 pub fn predict(v: &Variant, run: &RunSpectra) -> Result<Vec<Vec<Complex64>>> {
     let lin = match &v.schedule {
-        Some(s) => linearise(&s.at(&v.model, run.base_rms), &run.base_psd)?,
-        None => linearise(&v.model, &run.base_psd)?,
+        Some(s) => linearise(&s.at(&v.system, run.base_rms), &run.base_psd)?,
+        None => linearise(&v.system, &run.base_psd)?,
     };
     let paths: Vec<Path> = run.paths.iter().map(|p| p.path).collect();
     let mut out = vec![vec![Complex64::new(0.0, 0.0); run.freq_hz.len()]; paths.len()];
     let mut buf = vec![Complex64::new(0.0, 0.0); paths.len()];
-    let system = lin.system();
+    let taps = Taps::of(&lin)?;
     for (b, &f) in run.freq_hz.iter().enumerate() {
-        path_values(&lin, &system, v, f, &paths, &mut buf)?;
+        path_values(&lin, &taps, v, f, &paths, &mut buf)?;
         for (p, val) in buf.iter().enumerate() {
             out[p][b] = *val;
         }

@@ -5,10 +5,10 @@
 use crate::error::Result;
 use crate::excitation::Excitation;
 use crate::integrator::Method;
-use crate::model::Chain;
 use crate::signals::Signals;
 use crate::simulate::collect::Collector;
 use crate::simulate::{self, Settings};
+use crate::system::System;
 
 /// An excitation that streams a stored sample vector (zero after its end).
 pub struct SampleExcitation {
@@ -47,9 +47,9 @@ impl Excitation for SampleExcitation {
     }
 }
 
-/// Simulates `model` driven by `base` (m/s², sampled at `fs` Hz) with the average-acceleration
+/// Simulates `system` driven by `base` (m/s², sampled at `fs` Hz) with the average-acceleration
 /// Newmark rule at the same rate; returns the measured channels, `a_base_z` being `base` itself.
-pub fn replay(model: &Chain, base: &[f64], fs: f64, source: &str) -> Result<Signals> {
+pub fn replay(system: &System, base: &[f64], fs: f64, source: &str) -> Result<Signals> {
     let dt = 1.0 / fs;
     let settings = Settings {
         dt,
@@ -58,12 +58,6 @@ pub fn replay(model: &Chain, base: &[f64], fs: f64, source: &str) -> Result<Sign
     };
     let mut exc = SampleExcitation::new(base.to_vec(), dt);
     let mut collector = Collector::new();
-    simulate::run(
-        &model.system(),
-        &mut exc,
-        &settings,
-        &mut [&mut collector],
-        None,
-    )?;
+    simulate::run(system, &mut exc, &settings, &mut [&mut collector], None)?;
     collector.into_signals(source)
 }

@@ -232,6 +232,36 @@ impl Model {
         Ok(())
     }
 
+    /// The parameters in which a real subject and seat scatter about the model (each kind's
+    /// builder says which), `(path, quantity)`.
+    pub fn scatter_params(&self) -> Vec<(String, super::Quantity)> {
+        match &self.definition {
+            Definition::Chain(c) => chain::params::scatter(c),
+            Definition::Planar(p) => planar::params::scatter(&p.spec),
+        }
+    }
+
+    /// The model with every `(path, value)` set and the system rebuilt once (a planar model solves
+    /// its equilibrium once); on error nothing is returned.
+    pub fn with_values(&self, values: &[(String, f64)]) -> Result<Model> {
+        let mut m = self.clone();
+        match &mut m.definition {
+            Definition::Chain(c) => {
+                for (path, value) in values {
+                    chain::params::set(c, path, *value)?;
+                }
+                m.system = c.system();
+            }
+            Definition::Planar(p) => {
+                let built = planar::params::set_many(p, values)?;
+                m.system = built.system();
+                m.system.name = m.name.clone();
+                **p = built;
+            }
+        }
+        Ok(m)
+    }
+
     /// Applies `--foam-thickness` (m): the `cushion.thickness` of a model with a foam layer of its
     /// own (the planar occupant's cushion).
     pub fn set_foam_thickness(&mut self, thickness_m: f64) -> Result<()> {

@@ -12,3 +12,15 @@ pub mod planar;
 pub use crate::system::{Element, Law, Role};
 pub use catalog::{Kind, Model};
 pub use chain::{Chain, Link, Mass, Measure, Node};
+
+/// What a model parameter physically is: the gap diagnosis's priors on a subject's and a seat's
+/// scatter about the model depend on it.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Quantity {
+    /// A mass (kg).
+    Mass,
+    /// A stiffness (N/m, N·m/rad) or what scales one (a foam area).
+    Stiffness,
+    /// A damping (N·s/m, N·m·s/rad) or what scales one (a loss factor).
+    Damping,
+}

@@ -52,7 +52,7 @@ pub struct CaseScore {
 /// the score, a case-generation error is returned.
 pub fn run_case(index: usize, seed: u64) -> Result<CaseScore> {
     let case = make_case(index, seed)?;
-    let model = catalog::resolve_chain("reference")?;
+    let model = catalog::resolve("reference")?;
     let t0 = std::time::Instant::now();
     let d = diagnose(&model, &case.train, &case.check);
     let secs = t0.elapsed().as_secs_f64();

@@ -3,6 +3,7 @@
 
 use super::{Chain, Element, Law};
 use crate::error::{Error, Result};
+use crate::model::Quantity;
 
 /// Every parameter path of `model`, in model order.
 pub fn list(model: &Chain) -> Vec<String> {
@@ -77,6 +78,23 @@ fn slot<'a>(model: &'a mut Chain, path: &str) -> Result<&'a mut f64> {
         }
         _ => Err(unknown()),
     }
+}
+
+/// The parameters in which a real subject and seat scatter about the model, with what each is:
+/// every mass and the `k` and `c` of every Kelvin–Voigt link, in model order.
+pub fn scatter(model: &Chain) -> Vec<(String, Quantity)> {
+    let mut out: Vec<(String, Quantity)> = model
+        .masses
+        .iter()
+        .map(|m| (format!("mass.{}.m", m.name), Quantity::Mass))
+        .collect();
+    for l in &model.links {
+        if let Element::KelvinVoigt { .. } = l.element {
+            out.push((format!("link.{}.k", l.name), Quantity::Stiffness));
+            out.push((format!("link.{}.c", l.name), Quantity::Damping));
+        }
+    }
+    out
 }
 
 /// The value of parameter `path`.

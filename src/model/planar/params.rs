@@ -7,6 +7,7 @@
 use super::contact::Law;
 use super::{Planar, Spec};
 use crate::error::{Error, Result};
+use crate::model::Quantity;
 
 /// Every path of `spec`.
 pub fn list(spec: &Spec) -> Vec<String> {
@@ -36,6 +37,37 @@ pub fn list(spec: &Spec) -> Vec<String> {
     ] {
         out.push(format!("cushion.{f}"));
     }
+    out
+}
+
+/// The parameters in which a real subject and seat scatter about the model, with what each is:
+/// segment masses, joint stiffness and damping, the stated contacts' stiffness and damping, and
+/// the foam's area (its stiffness) and loss factor (its damping).
+pub fn scatter(spec: &Spec) -> Vec<(String, Quantity)> {
+    let mut out: Vec<(String, Quantity)> = spec
+        .posture
+        .segments
+        .iter()
+        .map(|s| (format!("segment.{}.m", s.name), Quantity::Mass))
+        .collect();
+    for j in &spec.joints {
+        out.push((format!("joint.{}.k", j.name), Quantity::Stiffness));
+        out.push((format!("joint.{}.c", j.name), Quantity::Damping));
+    }
+    for c in &spec.contacts {
+        if let Law::Given { .. } = c.law {
+            for (f, q) in [
+                ("k_n", Quantity::Stiffness),
+                ("k_t", Quantity::Stiffness),
+                ("c_n", Quantity::Damping),
+                ("c_t", Quantity::Damping),
+            ] {
+                out.push((format!("contact.{}.{f}", c.name), q));
+            }
+        }
+    }
+    out.push(("cushion.area".into(), Quantity::Stiffness));
+    out.push(("cushion.loss_factor".into(), Quantity::Damping));
     out
 }
 
@@ -119,7 +151,19 @@ pub fn get(p: &Planar, path: &str) -> Result<f64> {
 /// The model with `path` set to `value`, rebuilt (equilibrium and linearisation). Values must be
 /// finite and ≥ 0 (masses, inertias, thickness, areas and shares > 0).
 pub fn set(p: &Planar, path: &str, value: f64) -> Result<Planar> {
+    set_many(p, &[(path.to_string(), value)])
+}
+
+/// The model with every `(path, value)` set, rebuilt once (as [`set`]).
+pub fn set_many(p: &Planar, values: &[(String, f64)]) -> Result<Planar> {
     let mut spec = p.spec.clone();
+    for (path, value) in values {
+        set_slot(&mut spec, path, *value)?;
+    }
+    Planar::build(spec)
+}
+
+fn set_slot(spec: &mut Spec, path: &str, value: f64) -> Result<()> {
     let strictly = [
         ".m",
         ".inertia",
@@ -140,6 +184,6 @@ pub fn set(p: &Planar, path: &str, value: f64) -> Result<Planar> {
             ),
         ));
     }
-    *slot(&mut spec, path)? = value;
-    Planar::build(spec)
+    *slot(spec, path)? = value;
+    Ok(())
 }
