@@ -19,7 +19,7 @@ use wbv::diagnosis::truth::{run_case, summary};
 fn seeded_truth_form_subset_meets_the_acceptance_rule() {
     let seed = 7;
     let t0 = std::time::Instant::now();
-    let scores: Vec<_> = (0..24)
+    let scores: Vec<_> = (0..28)
         .into_par_iter()
         .map(|i| run_case(i, seed).unwrap())
         .collect();

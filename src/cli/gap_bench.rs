@@ -4,8 +4,9 @@ use rayon::prelude::*;
 /// Arguments of `wbv gap-bench`.
 #[derive(Debug, clap::Args)]
 pub struct Args {
-    /// Number of blind cases (every sixth has no effect; the others rotate over the viscoelastic,
-    /// stiffening, softening, sensor and missing-dof families and their truth forms).
+    /// Number of blind cases (every seventh has no effect; the others rotate over the
+    /// viscoelastic, stiffening, softening, sensor, missing-dof and support-path families and
+    /// their truth forms).
     #[arg(long, default_value_t = 60)]
     cases: usize,
     /// Master seed.

@@ -84,11 +84,18 @@ pub enum Candidate {
     MissingDof,
     /// A second body mode: part of the heaviest body mass (viscera) on its own spring–damper.
     BodyMode,
+    /// A backrest (gap.md E7): the upper torso (heaviest body mass) leans on a spring–damper to the
+    /// seat frame, a load path that bypasses the seat pan, so seat→head is no longer body-only.
+    Backrest,
+    /// Feet on the floor (gap.md E9): a legs mass joined to the lowest body mass (pelvis and
+    /// thighs) by a knee spring–damper and to the base by a heel pad (ζ 0.3 each): a load path
+    /// past the seat pan that the seat-pan force does not see.
+    FeetSupport,
 }
 
 impl Candidate {
     /// Every candidate in report order.
-    pub const ALL: [Candidate; 14] = [
+    pub const ALL: [Candidate; 16] = [
         Candidate::BodySoftening,
         Candidate::BodySofteningMagnitude,
         Candidate::CushionStiffening,
@@ -103,6 +110,8 @@ impl Candidate {
         Candidate::EndStop,
         Candidate::MissingDof,
         Candidate::BodyMode,
+        Candidate::Backrest,
+        Candidate::FeetSupport,
     ];
 
     /// Identifier used in verdicts.
@@ -122,6 +131,8 @@ impl Candidate {
             Candidate::EndStop => "end-stop",
             Candidate::MissingDof => "missing-dof",
             Candidate::BodyMode => "body-mode",
+            Candidate::Backrest => "backrest",
+            Candidate::FeetSupport => "feet-support",
         }
     }
 
@@ -139,6 +150,7 @@ impl Candidate {
             | Candidate::SensorMountHead => "sensor",
             Candidate::SuspensionFriction | Candidate::EndStop => "suspension",
             Candidate::MissingDof | Candidate::BodyMode => "missing degree of freedom",
+            Candidate::Backrest | Candidate::FeetSupport => "second support path",
         }
     }
 
@@ -170,6 +182,7 @@ impl Candidate {
                 .iter()
                 .any(|&i| on_base(&system.links[i])),
             Candidate::BodyMode => heaviest_body_mass(system).is_some(),
+            Candidate::Backrest | Candidate::FeetSupport => support_target(self, system).is_some(),
         }
     }
 
@@ -231,6 +244,15 @@ impl Candidate {
                 Param::new("mass_fraction", 0.02, 0.7, &[0.1, 0.3], true),
                 Param::new("f_mode_hz", 2.0, 30.0, &[5.0, 10.0], true),
                 Param::new("zeta_mode", 0.03, 0.8, &[0.25], true),
+            ],
+            Candidate::Backrest => vec![
+                Param::new("f_support_hz", 0.5, 25.0, &[2.0, 6.0], true),
+                Param::new("zeta_support", 0.05, 3.0, &[0.4], true),
+            ],
+            Candidate::FeetSupport => vec![
+                Param::new("m_legs_kg", 1.0, 25.0, &[6.0], true),
+                Param::new("f_knee_hz", 0.5, 25.0, &[2.0, 6.0], true),
+                Param::new("f_heel_hz", 3.0, 60.0, &[12.0], true),
             ],
         }
     }
@@ -340,24 +362,119 @@ impl Candidate {
                 let mv = p[0] * s.m[(t, t)];
                 s.m[(t, t)] -= mv;
                 let j = add_dof(s, "viscera", Role::Body, mv, s.r[t], s.r_x[t]);
-                let w = 2.0 * PI * p[1];
                 let upper = s.dofs[t].name.clone();
+                let row = vec![(j, 1.0), (t, -1.0)];
+                let link = kv_link("viscera", ("viscera", &upper), row, mv, p[1], p[2]);
                 s.links.push(Link {
-                    name: "viscera".into(),
                     role: Role::Body,
-                    nodes: ("viscera".into(), upper),
-                    row: vec![(j, 1.0), (t, -1.0)],
-                    element: Element::KelvinVoigt {
-                        k: mv * w * w,
-                        c: 2.0 * p[2] * mv * w,
-                    },
-                    law: None,
-                    record_deflection: false,
+                    ..link
                 });
+            }
+            Candidate::Backrest => {
+                let t = support_target(self, s).ok_or_else(|| {
+                    Error::parameter(self.id(), "the model has no body point mass to support")
+                })?;
+                let m = s.m[(t, t)];
+                let link = kv_link(
+                    self.id(),
+                    (&s.dofs[t].name, "base"),
+                    vec![(t, 1.0)],
+                    m,
+                    p[0],
+                    p[1],
+                );
+                s.links.push(Link {
+                    role: Role::Backrest,
+                    ..link
+                });
+            }
+            Candidate::FeetSupport => {
+                let t = support_target(self, s).ok_or_else(|| {
+                    Error::parameter(self.id(), "the model has no body point mass to support")
+                })?;
+                let (m, upper) = (p[0], s.dofs[t].name.clone());
+                let j = add_dof(s, "legs", Role::Footrest, m, s.r[t], s.r_x[t]);
+                for (name, nodes, row, f) in [
+                    (
+                        "knee",
+                        (upper.as_str(), "legs"),
+                        vec![(t, 1.0), (j, -1.0)],
+                        p[1],
+                    ),
+                    ("heel", ("legs", "base"), vec![(j, 1.0)], p[2]),
+                ] {
+                    let link = kv_link(name, nodes, row, m, f, SUPPORT_ZETA);
+                    s.links.push(Link {
+                        role: Role::Footrest,
+                        ..link
+                    });
+                }
             }
         }
         Ok(())
     }
+}
+
+/// Damping ratio of the feet-support knee and heel pad (a soft-tissue contact).
+pub const SUPPORT_ZETA: f64 = 0.3;
+
+/// A Kelvin–Voigt link tuned to `f_hz` with damping ratio `zeta` on a mass of `mass_kg`:
+/// `k = m·ω²`, `c = 2ζ·m·ω`.
+fn kv_link(
+    name: &str,
+    nodes: (&str, &str),
+    row: Vec<(usize, f64)>,
+    mass_kg: f64,
+    f_hz: f64,
+    zeta: f64,
+) -> Link {
+    let w = 2.0 * PI * f_hz;
+    Link {
+        name: name.into(),
+        role: Role::Frame,
+        nodes: (nodes.0.into(), nodes.1.into()),
+        row,
+        element: Element::KelvinVoigt {
+            k: mass_kg * w * w,
+            c: 2.0 * zeta * mass_kg * w,
+        },
+        law: None,
+        record_deflection: false,
+    }
+}
+
+/// The body coordinate a support path acts on: the heaviest body point mass for a backrest (the
+/// upper torso), the lowest body point mass (the one joined by a body link to the seat or the base:
+/// pelvis and thighs) for the feet. `None` when the model has no such point mass of its own or
+/// already carries that body on a link to the base (a segment model's backrest and footrest).
+pub fn support_target(c: Candidate, system: &System) -> Option<usize> {
+    let point = |i: usize| {
+        system.dofs[i].role == Role::Body
+            && system.dofs[i].unit == Unit::Metre
+            && (0..system.dof()).all(|j| j == i || system.m[(i, j)] == 0.0)
+    };
+    let is_body = |name: &str| {
+        system
+            .dofs
+            .iter()
+            .any(|d| d.name == name && d.role == Role::Body)
+    };
+    let target = match c {
+        Candidate::Backrest => heaviest_body_mass(system),
+        Candidate::FeetSupport => system
+            .links
+            .iter()
+            .filter(|l| l.role == Role::Body && !is_body(&l.nodes.1))
+            .find_map(|l| system.dofs.iter().position(|d| d.name == l.nodes.0))
+            .filter(|&i| point(i)),
+        _ => None,
+    }?;
+    let name = &system.dofs[target].name;
+    let on_base_already = system
+        .links
+        .iter()
+        .any(|l| on_base(l) && (&l.nodes.0 == name || &l.nodes.1 == name));
+    (!on_base_already).then_some(target)
 }
 
 /// Index of the heaviest body coordinate that is a point mass of its own (a diagonal row of M, a
@@ -429,19 +546,15 @@ pub fn add_frame(s: &mut System, f_hz: f64, zeta: f64, mass_kg: f64) -> Result<(
             l.nodes.1 = "frame".into();
         }
     }
-    let w = 2.0 * PI * f_hz;
-    s.links.push(Link {
-        name: "frame".into(),
-        role: Role::Frame,
-        nodes: ("frame".into(), "base".into()),
-        row: vec![(j, 1.0)],
-        element: Element::KelvinVoigt {
-            k: mass_kg * w * w,
-            c: 2.0 * zeta * mass_kg * w,
-        },
-        law: None,
-        record_deflection: false,
-    });
+    let frame = kv_link(
+        "frame",
+        ("frame", "base"),
+        vec![(j, 1.0)],
+        mass_kg,
+        f_hz,
+        zeta,
+    );
+    s.links.push(frame);
     Ok(())
 }
 
@@ -507,4 +620,54 @@ pub fn scaled(model: &Model, base: &[(String, f64, Quantity)], u: &[f64]) -> Res
         .map(|((path, nominal, _), ui)| (path.clone(), nominal * ui.exp()))
         .collect();
     Ok(model.with_values(&values)?.system().clone())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::model::catalog;
+
+    fn system(name: &str) -> System {
+        catalog::resolve(name).unwrap().system().clone()
+    }
+
+    #[test]
+    fn support_paths_act_on_the_torso_and_the_pelvis_of_a_chain_only() {
+        let s = system("reference");
+        let name = |c| support_target(c, &s).map(|i| s.dofs[i].name.clone());
+        assert_eq!(name(Candidate::Backrest).as_deref(), Some("upper_torso"));
+        assert_eq!(name(Candidate::FeetSupport).as_deref(), Some("pelvis"));
+        // A body on a rigid seat already rests its pelvis on the base: no feet path beside it.
+        let bare = system("seed001-bare");
+        assert!(support_target(Candidate::FeetSupport, &bare).is_none());
+        assert!(support_target(Candidate::Backrest, &bare).is_some());
+        // The segment model has its own backrest and footrest (and no point-mass body).
+        let planar = system("planar-occupant");
+        assert!(!Candidate::Backrest.applies_to(&planar));
+        assert!(!Candidate::FeetSupport.applies_to(&planar));
+    }
+
+    #[test]
+    fn feet_support_adds_a_legs_mass_tuned_to_its_knee_and_heel() {
+        let s = system("reference");
+        let v = Candidate::FeetSupport.apply(&s, &[6.0, 3.0, 12.0]).unwrap();
+        let t = &v.system;
+        assert_eq!(t.dof(), s.dof() + 1);
+        let j = t.dof() - 1;
+        assert_eq!(t.m[(j, j)], 6.0);
+        // With the pelvis held, the legs mass rests on knee and heel in parallel:
+        // ω² = (k_knee + k_heel)/m = (2π)²·(3² + 12²).
+        let k: f64 = t
+            .links
+            .iter()
+            .filter(|l| l.role == Role::Footrest)
+            .map(|l| l.element.static_stiffness())
+            .sum();
+        let w2 = k / 6.0;
+        let expect = (2.0 * PI).powi(2) * (9.0 + 144.0);
+        assert!((w2 / expect - 1.0).abs() < 1e-12, "{w2} vs {expect}");
+        // The seat-pan force still reads the body–seat interface alone.
+        let f = t.channel_index("f_seat_z").unwrap();
+        assert_eq!(t.channels[f].rule, s.channels[f].rule);
+    }
 }

@@ -307,16 +307,17 @@ fn detectability(truth: &Signals, without: &Signals, measured: &Signals) -> Resu
     Ok(worst)
 }
 
-/// What case `index` of a bench with master `seed` plants: `None` for every sixth case, otherwise a
-/// family in rotation and a form in rotation within it.
+/// What case `index` of a bench with master `seed` plants: `None` for every seventh case, otherwise
+/// a family in rotation and a form in rotation within it.
 pub fn effects_of(index: usize, rng: &mut ChaCha8Rng) -> Vec<(Form, f64)> {
-    let slot = index % 6;
+    let period = Family::ALL.len() + 1;
+    let slot = index % period;
     if slot == 0 {
         return Vec::new();
     }
     let family = Family::ALL[slot - 1];
     let forms = Form::of(family);
-    let form = forms[(index / 6) % forms.len()];
+    let form = forms[(index / period) % forms.len()];
     let mut out = vec![(form, rng.random::<f64>())];
     if rng.random::<f64>() < PAIR_FRACTION {
         let others: Vec<Family> = Family::ALL.into_iter().filter(|f| *f != family).collect();

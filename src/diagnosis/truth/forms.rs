@@ -27,16 +27,19 @@ pub enum Family {
     Sensor,
     /// A missing degree of freedom (seat frame, second body mode).
     MissingDof,
+    /// A second load path from the base to the body (backrest, feet on the floor).
+    SupportPath,
 }
 
 impl Family {
     /// Every family, in report order.
-    pub const ALL: [Family; 5] = [
+    pub const ALL: [Family; 6] = [
         Family::Viscoelastic,
         Family::Stiffening,
         Family::Softening,
         Family::Sensor,
         Family::MissingDof,
+        Family::SupportPath,
     ];
     /// Name used in reports.
     pub fn name(self) -> &'static str {
@@ -46,6 +49,7 @@ impl Family {
             Family::Softening => "softening",
             Family::Sensor => "sensor",
             Family::MissingDof => "missing-dof",
+            Family::SupportPath => "support-path",
         }
     }
     /// The family a diagnosis verdict or candidate id belongs to (the scorer's join; `None` for
@@ -63,6 +67,8 @@ impl Family {
         } else if id == "missing-dof" || id.starts_with("body-mode") || id.starts_with("seat-frame")
         {
             Some(Family::MissingDof)
+        } else if id == "backrest" || id == "feet-support" {
+            Some(Family::SupportPath)
         } else {
             None
         }
@@ -104,11 +110,17 @@ pub enum Form {
     Frame,
     /// Second body mode: a viscera mass split off the upper torso.
     Viscera,
+    /// Backrest foam (standard linear solid) from the frame to the upper torso, with a softer
+    /// lumbar contact on the body mass below it.
+    Backrest,
+    /// Feet on the floor: thighs split off the pelvis on a hip joint, lower legs on a knee joint
+    /// and a heel pad to the base.
+    Legs,
 }
 
 impl Form {
     /// Every form, in report order.
-    pub const ALL: [Form; 15] = [
+    pub const ALL: [Form; 17] = [
         Form::Sls,
         Form::Maxwell2,
         Form::Fractional,
@@ -124,6 +136,8 @@ impl Form {
         Form::Gain,
         Form::Frame,
         Form::Viscera,
+        Form::Backrest,
+        Form::Legs,
     ];
     /// The family of the form.
     pub fn family(self) -> Family {
@@ -133,6 +147,7 @@ impl Form {
             Form::Tanh | Form::Bilinear | Form::Scheduled => Family::Softening,
             Form::Delay | Form::LowPass | Form::Mount | Form::Gain => Family::Sensor,
             Form::Frame | Form::Viscera => Family::MissingDof,
+            Form::Backrest | Form::Legs => Family::SupportPath,
         }
     }
     /// The forms of `family`.
@@ -160,6 +175,8 @@ impl Form {
             Form::Gain => "gain",
             Form::Frame => "frame",
             Form::Viscera => "viscera",
+            Form::Backrest => "backrest",
+            Form::Legs => "legs",
         }
     }
 }
@@ -563,13 +580,7 @@ pub fn plant(
             format!("seat frame {mf:.1} kg at {f:.1} Hz, ζ = {z:.3}")
         }
         Form::Viscera => {
-            let (ti, tm) = model
-                .masses
-                .iter()
-                .enumerate()
-                .filter(|(_, m)| m.role == Role::Body)
-                .map(|(i, m)| (i, m.m))
-                .fold((0, 0.0), |a, b| if b.1 > a.1 { b } else { a });
+            let (ti, tm) = heaviest_body(model);
             let phi = 0.1 + 0.3 * u;
             let f = uniform(rng, 5.0, 12.0);
             let z = uniform(rng, 0.15, 0.35);
@@ -599,8 +610,117 @@ pub fn plant(
                 model.masses[ti].name
             )
         }
+        Form::Backrest => {
+            let (ti, tm) = heaviest_body(model);
+            let f = 1.5 + 4.5 * u;
+            let kb = tm * (2.0 * PI * f).powi(2);
+            let share = uniform(rng, 0.3, 1.5);
+            let tau = log_uniform(rng, 0.005, 0.05);
+            model.links.push(Link {
+                name: "truth-backrest".into(),
+                a: Node::Mass(ti),
+                b: Node::Base,
+                element: Element::Zener {
+                    k: kb,
+                    k_m: share * kb,
+                    c_m: share * kb * tau,
+                },
+                law: None,
+                role: Role::Backrest,
+            });
+            // The lumbar contact: a third of the stiffness on the body mass below, ζ 0.3.
+            let below = model
+                .links
+                .iter()
+                .find(|l| l.role == Role::Body && l.a == Node::Mass(ti))
+                .map(|l| l.b);
+            if let Some(Node::Mass(j)) = below {
+                let kl = kb / 3.0;
+                model.links.push(Link {
+                    name: "truth-lumbar".into(),
+                    a: Node::Mass(j),
+                    b: Node::Base,
+                    element: Element::KelvinVoigt {
+                        k: kl,
+                        c: 0.6 * (kl * model.masses[j].m).sqrt(),
+                    },
+                    law: None,
+                    role: Role::Backrest,
+                });
+            }
+            format!(
+                "backrest foam on {} at {f:.1} Hz (SLS: k {kb:.0} N/m, arm ×{share:.2}, τ {:.0} ms) plus a lumbar contact of k/3",
+                model.masses[ti].name,
+                tau * 1e3
+            )
+        }
+        Form::Legs => {
+            let p = model.links[interface(model)].a;
+            let Node::Mass(pi) = p else {
+                return Err(crate::error::Error::parameter(
+                    "legs",
+                    "the bench's base model has no body mass on the seat",
+                ));
+            };
+            // Thighs split off the pelvis on a hip joint, the lower legs on a knee joint to the
+            // thighs and a heel pad to the floor: two masses the candidate's one legs mass only
+            // approximates.
+            let phi = uniform(rng, 0.25, 0.45);
+            let mt = phi * model.masses[pi].m;
+            model.masses[pi].m -= mt;
+            let ml = uniform(rng, 4.0, 9.0);
+            let (fhip, fk, fh) = (
+                uniform(rng, 8.0, 15.0),
+                1.5 + 6.5 * u,
+                uniform(rng, 8.0, 20.0),
+            );
+            let (zk, zh) = (uniform(rng, 0.2, 0.5), uniform(rng, 0.2, 0.4));
+            let (jt, jl) = (model.masses.len(), model.masses.len() + 1);
+            for (name, m) in [("truth-thighs", mt), ("truth-legs", ml)] {
+                model.masses.push(Mass {
+                    name: name.into(),
+                    m,
+                    role: Role::Footrest,
+                });
+            }
+            let kv_link = |name: &str, a: Node, b: Node, m: f64, f: f64, z: f64| {
+                let w = 2.0 * PI * f;
+                Link {
+                    name: name.into(),
+                    a,
+                    b,
+                    element: Element::KelvinVoigt {
+                        k: m * w * w,
+                        c: 2.0 * z * m * w,
+                    },
+                    law: None,
+                    role: Role::Footrest,
+                }
+            };
+            model.links.extend([
+                kv_link("truth-hip", Node::Mass(pi), Node::Mass(jt), mt, fhip, 0.3),
+                kv_link("truth-knee", Node::Mass(jt), Node::Mass(jl), ml, fk, zk),
+                kv_link("truth-heel", Node::Mass(jl), Node::Base, ml, fh, zh),
+            ]);
+            format!(
+                "thighs {mt:.1} kg ({:.0} % of {}) on a {fhip:.1} Hz hip, legs {ml:.1} kg on the floor: knee {fk:.1} Hz (ζ {zk:.2}), heel pad {fh:.1} Hz (ζ {zh:.2})",
+                100.0 * phi,
+                model.masses[pi].name
+            )
+        }
     };
     Ok((planted, detail))
+}
+
+/// Index and mass (kg) of the heaviest body mass.
+fn heaviest_body(model: &Chain) -> (usize, f64) {
+    model
+        .masses
+        .iter()
+        .enumerate()
+        .filter(|(_, m)| m.role == Role::Body)
+        .map(|(i, m)| (i, m.m))
+        .fold((0, 0.0), |a, b| if b.1 > a.1 { b } else { a })
 }
 
 /// `model` with the schedule applied for a run of base r.m.s. `rms`.
