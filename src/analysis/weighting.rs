@@ -9,7 +9,7 @@
 //! - upward step             Hs = (1 + s/(Q5 ω5) + (s/ω5)²) / (1 + s/(Q6 ω6) + (s/ω6)²) · (ω5/ω6)².
 //!
 //! A corner at ∞ removes its factor. Each stage is kept as its own second-order section so that the
-//! digital filter (`filter.rs`) maps it separately.
+//! digital filter (`filter/mod.rs`) maps it separately.
 
 use num_complex::Complex64;
 use serde::{Deserialize, Serialize};

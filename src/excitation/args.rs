@@ -3,10 +3,58 @@
 use super::spec::{DEFAULT_BAND_HZ, ExcitationSpec, Kind};
 use super::synth::SweepLaw;
 use crate::error::{Error, Result};
+use crate::io::input::InputArgs;
 use std::path::PathBuf;
 
+/// Argument ids (field names) of [`ExcitationArgs`], the flattened [`InputArgs`] included: the
+/// members of its argument group (a test checks that the list is complete).
+const ARG_IDS: [&str; 18] = [
+    "excitation",
+    "rms",
+    "band",
+    "freq",
+    "amplitude",
+    "fade_in",
+    "sweep",
+    "sweep_law",
+    "sweep_duration",
+    "input",
+    "format",
+    "columns",
+    "units",
+    "fs",
+    "sensitivity",
+    "topic",
+    "road_class",
+    "speed",
+];
+
 /// Excitation options (flatten into a subcommand's arguments).
+///
+/// The input options of a `recorded` excitation are [`InputArgs`], flattened, with help that names
+/// the excitation. clap's derive (4.6) leaves the argument group of a struct with a flattened field
+/// empty, so its members are set here ([`ARG_IDS`]): a command taking `Option<ExcitationArgs>`
+/// then gets `Some` when any excitation option is given, an input option alone included (which
+/// [`resolve`] then refuses if unused), and `None` when none is.
 #[derive(Debug, Clone, clap::Args)]
+#[command(
+    mut_group("ExcitationArgs", |g| g.args(ARG_IDS)),
+    mut_arg("format", |a| a.help(
+        "recorded: input format csv, wav, mat, uff or mcap (default: detected; docs/inputs.md)"
+    )),
+    mut_arg("columns", |a| a.help(
+        "recorded: read the base channel from a column, variable, WAV channel, UFF58 dataset or \
+         MCAP field: `--column a_base_z=\"Floor Z\"` (`t_s=NAME`: the time column)"
+    )),
+    mut_arg("units", |a| a.help(
+        "recorded: unit of the samples, `g`, `mg`, `m/s2`, for all channels or `CHANNEL=UNIT`"
+    )),
+    mut_arg("fs", |a| a.help("recorded: sample rate in Hz of a file without time stamps")),
+    mut_arg("sensitivity", |a| a.help(
+        "recorded, WAV: value of full scale of a channel, `CHANNEL=VALUE`"
+    )),
+    mut_arg("topic", |a| a.help("recorded, MCAP of another logger: the topic to read")),
+)]
 pub struct ExcitationArgs {
     /// Excitation: a built-in name (`wbv excitations`), a TOML file, or one of
     /// random | psd | road | recorded | sine | sweep built from the options below.
@@ -41,46 +89,17 @@ pub struct ExcitationArgs {
     /// (m/s²)²/Hz.
     #[arg(long)]
     pub input: Option<PathBuf>,
-    /// recorded: input format csv, wav, mat, uff or mcap (default: detected; docs/inputs.md).
-    #[arg(long, value_enum)]
-    pub format: Option<crate::io::input::Format>,
-    /// recorded: read the base channel from a column, variable, WAV channel, UFF58 dataset or MCAP
-    /// field: `--column a_base_z="Floor Z"` (`t_s=NAME`: the time column).
-    #[arg(long = "column", value_name = "CHANNEL=SOURCE")]
-    pub columns: Vec<String>,
-    /// recorded: unit of the samples, `g`, `mg`, `m/s2`, for all channels or `CHANNEL=UNIT`.
-    #[arg(long = "units", value_name = "[CHANNEL=]UNIT")]
-    pub units: Vec<String>,
-    /// recorded: sample rate in Hz of a file without time stamps.
-    #[arg(long)]
-    pub fs: Option<f64>,
-    /// recorded, WAV: value of full scale of a channel, `CHANNEL=VALUE`.
-    #[arg(long = "sensitivity", value_name = "CHANNEL=VALUE")]
-    pub sensitivity: Vec<String>,
-    /// recorded, MCAP of another logger: the topic to read.
-    #[arg(long)]
-    pub topic: Option<String>,
+    /// recorded: the input options of `wbv analyze` (`--format`, `--column`, `--units`, `--fs`,
+    /// `--sensitivity`, `--topic`), declared once in [`InputArgs`]; their help here is the
+    /// excitation's own (`mut_arg` above).
+    #[command(flatten)]
+    pub recorded: InputArgs,
     /// road: ISO 8608 class A–H (default C).
     #[arg(long)]
     pub road_class: Option<String>,
     /// road: vehicle speed in m/s.
     #[arg(long)]
     pub speed: Option<f64>,
-}
-
-impl ExcitationArgs {
-    /// The input options of a `recorded` excitation (inlined above rather than flattened, so that
-    /// commands taking `Option<ExcitationArgs>` still see whether an excitation was given).
-    pub fn read(&self) -> crate::io::input::InputArgs {
-        crate::io::input::InputArgs {
-            format: self.format,
-            columns: self.columns.clone(),
-            units: self.units.clone(),
-            fs: self.fs,
-            sensitivity: self.sensitivity.clone(),
-            topic: self.topic.clone(),
-        }
-    }
 }
 
 /// Sweep law on the command line.
@@ -106,7 +125,7 @@ fn pair(v: &[f64], flag: &str) -> Result<[f64; 2]> {
 
 /// Refuses every option given that `kind` does not use (no option is silently ignored).
 fn refuse_unused(args: &ExcitationArgs, kind: &str) -> Result<()> {
-    let r = args.read();
+    let r = &args.recorded;
     let given = [
         ("--rms", args.rms.is_some(), &["random"][..]),
         ("--band", args.band.is_some(), &["random"]),
@@ -204,7 +223,7 @@ pub fn resolve(args: &ExcitationArgs) -> Result<ExcitationSpec> {
         "recorded" => {
             let csv = need(args.input.as_ref(), "--input", kind)?.clone();
             let d = format!("recorded run {}", csv.display());
-            let input = args.read().options()?;
+            let input = args.recorded.options()?;
             ExcitationSpec::new(Kind::Recorded { csv, input }, d)?
         }
         "sine" => {
@@ -238,4 +257,45 @@ pub fn resolve(args: &ExcitationArgs) -> Result<ExcitationSpec> {
         name => ExcitationSpec::load(name)?,
     };
     Ok(spec)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use clap::{Args, CommandFactory, Parser};
+
+    #[derive(Parser)]
+    struct Cli {
+        #[arg(long)]
+        other: Option<f64>,
+        #[command(flatten)]
+        exc: Option<ExcitationArgs>,
+    }
+
+    #[test]
+    fn the_group_lists_every_option() {
+        let cmd = ExcitationArgs::augment_args(clap::Command::new("t"));
+        let mut ids: Vec<&str> = cmd.get_arguments().map(|a| a.get_id().as_str()).collect();
+        ids.sort_unstable();
+        let mut listed = ARG_IDS.to_vec();
+        listed.sort_unstable();
+        assert_eq!(ids, listed);
+        Cli::command().debug_assert();
+    }
+
+    #[test]
+    fn any_excitation_option_makes_an_excitation() {
+        let parse = |args: &[&str]| Cli::parse_from([&["wbv"], args].concat()).exc;
+        assert!(parse(&[]).is_none());
+        assert!(parse(&["--other", "1"]).is_none());
+        let e = parse(&["--excitation", "sine", "--freq", "4"]).unwrap();
+        assert_eq!((e.excitation.as_str(), e.freq), ("sine", Some(4.0)));
+        // An input option alone: an excitation (the default), which `resolve` refuses.
+        let e = parse(&["--column", "a_base_z=z"]).unwrap();
+        assert_eq!(e.recorded.columns, ["a_base_z=z"]);
+        let err = resolve(&e).unwrap_err().to_string();
+        assert!(err.starts_with("--column:"), "{err}");
+        assert!(parse(&["--topic", "/imu"]).is_some());
+        assert!(parse(&["--road-class", "D"]).is_some());
+    }
 }

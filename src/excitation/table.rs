@@ -3,6 +3,7 @@
 //! (breakpoints with slopes in dB/octave); zero outside the table.
 
 use crate::error::{Error, Result};
+use crate::io::input::delimited::{csv_records, lf_line_ends};
 use std::path::Path;
 
 /// A validated log-log PSD table.
@@ -72,32 +73,16 @@ impl PsdTable {
     /// Parses CSV text (see [`PsdTable::read_csv`]) with the `csv` crate; `source` names it in
     /// errors.
     pub fn parse_csv(text: &str, source: &str) -> Result<Self> {
-        // Windows line ends as `\n`: the csv crate's line numbers count a CRLF record end short.
-        let text = text.replace("\r\n", "\n");
-        let mut rdr = csv::ReaderBuilder::new()
-            .has_headers(false)
-            .flexible(true)
-            .trim(csv::Trim::All)
-            .from_reader(text.as_bytes());
+        let text = lf_line_ends(text.to_string());
+        let (header, records) = csv_records(
+            &text,
+            source,
+            b',',
+            None,
+            "empty file; expected header `freq_hz,psd`",
+            "malformed header",
+        )?;
         let line_of = |r: &csv::StringRecord| r.position().map(|p| p.line() as usize);
-        let mut records = rdr.records();
-        let header = match records.next() {
-            Some(Ok(h)) => h,
-            Some(Err(e)) => {
-                return Err(Error::data(
-                    source,
-                    Some(1),
-                    format!("malformed header: {e}"),
-                ));
-            }
-            None => {
-                return Err(Error::data(
-                    source,
-                    Some(1),
-                    "empty file; expected header `freq_hz,psd`",
-                ));
-            }
-        };
         let names: Vec<&str> = header.iter().collect();
         if names != ["freq_hz", "psd"] {
             return Err(Error::data(
@@ -112,10 +97,7 @@ impl PsdTable {
         let mut points = Vec::new();
         let mut line_at = Vec::new();
         for rec in records {
-            let rec = rec.map_err(|e| {
-                let line = e.position().map(|p| p.line() as usize);
-                Error::data(source, line, format!("malformed line: {e}"))
-            })?;
+            let rec = rec?;
             let line = line_of(&rec);
             if rec.len() != 2 {
                 return Err(Error::data(

@@ -3,4 +3,5 @@
 pub mod atomic;
 pub mod csv_run;
 pub mod input;
+pub mod mcap_stream;
 pub mod memory;

@@ -7,6 +7,7 @@ use super::meta::{self, Map};
 use super::proto::ProtoTable;
 use super::topics::channel_name;
 use crate::error::{Error, Result};
+use crate::io::mcap_stream::Records;
 use crate::signals::Signals;
 use serde::de::{DeserializeSeed, Deserializer, Error as _, MapAccess, Visitor};
 use std::collections::BTreeMap;
@@ -141,46 +142,32 @@ fn summarize(path: &Path, buf: &[u8], s: &mcap::Summary) -> Result<RunSummary> {
 /// Largest record (or decompressed chunk) accepted; the recorder writes 1 MiB chunks.
 const MAX_RECORD_BYTES: usize = 64 << 20;
 
-/// Calls `f(topic, sequence, data)` for every message, in file order. Chunk CRCs are checked
-/// before any record of a chunk is parsed and record lengths are bounded, so corrupt bytes give an
-/// error rather than a huge allocation inside the `mcap` crate.
+/// Calls `f(topic, sequence, data)` for every message, in file order, from the bounded record
+/// stream of [`crate::io::mcap_stream`]: chunk CRCs are checked before any record of a chunk is
+/// parsed and record lengths are bounded, so corrupt bytes give an error rather than a huge
+/// allocation inside the `mcap` crate.
 fn for_each_message(
     path: &Path,
     buf: &[u8],
     s: &mcap::Summary,
     mut f: impl FnMut(&mcap::Channel<'_>, u32, &[u8]) -> Result<()>,
 ) -> Result<()> {
-    use mcap::sans_io::{LinearReadEvent, LinearReader, LinearReaderOptions};
-    let mut reader = LinearReader::new_with_options(
-        LinearReaderOptions::default()
-            .with_prevalidate_chunk_crcs(true)
-            .with_validate_data_section_crc(true)
-            .with_record_length_limit(MAX_RECORD_BYTES),
-    );
-    let mut rest = buf;
-    while let Some(event) = reader.next_event() {
-        match event.map_err(|e| corrupt(path, e))? {
-            LinearReadEvent::ReadRequest(n) => {
-                let k = n.min(rest.len());
-                reader.insert(k).copy_from_slice(&rest[..k]);
-                reader.notify_read(k);
-                rest = &rest[k..];
+    let mut records = Records::with_crcs(buf, MAX_RECORD_BYTES);
+    let mut message = |opcode: u8, data: &[u8]| -> Result<()> {
+        match mcap::parse_record(opcode, data).map_err(|e| corrupt(path, e))? {
+            mcap::records::Record::Message { header, data } => {
+                let channel = s.channels.get(&header.channel_id).ok_or_else(|| {
+                    corrupt(path, format!("unknown channel {}", header.channel_id))
+                })?;
+                f(channel, header.sequence, &data)
             }
-            LinearReadEvent::Record { opcode, data } => {
-                if opcode != mcap::records::op::MESSAGE {
-                    continue;
-                }
-                match mcap::parse_record(opcode, data).map_err(|e| corrupt(path, e))? {
-                    mcap::records::Record::Message { header, data } => {
-                        let channel = s.channels.get(&header.channel_id).ok_or_else(|| {
-                            corrupt(path, format!("unknown channel {}", header.channel_id))
-                        })?;
-                        f(channel, header.sequence, &data)?;
-                    }
-                    _ => return Err(corrupt(path, "message record expected")),
-                }
-            }
+            _ => Err(corrupt(path, "message record expected")),
         }
+    };
+    while let Some(done) = records.next_taken(|opcode, data| {
+        (opcode == mcap::records::op::MESSAGE).then(|| message(opcode, data))
+    }) {
+        done.map_err(|e| corrupt(path, e))??;
     }
     Ok(())
 }

@@ -93,41 +93,76 @@ pub(crate) fn printed_resolution(cell: &str) -> f64 {
     10f64.powi(exp.saturating_sub(decimals))
 }
 
-/// Reads delimited text into raw columns (time, when present, is one of them).
-pub(crate) fn read(bytes: &[u8], source: &str, opts: &Options) -> Result<Raw> {
-    let (text, enc_note) = decode(bytes, source)?;
-    // Windows line ends as `\n`: the csv crate's line numbers count a CRLF record end short.
-    let text = if text.contains('\r') {
+/// `text` with Windows line ends (`\r\n`) read as `\n`, for [`csv_records`]: the `csv` crate's
+/// line numbers count a CRLF record end short.
+pub(crate) fn lf_line_ends(text: String) -> String {
+    if text.contains('\r') {
         text.replace("\r\n", "\n")
     } else {
         text
+    }
+}
+
+/// The one way wbv reads CSV text (measurements here, PSD tables in `crate::excitation::table`)
+/// on the `csv` crate: fields trimmed, rows of any length (the caller checks them), `delimiter`
+/// between fields, lines starting with `comment` skipped; `text` has `\n` line ends
+/// ([`lf_line_ends`]). Returns the first record (the header) and the records after it, whose
+/// errors name `source` and the line (`malformed line: …`). `empty` is the error of text without
+/// a header, `unreadable` the start of the error of a header the crate cannot read (both line 1).
+pub(crate) fn csv_records<'a>(
+    text: &'a str,
+    source: &'a str,
+    delimiter: u8,
+    comment: Option<u8>,
+    empty: &str,
+    unreadable: &str,
+) -> Result<(
+    csv::StringRecord,
+    impl Iterator<Item = Result<csv::StringRecord>> + 'a,
+)> {
+    let mut records = csv::ReaderBuilder::new()
+        .has_headers(false)
+        .flexible(true)
+        .delimiter(delimiter)
+        .comment(comment)
+        .trim(csv::Trim::All)
+        .from_reader(text.as_bytes())
+        .into_records();
+    let header = match records.next() {
+        Some(Ok(h)) => h,
+        Some(Err(e)) => {
+            return Err(Error::data(source, Some(1), format!("{unreadable}: {e}")));
+        }
+        None => return Err(Error::data(source, Some(1), empty)),
     };
+    let records = records.map(move |r| {
+        r.map_err(|e| {
+            let line = e.position().map(|p| p.line() as usize);
+            Error::data(source, line, format!("malformed line: {e}"))
+        })
+    });
+    Ok((header, records))
+}
+
+/// Reads delimited text into raw columns (time, when present, is one of them).
+pub(crate) fn read(bytes: &[u8], source: &str, opts: &Options) -> Result<Raw> {
+    let (text, enc_note) = decode(bytes, source)?;
+    let text = lf_line_ends(text);
     let first = text
         .lines()
         .find(|l| !l.trim().is_empty() && !l.starts_with('#'))
         .ok_or_else(|| Error::data(source, Some(1), "empty file; expected a header line"))?;
     let delim = sniff_delimiter(first);
     let decimal_comma = delim != b',';
-    let mut rdr = csv::ReaderBuilder::new()
-        .has_headers(false)
-        .flexible(true)
-        .delimiter(delim)
-        .comment(Some(b'#'))
-        .trim(csv::Trim::All)
-        .from_reader(text.as_bytes());
-    let mut records = rdr.records();
+    let (header, records) = csv_records(
+        &text,
+        source,
+        delim,
+        Some(b'#'),
+        "empty file",
+        "cannot read the header",
+    )?;
     let line_of = |r: &csv::StringRecord| r.position().map_or(0, |p| p.line() as usize);
-    let header = match records.next() {
-        Some(Ok(h)) => h,
-        Some(Err(e)) => {
-            return Err(Error::data(
-                source,
-                Some(1),
-                format!("cannot read the header: {e}"),
-            ));
-        }
-        None => return Err(Error::data(source, Some(1), "empty file")),
-    };
     let header_line = line_of(&header).max(1);
     let mut cells: Vec<String> = header.iter().map(str::to_string).collect();
     // A trailing delimiter on every line makes an empty last column: drop it.
@@ -176,10 +211,7 @@ pub(crate) fn read(bytes: &[u8], source: &str, opts: &Options) -> Result<Raw> {
     let mut lines = Vec::new();
     let mut first_data = true;
     for rec in records {
-        let rec = rec.map_err(|e| {
-            let line = e.position().map(|p| p.line() as usize);
-            Error::data(source, line, format!("malformed line: {e}"))
-        })?;
+        let rec = rec?;
         let line = line_of(&rec);
         let mut n = rec.len();
         if trailing_empty && n == ncol + 1 && rec.get(ncol).is_some_and(str::is_empty) {

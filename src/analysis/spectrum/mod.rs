@@ -17,6 +17,12 @@ use serde::{Deserialize, Serialize};
 use std::f64::consts::PI;
 use std::sync::Arc;
 
+mod accumulator;
+mod cross;
+
+pub use accumulator::PsdAccumulator;
+pub use cross::CrossSpectra;
+
 /// Data window applied to each segment.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize, Default)]
 #[serde(rename_all = "lowercase")]
@@ -95,70 +101,6 @@ pub struct Spectrum {
     pub df_hz: f64,
     /// Number of averaged segments.
     pub segments: usize,
-}
-
-/// Auto- and cross-spectral densities of a channel pair x → y (one-sided, per Hz).
-#[derive(Debug, Clone, PartialEq)]
-pub struct CrossSpectra {
-    /// Bin frequencies in Hz.
-    pub freq_hz: Vec<f64>,
-    /// G_xx in (unit x)²/Hz.
-    pub gxx: Vec<f64>,
-    /// G_yy in (unit y)²/Hz.
-    pub gyy: Vec<f64>,
-    /// G_xy = 2 E[X* Y]/(fs Σw²) in (unit x)(unit y)/Hz.
-    pub gxy: Vec<Complex64>,
-    /// Number of averaged segments.
-    pub segments: usize,
-}
-
-impl CrossSpectra {
-    /// H1 = G_xy / G_xx: unbiased by noise on the output y (Bendat & Piersol eq. 9.64).
-    pub fn h1(&self) -> Vec<Complex64> {
-        self.gxy
-            .iter()
-            .zip(&self.gxx)
-            .map(|(g, &xx)| {
-                if xx > 0.0 {
-                    g / xx
-                } else {
-                    Complex64::new(f64::NAN, 0.0)
-                }
-            })
-            .collect()
-    }
-
-    /// H2 = G_yy / G_yx: unbiased by noise on the input x (Bendat & Piersol eq. 9.65).
-    pub fn h2(&self) -> Vec<Complex64> {
-        self.gxy
-            .iter()
-            .zip(&self.gyy)
-            .map(|(g, &yy)| {
-                let gyx = g.conj();
-                if gyx.norm() > 0.0 {
-                    yy / gyx
-                } else {
-                    Complex64::new(f64::NAN, 0.0)
-                }
-            })
-            .collect()
-    }
-
-    /// Ordinary coherence γ² = |G_xy|² / (G_xx G_yy) in [0, 1] (Bendat & Piersol eq. 9.66).
-    pub fn coherence(&self) -> Vec<f64> {
-        self.gxy
-            .iter()
-            .zip(self.gxx.iter().zip(&self.gyy))
-            .map(|(g, (&xx, &yy))| {
-                let d = xx * yy;
-                if d > 0.0 {
-                    (g.norm_sqr() / d).min(1.0)
-                } else {
-                    0.0
-                }
-            })
-            .collect()
-    }
 }
 
 /// A planned Welch estimator for one sample rate and one segmentation.
@@ -295,48 +237,6 @@ impl Welch {
         acc.push(self, x);
         acc.finish(self)
     }
-
-    /// Auto- and cross-spectral densities of the pair x → y (same length, same segments).
-    pub fn cross(&mut self, x: &[f64], y: &[f64]) -> Result<CrossSpectra> {
-        if x.len() != y.len() {
-            return Err(Error::parameter(
-                "cross spectrum",
-                format!(
-                    "channels have {} and {} samples; expected equal lengths",
-                    x.len(),
-                    y.len()
-                ),
-            ));
-        }
-        let count = self.segment_count(x.len())?;
-        let m = self.n / 2 + 1;
-        let (mut gxx, mut gyy, mut gxy) =
-            (vec![0.0; m], vec![0.0; m], vec![Complex64::default(); m]);
-        for s in 0..count {
-            let start = s * self.step;
-            self.transform(&x[start..start + self.n], false);
-            self.transform(&y[start..start + self.n], true);
-            for k in 0..m {
-                let (a, b) = (self.out_x[k], self.out_y[k]);
-                gxx[k] += a.norm_sqr();
-                gyy[k] += b.norm_sqr();
-                gxy[k] += a.conj() * b;
-            }
-        }
-        for k in 0..m {
-            let c = self.one_sided_scale(k) / count as f64;
-            gxx[k] *= c;
-            gyy[k] *= c;
-            gxy[k] *= c;
-        }
-        Ok(CrossSpectra {
-            freq_hz: self.frequencies(),
-            gxx,
-            gyy,
-            gxy,
-            segments: count,
-        })
-    }
 }
 
 impl Spectrum {
@@ -354,73 +254,5 @@ impl Spectrum {
             .map(|(&f, &g)| weight(f).powi(2) * g)
             .sum::<f64>()
             * self.df_hz
-    }
-}
-
-/// A Welch auto-spectrum fed in blocks of any size: segment `s` is transformed as soon as samples
-/// `s·step … s·step + N` have arrived, so memory is one segment whatever the duration, and the
-/// result equals [`Welch::psd`] of the concatenated blocks bit for bit.
-#[derive(Debug, Clone)]
-pub struct PsdAccumulator {
-    /// The last N samples received, oldest first once full.
-    ring: Vec<f64>,
-    /// Contiguous copy of the current segment.
-    segment: Vec<f64>,
-    /// Samples received.
-    received: usize,
-    /// Sample index at which the next segment starts.
-    next_start: usize,
-    acc: Vec<f64>,
-    count: usize,
-}
-
-impl PsdAccumulator {
-    /// An empty accumulator for the segmentation of `welch`.
-    pub fn new(welch: &Welch) -> Self {
-        PsdAccumulator {
-            ring: vec![0.0; welch.n],
-            segment: vec![0.0; welch.n],
-            received: 0,
-            next_start: 0,
-            acc: vec![0.0; welch.n / 2 + 1],
-            count: 0,
-        }
-    }
-
-    /// Appends `x` and transforms every segment it completes.
-    pub fn push(&mut self, welch: &mut Welch, x: &[f64]) {
-        let n = welch.n;
-        for &v in x {
-            self.ring[self.received % n] = v;
-            self.received += 1;
-            if self.received == self.next_start + n {
-                let head = self.received % n;
-                let (newer, older) = self.ring.split_at(head);
-                self.segment[..older.len()].copy_from_slice(older);
-                self.segment[older.len()..].copy_from_slice(newer);
-                welch.transform(&self.segment, false);
-                for (a, c) in self.acc.iter_mut().zip(&welch.out_x) {
-                    *a += c.norm_sqr();
-                }
-                self.count += 1;
-                self.next_start += welch.step;
-            }
-        }
-    }
-
-    /// The averaged density; an error when not even one segment was completed.
-    pub fn finish(mut self, welch: &Welch) -> Result<Spectrum> {
-        if self.count == 0 {
-            welch.segment_count(self.received)?;
-        }
-        for (k, a) in self.acc.iter_mut().enumerate() {
-            *a *= welch.one_sided_scale(k) / self.count as f64;
-        }
-        Ok(Spectrum {
-            freq_hz: welch.frequencies(),
-            density: self.acc,
-            df_hz: welch.df_hz(),
-            segments: self.count,
-        })
     }
 }

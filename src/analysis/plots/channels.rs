@@ -1,0 +1,132 @@
+//! The per-channel figures: time history (min/max envelope), one-third-octave bands and the
+//! running r.m.s. with the MTVV.
+
+use super::*;
+
+pub(super) fn time_history(signals: &Signals, report: &Report) -> RunFigure {
+    let t = time_axis(signals);
+    let charts = report
+        .channels
+        .iter()
+        .filter_map(|c| signals.get(&c.name).map(|x| (c, x)))
+        .enumerate()
+        .map(|(i, (c, x))| {
+            let (tx, yx) = crate::plot::envelope(&t, x, BUCKETS);
+            Chart {
+                title: format!("{}: acceleration (r.m.s. {:.3} m/s²)", c.name, c.rms),
+                x_label: "time [s]".into(),
+                y_label: "acceleration [m/s²]".into(),
+                series: vec![Series::line("", tx, yx).coloured(colour::pick(i))],
+                ..Chart::default()
+            }
+        })
+        .collect();
+    RunFigure {
+        name: "time_history",
+        caption: "Acceleration time histories (unweighted; each panel shows the minimum and \
+                  maximum of every ~1/600 of the run)"
+            .into(),
+        charts,
+        cols: 2,
+    }
+}
+
+pub(super) fn octave_bands(report: &Report) -> RunFigure {
+    let ratio = 10f64.powf(0.05);
+    let charts = report
+        .channels
+        .iter()
+        .map(|c| {
+            let weighted = report
+                .weighted_bands
+                .get(&c.name)
+                .cloned()
+                .unwrap_or_default();
+            let f: Vec<f64> = weighted.iter().map(|b| b.centre_hz).collect();
+            Chart {
+                title: format!(
+                    "{}: {}-weighted one-third-octave bands (a_w = {:.3} m/s²)",
+                    c.name,
+                    c.weighting.name(),
+                    c.a_w
+                ),
+                x_label: "band centre frequency [Hz]".into(),
+                y_label: "band r.m.s. [m/s²]".into(),
+                log_x: true,
+                series: vec![
+                    Series::line(
+                        format!("weighted ({})", c.weighting.name()),
+                        f.clone(),
+                        weighted.iter().map(|b| b.rms).collect(),
+                    )
+                    .styled(Style::Bars { ratio }),
+                    Series::line("unweighted", f, c.bands.iter().map(|b| b.rms).collect())
+                        .styled(Style::Markers)
+                        .coloured((60, 60, 60)),
+                ],
+                ..Chart::default()
+            }
+        })
+        .collect();
+    RunFigure {
+        name: "octave_bands",
+        caption: "Frequency-weighted one-third-octave band r.m.s. (ISO 2631-1 eq. 6 with the \
+                  weighting at each band's exact centre, 0.5–80 Hz); markers: unweighted bands"
+            .into(),
+        charts,
+        cols: 2,
+    }
+}
+
+pub(super) fn running(signals: &Signals, report: &Report, tau_s: f64) -> Result<RunFigure> {
+    let t = time_axis(signals);
+    let mut series = vec![];
+    let mut notes = vec![];
+    for (i, c) in report.channels.iter().enumerate() {
+        let Some(x) = signals.get(&c.name) else {
+            continue;
+        };
+        let aw = WeightingFilter::new(c.weighting, signals.sample_rate_hz)?.apply(x);
+        let r = running_rms(&aw, signals.sample_rate_hz, tau_s, Averaging::Linear);
+        let (imax, max) =
+            r.iter()
+                .copied()
+                .enumerate()
+                .fold(
+                    (0, f64::NEG_INFINITY),
+                    |b, (j, v)| if v > b.1 { (j, v) } else { b },
+                );
+        let (tx, yx) = crate::plot::envelope(&t, &r, BUCKETS);
+        let col = colour::pick(i);
+        series.push(
+            Series::line(format!("{} ({})", c.name, c.weighting.name()), tx, yx).coloured(col),
+        );
+        series.push(
+            Series::line("", vec![t[imax]], vec![max])
+                .styled(Style::Markers)
+                .coloured(col),
+        );
+        notes.push(Note {
+            x: t[imax],
+            y: max,
+            text: format!("MTVV {:.3} m/s² at {:.1} s", max, t[imax]),
+            dy: -18,
+        });
+    }
+    Ok(RunFigure {
+        name: "running_rms",
+        caption: format!(
+            "Weighted running r.m.s. with τ = {tau_s} s (ISO 2631-1 eq. 2, linear); the marked \
+             maximum is the MTVV (eq. 4)"
+        ),
+        charts: vec![Chart {
+            title: format!("running r.m.s. of the weighted accelerations, τ = {tau_s} s"),
+            x_label: "time [s]".into(),
+            y_label: "running r.m.s. a_w(t) [m/s²]".into(),
+            series,
+            notes,
+            ..Chart::default()
+        }],
+        cols: 1,
+    })
+}

@@ -1,0 +1,188 @@
+//! The running ISO 2631-1 figures of one acceleration channel: weighting by place and axis,
+//! oversampling, weighted and unweighted moments, running r.m.s., PSDs and band r.m.s.
+
+use crate::analysis::figures::{Averaging, Moments, RunningRms};
+use crate::analysis::filter::{FilterStream, Interpolator, WeightingFilter, oversampling};
+use crate::analysis::octave;
+use crate::analysis::report::{ChannelReport, Options};
+use crate::analysis::spectrum::{PsdAccumulator, Welch};
+use crate::analysis::weighting::Weighting;
+use crate::error::Result;
+
+/// Splits `a_<place>_<axis>` into (place, axis) for translational axes x, y, z.
+pub(super) fn parse_name(name: &str) -> Option<(&str, &str)> {
+    let rest = name.strip_prefix("a_")?;
+    let (place, axis) = rest.rsplit_once('_')?;
+    (!place.is_empty() && matches!(axis, "x" | "y" | "z")).then_some((place, axis))
+}
+
+/// Weighting and comfort k of a channel (ISO 2631-1 Tables 1–2, 8.2.2).
+fn weighting_for(place: &str, axis: &str) -> (Weighting, f64) {
+    match (place, axis) {
+        ("back", "x") => (Weighting::Wc, 0.8),
+        ("back", "y") => (Weighting::Wd, 0.5),
+        ("back", "z") => (Weighting::Wd, 0.4),
+        ("feet", "z") => (Weighting::Wk, 0.4),
+        ("feet", _) => (Weighting::Wk, 0.25),
+        (_, "z") => (Weighting::Wk, 1.0),
+        _ => (Weighting::Wd, 1.0),
+    }
+}
+
+/// The running figures of one acceleration channel.
+pub(super) struct ChannelAnalyzer {
+    /// Column of the channel in the builder's input.
+    pub(super) column: usize,
+    pub(super) name: String,
+    place: String,
+    axis: String,
+    weighting: Weighting,
+    k: f64,
+    weight: FilterStream,
+    /// Oversampler ahead of the weighting when the input rate is below the filter's verified
+    /// range ([`oversampling`]), and its output buffer.
+    up: Option<Interpolator>,
+    up_buf: Vec<f64>,
+    /// Rate of the weighted signal in Hz (input rate × oversampling).
+    fs_weighted: f64,
+    /// First sample: subtracted before both weightings, which starts them in steady state (every
+    /// weighting has zero gain at DC), so a constant offset changes no weighted figure.
+    first: Option<f64>,
+    /// Σx of the raw samples, for the mean.
+    sum: f64,
+    /// Wf for the MSDV (vertical axes only).
+    sickness: Option<(FilterStream, Moments)>,
+    raw: Moments,
+    weighted: Moments,
+    linear: RunningRms,
+    exponential: RunningRms,
+    psd: PsdAccumulator,
+    /// Block buffers of the Wk (or Wd/Wc) and the Wf chains.
+    scratch: Vec<f64>,
+    scratch_sickness: Vec<f64>,
+}
+
+impl ChannelAnalyzer {
+    pub(super) fn new(
+        column: usize,
+        name: &str,
+        fs: f64,
+        welch: &Welch,
+        opts: &Options,
+    ) -> Result<Self> {
+        let (place, axis) = parse_name(name).expect("caller filtered names");
+        let (weighting, k) = weighting_for(place, axis);
+        let factor = oversampling(weighting, fs);
+        let fs_weighted = fs * factor as f64;
+        let sickness = if axis == "z" {
+            Some((
+                WeightingFilter::new(Weighting::Wf, fs)?.stream(),
+                Moments::default(),
+            ))
+        } else {
+            None
+        };
+        Ok(ChannelAnalyzer {
+            column,
+            name: name.to_string(),
+            place: place.to_string(),
+            axis: axis.to_string(),
+            weighting,
+            k,
+            weight: WeightingFilter::new(weighting, fs_weighted)?.stream(),
+            up: (factor > 1).then(|| Interpolator::new(factor)),
+            up_buf: Vec::new(),
+            fs_weighted,
+            first: None,
+            sum: 0.0,
+            sickness,
+            raw: Moments::default(),
+            weighted: Moments::default(),
+            linear: RunningRms::new(fs_weighted, opts.tau_s, Averaging::Linear),
+            exponential: RunningRms::new(fs_weighted, opts.tau_s, Averaging::Exponential),
+            psd: PsdAccumulator::new(welch),
+            scratch: Vec::new(),
+            scratch_sickness: Vec::new(),
+        })
+    }
+
+    /// The three chains of a block are independent — spectrum, weighted figures, Wf motion-sickness
+    /// dose — so they run side by side (each block is thousands of samples, far more than a
+    /// task's overhead); every figure is computed exactly as in sequence.
+    pub(super) fn push(&mut self, x: &[f64], welch: &mut Welch) {
+        let Some(&x0) = x.first() else { return };
+        let x0 = *self.first.get_or_insert(x0);
+        // Sample by sample, so any split into blocks gives the same sum bit for bit.
+        for v in x {
+            self.sum += v;
+        }
+        let (raw, psd) = (&mut self.raw, &mut self.psd);
+        let spectrum = || {
+            raw.push(x);
+            psd.push(welch, x);
+        };
+        let (scratch, weight, weighted) = (&mut self.scratch, &mut self.weight, &mut self.weighted);
+        let (linear, exponential) = (&mut self.linear, &mut self.exponential);
+        let (up, up_buf) = (&mut self.up, &mut self.up_buf);
+        let weighted_chain = || {
+            scratch.clear();
+            scratch.extend(x.iter().map(|v| v - x0));
+            let y = match up.as_mut() {
+                Some(ip) => {
+                    up_buf.clear();
+                    ip.push(scratch, up_buf);
+                    up_buf
+                }
+                None => scratch,
+            };
+            weight.process(y);
+            weighted.push(y);
+            linear.push(y);
+            exponential.push(y);
+        };
+        let (sick_scratch, sickness) = (&mut self.scratch_sickness, &mut self.sickness);
+        let sickness_chain = || {
+            if let Some((filter, moments)) = sickness.as_mut() {
+                sick_scratch.clear();
+                sick_scratch.extend(x.iter().map(|v| v - x0));
+                filter.process(sick_scratch);
+                moments.push(sick_scratch);
+            }
+        };
+        rayon::join(spectrum, || rayon::join(weighted_chain, sickness_chain));
+    }
+
+    pub(super) fn finish(mut self, fs: f64, welch: &Welch) -> Result<ChannelReport> {
+        if let Some(ip) = self.up.as_mut() {
+            self.up_buf.clear();
+            ip.finish(&mut self.up_buf);
+            let y = &mut self.up_buf;
+            self.weight.process(y);
+            self.weighted.push(y);
+            self.linear.push(y);
+            self.exponential.push(y);
+        }
+        let mean = if self.raw.count == 0 {
+            0.0
+        } else {
+            self.sum / self.raw.count as f64
+        };
+        Ok(ChannelReport {
+            mean,
+            bands: octave::third_octave_bands(&self.psd.finish(welch)?, -3, 19),
+            name: self.name,
+            place: self.place,
+            axis: self.axis,
+            weighting: self.weighting,
+            k: self.k,
+            rms: self.raw.rms(),
+            a_w: self.weighted.rms(),
+            vdv: self.weighted.vdv(self.fs_weighted),
+            mtvv: self.linear.max(),
+            mtvv_exponential: self.exponential.max(),
+            peak: self.weighted.peak,
+            crest_factor: self.weighted.crest_factor(),
+            msdv: self.sickness.map(|(_, m)| m.msdv(fs)),
+        })
+    }
+}

@@ -1,0 +1,215 @@
+//! The ISO 2631-1 report computed block by block, so a run is analysed while it is simulated (or
+//! read) with memory bounded by one Welch segment and one 1 s running-r.m.s. window per channel,
+//! whatever its duration. [`Report::from_signals`] is this builder fed with whole signals, so the
+//! report of a recorded run equals the one computed during the simulation bit for bit.
+
+use super::filter::MIN_ANALYSIS_RATE_HZ;
+use super::report::{Options, Report};
+use super::spectrum::{Segment, Welch};
+use crate::error::{Error, Result};
+use crate::signals::Signals;
+
+mod channel;
+mod observer;
+
+use channel::{ChannelAnalyzer, parse_name};
+pub use observer::AnalysisObserver;
+
+/// Builds a [`Report`] from signals delivered in blocks.
+pub struct ReportBuilder {
+    source: String,
+    fs: f64,
+    opts: Options,
+    welch: Welch,
+    channels: Vec<ChannelAnalyzer>,
+    received: usize,
+}
+
+impl ReportBuilder {
+    /// A builder for the channels `names` (every `a_<place>_<x|y|z>` one is analysed) sampled at
+    /// `fs` Hz, of which `len` samples are expected (it sets the Welch segment of runs shorter than
+    /// one segment); `source` names the run in errors.
+    pub fn new(
+        source: &str,
+        names: &[String],
+        fs: f64,
+        len: usize,
+        opts: &Options,
+    ) -> Result<Self> {
+        if len == 0 {
+            return Err(Error::data(source, None, "the run has no samples"));
+        }
+        if !(fs.is_finite() && fs >= MIN_ANALYSIS_RATE_HZ) {
+            return Err(Error::parameter(
+                "sample rate",
+                format!(
+                    "{fs} Hz is below the {MIN_ANALYSIS_RATE_HZ} Hz the analysis needs: ISO \
+                     2631-1's range reaches 80 Hz, which must lie at or below the Nyquist frequency"
+                ),
+            ));
+        }
+        if !(opts.tau_s.is_finite() && opts.tau_s > 0.0) {
+            return Err(Error::parameter(
+                "tau",
+                format!("{} s; expected > 0", opts.tau_s),
+            ));
+        }
+        if let Some(h) = opts.exposure_hours.filter(|h| !(h.is_finite() && *h > 0.0)) {
+            return Err(Error::parameter(
+                "exposure-hours",
+                format!("{h}; expected > 0"),
+            ));
+        }
+        let mut welch_opts = opts.welch;
+        let mut welch = Welch::new(fs, &welch_opts)?;
+        if welch.segment_len() > len {
+            welch_opts.segment = Segment::Samples(len);
+            welch = Welch::new(fs, &welch_opts)?;
+        }
+        let channels = names
+            .iter()
+            .enumerate()
+            .filter(|(_, n)| parse_name(n).is_some())
+            .map(|(column, n)| ChannelAnalyzer::new(column, n, fs, &welch, opts))
+            .collect::<Result<Vec<_>>>()?;
+        if channels.is_empty() {
+            return Err(Error::data(
+                source,
+                None,
+                format!(
+                    "no acceleration channel `a_<place>_<x|y|z>` (present: {})",
+                    names.join(", ")
+                ),
+            ));
+        }
+        Ok(ReportBuilder {
+            source: source.to_string(),
+            fs,
+            opts: opts.clone(),
+            welch,
+            channels,
+            received: 0,
+        })
+    }
+
+    /// Appends the next block: one slice per name given to [`ReportBuilder::new`], equal lengths.
+    /// A non-finite acceleration is an error naming the channel and the sample.
+    pub fn push(&mut self, columns: &[&[f64]]) -> Result<()> {
+        let len = columns.first().map_or(0, |c| c.len());
+        for ch in &self.channels {
+            let x = columns.get(ch.column).copied().unwrap_or_default();
+            if x.len() != len {
+                return Err(Error::parameter(
+                    "analysis block",
+                    format!(
+                        "channel `{}` has {} samples, expected {len}",
+                        ch.name,
+                        x.len()
+                    ),
+                ));
+            }
+            if let Some(i) = x.iter().position(|v| !v.is_finite()) {
+                return Err(Error::data(
+                    &self.source,
+                    None,
+                    format!(
+                        "channel `{}` sample {} is {}; expected a finite acceleration",
+                        ch.name,
+                        self.received + i,
+                        x[i]
+                    ),
+                ));
+            }
+        }
+        for ch in &mut self.channels {
+            let x = columns.get(ch.column).copied().unwrap_or_default();
+            ch.push(x, &mut self.welch);
+        }
+        self.received += len;
+        Ok(())
+    }
+
+    /// The report of everything pushed.
+    pub fn finish(self) -> Result<Report> {
+        if self.received == 0 {
+            return Err(Error::data(&self.source, None, "the run has no samples"));
+        }
+        let duration_s = self.received as f64 / self.fs;
+        let channels = self
+            .channels
+            .into_iter()
+            .map(|c| c.finish(self.fs, &self.welch))
+            .collect::<Result<Vec<_>>>()?;
+        Ok(Report::assemble(
+            &self.source,
+            self.fs,
+            duration_s,
+            channels,
+            &self.opts,
+        ))
+    }
+}
+
+impl Report {
+    /// Analyses every `a_<place>_<x|y|z>` channel of `signals` (through [`ReportBuilder`], so a
+    /// run analysed while it is simulated gets the same report bit for bit).
+    pub fn from_signals(signals: &Signals, opts: &Options) -> Result<Report> {
+        let mut builder = ReportBuilder::new(
+            &signals.source,
+            &signals.names,
+            signals.sample_rate_hz,
+            signals.len(),
+            opts,
+        )?;
+        builder.push(&signals.data.iter().map(Vec::as_slice).collect::<Vec<_>>())?;
+        builder.finish()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::signals::Signals;
+    use proptest::prelude::*;
+
+    fn signals(n: usize, seed: u64) -> Signals {
+        use rand::{RngExt, SeedableRng};
+        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(seed);
+        let mut s = Signals::new(500.0, "test");
+        for name in ["a_base_z", "f_seat_z", "a_seat_z", "a_seat_x"] {
+            let x: Vec<f64> = (0..n).map(|_| rng.random_range(-1.0..1.0)).collect();
+            s.push(name.to_string(), x).unwrap();
+        }
+        s
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(12))]
+        /// Any split into blocks gives the report of the whole signal, bit for bit.
+        #[test]
+        fn blocks_do_not_change_the_report(cuts in proptest::collection::vec(0usize..6000, 0..6)) {
+            let s = signals(6000, 3);
+            let whole = Report::from_signals(&s, &Options::default()).unwrap();
+            let mut cuts = cuts;
+            cuts.push(0);
+            cuts.push(s.len());
+            cuts.sort_unstable();
+            let mut b = ReportBuilder::new("test", &s.names, s.sample_rate_hz, s.len(), &Options::default()).unwrap();
+            for w in cuts.windows(2) {
+                let cols: Vec<&[f64]> = s.data.iter().map(|c| &c[w[0]..w[1]]).collect();
+                b.push(&cols).unwrap();
+            }
+            prop_assert_eq!(b.finish().unwrap(), whole);
+        }
+    }
+
+    #[test]
+    fn a_non_finite_sample_is_named() {
+        let mut s = signals(2000, 1);
+        s.data[2][1234] = f64::NAN;
+        let e = Report::from_signals(&s, &Options::default())
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("a_seat_z") && e.contains("1234"), "{e}");
+    }
+}

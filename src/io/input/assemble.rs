@@ -1,0 +1,292 @@
+//! Mapping, unit conversion and timing of the raw columns of any format, the same way for every
+//! format (the rules of the module comment of [`super`]).
+
+use super::{
+    Column, FULL_SCALE, Input, MIN_DURATION_S, Options, Raw, Timing, UNITS, fit_rate,
+    is_channel_name, refuse, scale_of,
+};
+use crate::error::{Error, Result};
+use crate::signals::Signals;
+
+/// Words that name a time column when no `--column t_s=…` is given (case-insensitive).
+pub(super) const TIME_NAMES: [&str; 6] = ["t_s", "t", "time", "timestamp", "zeit", "temps"];
+
+/// Maps, converts and times the raw columns of any format (the rules in the module comment).
+pub(crate) fn assemble(raw: Raw, source: &str, opts: &Options) -> Result<Input> {
+    let Raw {
+        mut columns,
+        timing,
+        lines,
+        mut notes,
+    } = raw;
+    let line_of = |i: usize| lines.as_ref().and_then(|l| l.get(i).copied());
+    let find = |cols: &[Column], src: &str| -> Option<usize> {
+        cols.iter()
+            .position(|c| c.name == src)
+            .or_else(|| cols.iter().position(|c| c.aliases.iter().any(|a| a == src)))
+    };
+    let available = |cols: &[Column]| {
+        cols.iter()
+            .map(|c| format!("`{}`", c.name))
+            .collect::<Vec<_>>()
+            .join(", ")
+    };
+    // Time: mapped, or a column named like time; only for formats whose time is a column.
+    let mut time: Option<Column> = None;
+    if let Timing::InColumns = timing {
+        let idx = match opts.columns.iter().find(|(c, _)| c == "t_s") {
+            Some((_, src)) => Some(find(&columns, src).ok_or_else(|| {
+                Error::parameter(
+                    "--column",
+                    format!(
+                        "t_s={src}: {source} has no such column (columns: {})",
+                        available(&columns)
+                    ),
+                )
+            })?),
+            None => columns
+                .iter()
+                .position(|c| TIME_NAMES.iter().any(|n| c.name.eq_ignore_ascii_case(n))),
+        };
+        time = idx.map(|i| columns.remove(i).usable()).transpose()?;
+    } else if matches!(timing, Timing::Rate { .. }) && opts.columns.iter().any(|(c, _)| c == "t_s")
+    {
+        return Err(refuse(
+            "--column",
+            "t_s=…: this format states its own timing (sample rate or time stamps)",
+        ));
+    }
+    // Channels.
+    let mut picked: Vec<(String, Column)> = Vec::new();
+    let mapped: Vec<&(String, String)> = opts.columns.iter().filter(|(c, _)| c != "t_s").collect();
+    if mapped.is_empty() {
+        let mut ignored = Vec::new();
+        for c in columns.drain(..) {
+            if is_channel_name(&c.name) {
+                picked.push((c.name.clone(), c.usable()?));
+            } else {
+                ignored.push(format!("`{}`", c.name));
+            }
+        }
+        if picked.is_empty() {
+            return Err(Error::data(
+                source,
+                None,
+                format!(
+                    "no column is named a_<place>_<axis> or f_<place>_<axis> (columns: {}); map \
+                     one with --column a_seat_z=SOURCE",
+                    if ignored.is_empty() {
+                        "none".into()
+                    } else {
+                        ignored.join(", ")
+                    }
+                ),
+            ));
+        }
+        if !ignored.is_empty() {
+            notes.push(format!(
+                "{source}: columns {} are not a_<place>_<axis> or f_<place>_<axis> and were \
+                 ignored (map them with --column)",
+                ignored.join(", ")
+            ));
+        }
+    } else {
+        for (ch, src) in mapped {
+            let i = find(&columns, src).ok_or_else(|| {
+                Error::parameter(
+                    "--column",
+                    format!(
+                        "{ch}={src}: {source} has no such column (columns: {})",
+                        available(&columns)
+                    ),
+                )
+            })?;
+            let mut c = columns.remove(i).usable()?;
+            c.aliases.clear();
+            if picked.iter().any(|(n, _)| n == ch) {
+                return Err(refuse("--column", &format!("{ch} is mapped twice")));
+            }
+            picked.push((ch.clone(), c));
+        }
+        if !columns.is_empty() {
+            notes.push(format!(
+                "{source}: columns {} not mapped with --column; ignored",
+                available(&columns)
+            ));
+        }
+    }
+    // Options that name channels must name picked ones.
+    for (ch, _) in opts
+        .units
+        .iter()
+        .filter_map(|(c, u)| c.as_ref().map(|c| (c, u)))
+    {
+        if !picked.iter().any(|(n, _)| n == ch) {
+            return Err(refuse(
+                "--units",
+                &format!("{ch} is not among the channels read from {source}"),
+            ));
+        }
+    }
+    for (ch, _) in &opts.sensitivity {
+        if !picked.iter().any(|(n, _)| n == ch) {
+            return Err(refuse(
+                "--sensitivity",
+                &format!("{ch} is not among the channels read from {source}"),
+            ));
+        }
+    }
+    // Sample rate.
+    let (fs, rate_note) = match (&timing, time, opts.fs) {
+        (Timing::Rate { .. }, _, Some(_)) | (Timing::Stamps { .. }, _, Some(_)) => {
+            if matches!(timing, Timing::Stamps { .. }) {
+                (
+                    opts.fs.unwrap(),
+                    Some("time stamps ignored: --fs given".to_string()),
+                )
+            } else {
+                return Err(refuse(
+                    "--fs",
+                    "the file states its sample rate; --fs is for files without one",
+                ));
+            }
+        }
+        (Timing::Rate { fs, what }, _, None) => (*fs, Some(format!("{fs} Hz from {what}"))),
+        (Timing::Stamps { name, t }, _, None) => {
+            let fs = fit_rate(t, None, &|_| None, source, name)?;
+            (
+                fs,
+                Some(format!("{fs} Hz fitted to the time stamps of {name}")),
+            )
+        }
+        (Timing::InColumns, Some(t), None) => {
+            let scale = match &t.unit {
+                Some(u) => scale_of(u)
+                    .filter(|_| ["s", "ms", "us", "µs", "μs"].contains(&u.trim()))
+                    .ok_or_else(|| {
+                        Error::data(
+                            source,
+                            line_of(0).map(|l| l.saturating_sub(1).max(1)),
+                            format!("time column `{}`: unit `{u}`, expected s or ms", t.name),
+                        )
+                    })?,
+                None => 1.0,
+            };
+            let stamps: Vec<f64> = t.data.iter().map(|v| v * scale).collect();
+            let res: Option<Vec<f64>> = t
+                .resolution
+                .as_ref()
+                .map(|r| r.iter().map(|v| v * scale).collect());
+            let fs = fit_rate(&stamps, res.as_deref(), &line_of, source, &t.name)?;
+            (
+                fs,
+                Some(format!("{fs} Hz fitted to the time column `{}`", t.name)),
+            )
+        }
+        (Timing::InColumns, Some(t), Some(fs)) => (
+            fs,
+            Some(format!(
+                "time column `{}` ignored: --fs {fs} Hz given",
+                t.name
+            )),
+        ),
+        (Timing::InColumns, None, Some(fs)) => (fs, None),
+        (Timing::InColumns, None, None) => {
+            return Err(Error::data(
+                source,
+                None,
+                "no time column (t_s, time, or --column t_s=NAME) and no --fs: the sample rate \
+                 is unknown",
+            ));
+        }
+    };
+    if let Some(n) = rate_note {
+        notes.push(format!("{source}: {n}"));
+    }
+    let mut signals = Signals::new(fs, source);
+    for (ch, mut c) in picked {
+        let flag_unit = opts
+            .units
+            .iter()
+            .find(|(c2, _)| c2.as_deref() == Some(ch.as_str()))
+            .or_else(|| opts.units.iter().find(|(c2, _)| c2.is_none()))
+            .map(|(_, u)| u.clone());
+        if c.unit.as_deref() == Some(FULL_SCALE) {
+            if !opts.sensitivity.iter().any(|(c2, _)| *c2 == ch) {
+                return Err(Error::parameter(
+                    "--sensitivity",
+                    format!(
+                        "{ch}: `{}` of {source} is relative to full scale; give \
+                         --sensitivity {ch}=VALUE (its value at full scale, in m/s² or in the \
+                         unit of --units)",
+                        c.name
+                    ),
+                ));
+            }
+            c.unit = None;
+        }
+        let unit = match (flag_unit, &c.unit) {
+            (Some(f), Some(file)) if scale_of(file).is_some() && scale_of(file) != scale_of(&f) => {
+                return Err(refuse(
+                    "--units",
+                    &format!(
+                        "{ch}: {f} given, but {source} declares `{file}` for `{}`",
+                        c.name
+                    ),
+                ));
+            }
+            (Some(f), _) => f,
+            (None, Some(file)) => {
+                if scale_of(file).is_none() {
+                    return Err(Error::data(
+                        source,
+                        None,
+                        format!(
+                            "column `{}` declares unit `{file}`, which wbv does not know; give \
+                             --units {ch}=UNIT ({UNITS})",
+                            c.name
+                        ),
+                    ));
+                }
+                file.clone()
+            }
+            (None, None) => {
+                notes.push(format!(
+                    "{source}: `{}` has no declared unit; read as {} (give --units otherwise)",
+                    c.name,
+                    if ch.starts_with("f_") { "N" } else { "m/s²" }
+                ));
+                if ch.starts_with("f_") { "N" } else { "m/s2" }.to_string()
+            }
+        };
+        let scale = scale_of(&unit).expect("unit checked")
+            * opts
+                .sensitivity
+                .iter()
+                .find(|(c2, _)| *c2 == ch)
+                .map_or(1.0, |(_, s)| *s);
+        if scale != 1.0 {
+            c.data.iter_mut().for_each(|v| *v *= scale);
+        }
+        if let Some(i) = c.data.iter().position(|v| !v.is_finite()) {
+            return Err(Error::data(
+                source,
+                line_of(i),
+                format!("column `{}`: sample {} is not finite", c.name, i + 1),
+            ));
+        }
+        signals.push(ch, c.data)?;
+    }
+    if signals.len() < 2 {
+        return Err(Error::data(source, None, "fewer than two samples"));
+    }
+    let duration = signals.duration_s();
+    if duration < MIN_DURATION_S * (1.0 - 1e-9) {
+        return Err(Error::data(
+            source,
+            None,
+            format!("run lasts {duration:.3} s; at least {MIN_DURATION_S} s are required"),
+        ));
+    }
+    Ok(Input { signals, notes })
+}

@@ -1,0 +1,81 @@
+//! The sample rate of time stamps that lie on a uniform grid.
+
+use super::MAX_JITTER;
+use crate::error::{Error, Result};
+
+/// The sample rate of time stamps `t` (s) that lie on a uniform grid up to half their printed
+/// resolution `res` plus [`MAX_JITTER`] of a step. The grid is the least-squares line through the
+/// stamps; a rate within the stamps' resolution of a whole number of Hz is taken as that number
+/// (loggers print rounded times of an integer rate). Errors name the line of the first stamp off
+/// the grid.
+pub(crate) fn fit_rate(
+    t: &[f64],
+    res: Option<&[f64]>,
+    line_of: &dyn Fn(usize) -> Option<usize>,
+    source: &str,
+    name: &str,
+) -> Result<f64> {
+    let n = t.len();
+    if n < 2 {
+        return Err(Error::data(source, None, "fewer than two samples"));
+    }
+    for i in 1..n {
+        if t[i] <= t[i - 1] || !t[i].is_finite() {
+            return Err(Error::data(
+                source,
+                line_of(i),
+                format!(
+                    "`{name}`: time {} s does not increase (previous {} s)",
+                    t[i],
+                    t[i - 1]
+                ),
+            ));
+        }
+    }
+    // Least-squares t_i = a + b i, computed about the means for accuracy.
+    let nf = n as f64;
+    let im = (nf - 1.0) / 2.0;
+    let tm = t.iter().sum::<f64>() / nf;
+    let (mut sxy, mut sxx) = (0.0, 0.0);
+    for (i, &ti) in t.iter().enumerate() {
+        let di = i as f64 - im;
+        sxy += di * (ti - tm);
+        sxx += di * di;
+    }
+    let dt_ls = sxy / sxx;
+    let half_res = |i: usize| res.map_or(0.0, |r| 0.5 * r[i]);
+    let check = |dt: f64| -> std::result::Result<(), (usize, f64, f64)> {
+        let a = tm - dt * im;
+        for (i, &ti) in t.iter().enumerate() {
+            let off = ti - (a + dt * i as f64);
+            if off.abs() > half_res(i) + MAX_JITTER * dt + 1e-12 * ti.abs() {
+                return Err((i, ti, off));
+            }
+        }
+        Ok(())
+    };
+    // An integer rate first, when the stamps' typical resolution allows it over the whole run.
+    let mut typical = res.map_or(0.0, |r| {
+        let mut r = r.to_vec();
+        r.sort_by(f64::total_cmp);
+        r[r.len() / 2]
+    });
+    typical += 1e-9 * dt_ls;
+    let whole = (1.0 / dt_ls).round();
+    if whole >= 1.0 && (1.0 / whole - dt_ls).abs() * nf <= typical && check(1.0 / whole).is_ok() {
+        return Ok(whole);
+    }
+    match check(dt_ls) {
+        Ok(()) => Ok(1.0 / dt_ls),
+        Err((i, ti, off)) => Err(Error::data(
+            source,
+            line_of(i),
+            format!(
+                "`{name}`: time {ti} s is {off:.3e} s off the uniform {:.6} Hz grid (more than \
+                 its printed resolution and 1 % of the {dt_ls:.6e} s step): the sampling has \
+                 jitter or a gap; resample the file, or give --fs to ignore the time stamps",
+                1.0 / dt_ls
+            ),
+        )),
+    }
+}

@@ -1,0 +1,126 @@
+//! `wbv models`, `wbv excitations` and `wbv frf`: the built-in models and excitations, and a
+//! model's frequency responses.
+
+use super::{Written, finite};
+use serde::Serialize;
+
+/// One entry of `wbv models`.
+#[derive(Debug, Clone, Serialize)]
+pub struct ModelEntry {
+    pub name: String,
+    /// `system`, `occupant`, `seat` or `planar`.
+    pub kind: &'static str,
+    /// Degrees of freedom (generalized coordinates).
+    pub dof: usize,
+    pub description: String,
+    /// Parameter paths for `--param` (sweeps, sensitivity, calibration).
+    pub params: Vec<String>,
+}
+
+/// `wbv models`: every built-in model.
+pub fn models(models: &[crate::model::Model]) -> Vec<ModelEntry> {
+    use crate::model::Kind;
+    models
+        .iter()
+        .map(|m| ModelEntry {
+            name: m.name.clone(),
+            kind: match m.kind() {
+                Kind::System => "system",
+                Kind::Occupant => "occupant",
+                Kind::Seat => "seat",
+                Kind::Planar => "planar",
+            },
+            dof: m.dof(),
+            description: m.description.clone(),
+            params: m.params(),
+        })
+        .collect()
+}
+
+/// One entry of `wbv excitations`.
+#[derive(Debug, Clone, Serialize)]
+pub struct ExcitationEntry {
+    pub name: String,
+    pub description: String,
+    pub origin: String,
+    /// Steady-state r.m.s., m/s² (`null` for a recording).
+    pub rms_m_s2: Option<f64>,
+}
+
+impl ExcitationEntry {
+    /// The entry of the built-in `name`.
+    pub fn of(name: &str, spec: &crate::excitation::ExcitationSpec) -> ExcitationEntry {
+        ExcitationEntry {
+            name: name.into(),
+            description: spec.description.clone(),
+            origin: spec.origin.clone(),
+            rms_m_s2: spec.rms_m_s2().and_then(finite),
+        }
+    }
+}
+
+/// One response of `wbv frf`: its global peak and, when no CSV was written, the curve.
+#[derive(Debug, Clone, Serialize)]
+pub struct FrfResponse {
+    /// `stht`, `seat`, `apms`, `dpmi` or `t_<mass>`.
+    pub name: String,
+    /// Unit of the magnitude (`1`, `kg`, `N·s/m`).
+    pub unit: &'static str,
+    /// Frequency of the largest magnitude in Hz (parabola-refined).
+    pub peak_freq_hz: Option<f64>,
+    /// The largest magnitude, in `unit`.
+    pub peak_mag: Option<f64>,
+    /// Magnitude at every frequency (only without `--out`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub mag: Option<Vec<f64>>,
+    /// Phase in degrees at every frequency (only without `--out`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub phase_deg: Option<Vec<f64>>,
+}
+
+/// `wbv frf`.
+#[derive(Debug, Clone, Serialize)]
+pub struct Frf {
+    pub model: String,
+    /// The frequency grid in Hz (only without `--out`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub freq_hz: Option<Vec<f64>>,
+    pub from_hz: f64,
+    pub to_hz: f64,
+    pub points: usize,
+    pub log_spacing: bool,
+    pub responses: Vec<FrfResponse>,
+    pub written: Vec<Written>,
+}
+
+impl Frf {
+    /// The summary of `set`; the curves are included when `curves` (no CSV holds them).
+    pub fn of(model: &str, set: &crate::response::frf::FrfSet, log: bool, curves: bool) -> Frf {
+        let f = &set.freq_hz;
+        Frf {
+            model: model.into(),
+            freq_hz: curves.then(|| f.clone()),
+            from_hz: f.first().copied().unwrap_or(0.0),
+            to_hz: f.last().copied().unwrap_or(0.0),
+            points: f.len(),
+            log_spacing: log,
+            responses: set
+                .responses
+                .iter()
+                .map(|r| {
+                    let mag = r.magnitude();
+                    let peak = crate::response::peak::global_peak(f, &mag);
+                    FrfResponse {
+                        name: r.name.clone(),
+                        unit: r.unit,
+                        peak_freq_hz: peak.and_then(|p| finite(p.freq_hz)),
+                        peak_mag: peak.and_then(|p| finite(p.value)),
+                        phase_deg: curves.then(|| r.phase_deg()),
+                        mag: curves.then_some(mag),
+                    }
+                })
+                .collect(),
+            written: Vec::new(),
+        }
+    }
+}

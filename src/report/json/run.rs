@@ -1,0 +1,263 @@
+//! `wbv simulate`, `wbv inspect`, `wbv replay`, `wbv report` and `wbv run`: one run, simulated,
+//! read back, replayed or reported.
+
+use super::{Written, finite, units};
+use crate::error::{Error, Result};
+use serde::Serialize;
+use serde_json::Value;
+use std::collections::BTreeMap;
+use std::path::Path;
+
+/// `wbv simulate` and the simulation part of `wbv run`.
+#[derive(Debug, Clone, Serialize)]
+pub struct Simulated {
+    pub model: String,
+    /// The excitation, one line with units.
+    pub excitation: String,
+    pub integrator: String,
+    pub dt_s: f64,
+    pub duration_s: f64,
+    pub seed: u64,
+    /// Wall-clock time of simulation, recording and analysis, s.
+    pub elapsed_s: f64,
+    /// Peak resident memory of the process, bytes (where the platform reports it).
+    pub peak_memory_bytes: Option<u64>,
+    /// The MCAP recording and the CSV, as written.
+    pub written: Vec<Written>,
+    /// The ISO 2631-1 report of the simulated channels (`null` when skipped).
+    pub analysis: Option<crate::analysis::Report>,
+    /// Why there is no analysis.
+    pub analysis_skipped: Option<String>,
+}
+
+impl Simulated {
+    /// The summary of a finished run; `written` are the files it produced.
+    pub fn of(
+        scenario: &crate::scenario::Scenario,
+        outcome: &crate::scenario::Outcome,
+        written: Vec<Written>,
+    ) -> Simulated {
+        Simulated {
+            model: scenario.model.name.clone(),
+            excitation: scenario.excitation.summary(),
+            integrator: scenario.settings.method.name(),
+            dt_s: scenario.settings.dt,
+            duration_s: scenario.settings.duration_s,
+            seed: scenario.seed,
+            elapsed_s: outcome.elapsed_s,
+            peak_memory_bytes: crate::io::memory::peak_resident_bytes(),
+            written,
+            analysis: outcome.report.clone(),
+            analysis_skipped: outcome.report_skipped.clone(),
+        }
+    }
+}
+/// One channel (topic) of a recorded run.
+#[derive(Debug, Clone, Serialize)]
+pub struct Topic {
+    pub topic: String,
+    pub schema: String,
+    pub message_encoding: String,
+    pub messages: u64,
+}
+
+/// One attachment of a recorded run.
+#[derive(Debug, Clone, Serialize)]
+pub struct Attachment {
+    pub name: String,
+    pub media_type: String,
+    pub bytes: u64,
+}
+
+/// `wbv inspect`.
+#[derive(Debug, Clone, Serialize)]
+pub struct Inspected {
+    pub path: String,
+    /// Writer library from the MCAP header.
+    pub library: String,
+    /// Last minus first message log time, s.
+    pub duration_s: f64,
+    pub start_ns: u64,
+    pub end_ns: u64,
+    pub topics: Vec<Topic>,
+    /// The `wbv.run` metadata (model, excitation, integrator, step, seed, command line, …) except
+    /// the model TOML, which is an attachment.
+    pub provenance: BTreeMap<String, String>,
+    /// Names of the stored results (`analysis`, …).
+    pub results: Vec<String>,
+    pub attachments: Vec<Attachment>,
+}
+
+impl Inspected {
+    /// The summary of a run read by [`crate::record::inspect`].
+    pub fn of(s: &crate::record::RunSummary) -> Inspected {
+        Inspected {
+            path: s.path.display().to_string(),
+            library: s.library.clone(),
+            duration_s: s.end_ns.saturating_sub(s.start_ns) as f64 * 1e-9,
+            start_ns: s.start_ns,
+            end_ns: s.end_ns,
+            topics: s
+                .topics
+                .iter()
+                .map(|t| Topic {
+                    topic: t.topic.clone(),
+                    schema: t.schema.clone(),
+                    message_encoding: t.message_encoding.clone(),
+                    messages: t.messages,
+                })
+                .collect(),
+            provenance: s
+                .metadata
+                .get("wbv.run")
+                .map(|m| {
+                    m.iter()
+                        .filter(|(k, _)| k.as_str() != "toml")
+                        .map(|(k, v)| (k.clone(), v.clone()))
+                        .collect()
+                })
+                .unwrap_or_default(),
+            results: s
+                .metadata
+                .get("wbv.results")
+                .map(|m| m.keys().cloned().collect())
+                .unwrap_or_default(),
+            attachments: s
+                .attachments
+                .iter()
+                .map(|(name, media, size)| Attachment {
+                    name: name.clone(),
+                    media_type: media.clone(),
+                    bytes: *size,
+                })
+                .collect(),
+        }
+    }
+}
+/// One channel of a replay compared with the figures stored at simulation time.
+#[derive(Debug, Clone, Serialize)]
+pub struct ReplayDifference {
+    pub channel: String,
+    /// Replayed over stored, minus 1, %.
+    pub a_w_percent: Option<f64>,
+    pub vdv_percent: Option<f64>,
+    pub mtvv_percent: Option<f64>,
+}
+
+/// `wbv replay`: the re-run analysis and how it compares with the stored one.
+#[derive(Debug, Clone, Serialize)]
+pub struct Replay {
+    pub run: String,
+    pub analysis: crate::analysis::Report,
+    /// `equal` (every figure equal), `compared` (a decimated recording: close, not equal) or
+    /// `none` (no stored analysis).
+    pub stored: &'static str,
+    /// Sample rate of the stored figures, Hz (differs from the recording's for `compared`).
+    pub stored_sample_rate_hz: Option<f64>,
+    /// Per channel, for `compared`.
+    pub differences: Vec<ReplayDifference>,
+}
+
+impl Replay {
+    /// Compares `report` with the `stored` analysis of the run at `run`; an error when a
+    /// full-rate recording replays to other figures.
+    pub fn compare(
+        run: &Path,
+        report: crate::analysis::Report,
+        stored: Option<&Value>,
+    ) -> Result<Replay> {
+        let mut out = Replay {
+            run: run.display().to_string(),
+            stored: "none",
+            stored_sample_rate_hz: None,
+            differences: Vec::new(),
+            analysis: report,
+        };
+        let Some(s) = stored else {
+            return Ok(out);
+        };
+        out.stored_sample_rate_hz = s["sample_rate_hz"].as_f64();
+        if out.stored_sample_rate_hz != Some(out.analysis.sample_rate_hz) {
+            // A run recorded decimated (--record-rate) holds a low-passed, resampled copy of what
+            // was analysed at the simulation rate: its figures are close, not equal.
+            out.stored = "compared";
+            for c in &out.analysis.channels {
+                let stored = s["channels"]
+                    .as_array()
+                    .and_then(|a| a.iter().find(|x| x["name"] == c.name.as_str()));
+                if let Some(st) = stored {
+                    let rel = |k: &str, v: f64| {
+                        st[k].as_f64().and_then(|x| finite(100.0 * (v / x - 1.0)))
+                    };
+                    out.differences.push(ReplayDifference {
+                        channel: c.name.clone(),
+                        a_w_percent: rel("a_w", c.a_w),
+                        vdv_percent: rel("vdv", c.vdv),
+                        mtvv_percent: rel("mtvv", c.mtvv),
+                    });
+                }
+            }
+            return Ok(out);
+        }
+        // The source names differ (simulation vs file); every figure must be equal.
+        let mut again = serde_json::to_value(&out.analysis)
+            .map_err(|e| Error::data(run, None, format!("replayed figures: {e}")))?;
+        again["source"] = s["source"].clone();
+        if &again != s {
+            return Err(Error::data(
+                run,
+                None,
+                "replayed figures differ from those stored at simulation time",
+            ));
+        }
+        out.stored = "equal";
+        Ok(out)
+    }
+}
+
+/// `wbv report` (and the report of `wbv run`).
+#[derive(Debug, Clone, Serialize)]
+pub struct ReportSummary {
+    pub report_html: String,
+    pub bytes: u64,
+    /// Vibration total value a_v, m/s².
+    pub total_value: f64,
+    pub comfort: crate::analysis::Comfort,
+    pub health: Option<crate::analysis::health::Health>,
+    /// The gap section's verdict and named effects, when the report has one.
+    pub gap: Option<crate::report::gap::Summary>,
+    pub units: BTreeMap<String, String>,
+}
+
+impl ReportSummary {
+    /// The summary of a report written to `out`.
+    pub fn of(out: &Path, built: &crate::report::Built) -> Result<ReportSummary> {
+        Ok(ReportSummary {
+            report_html: out.display().to_string(),
+            bytes: Written::of(out)?.bytes,
+            total_value: built.report.total_value,
+            comfort: built.report.comfort,
+            health: built.health.clone(),
+            gap: built.gap.clone(),
+            units: units(&[
+                ("total_value", "m/s^2"),
+                ("health.a8", "m/s^2"),
+                ("health.a_w_max", "m/s^2"),
+                ("health.vdv_exposure", "m/s^1.75"),
+                ("health.exposure_hours", "h"),
+            ]),
+        })
+    }
+}
+
+/// `wbv run`: the simulation, its health assessment and the report.
+#[derive(Debug, Clone, Serialize)]
+pub struct Run {
+    pub run_dir: String,
+    #[serde(flatten)]
+    pub simulated: Simulated,
+    /// Daily exposure assumed for the health assessment, h.
+    pub exposure_hours: f64,
+    pub health: Option<crate::analysis::health::Health>,
+    pub report_html: String,
+}

@@ -1,0 +1,219 @@
+//! `wbv reproduce`, `wbv sweep` and `wbv sensitivity`: the studies' tables.
+
+use super::{Written, finite};
+use serde::Serialize;
+use serde_json::Value;
+use std::collections::BTreeMap;
+
+/// One row of `wbv reproduce`.
+#[derive(Debug, Clone, Serialize)]
+pub struct ReproductionRow {
+    pub source: String,
+    pub quantity: String,
+    /// The paper's value (`null` when the paper gives none).
+    pub paper: Option<f64>,
+    /// wbv's value for the stated model.
+    pub wbv: Option<f64>,
+    pub unit: String,
+    /// Why it differs, or how it was computed.
+    pub note: String,
+    /// Within [`crate::study::table::TOLERANCE`] of the paper.
+    pub reproduced: bool,
+}
+
+/// `wbv reproduce`.
+#[derive(Debug, Clone, Serialize)]
+pub struct Reproduction {
+    pub rows: Vec<ReproductionRow>,
+    /// Rows reproduced within the tolerance.
+    pub reproduced: usize,
+    pub total: usize,
+    /// Relative tolerance of a reproduced row, %.
+    pub tolerance_percent: f64,
+    pub written: Vec<Written>,
+}
+
+impl Reproduction {
+    /// The table `rows`, written to `written`.
+    pub fn of(rows: &[crate::study::table::Row], written: Vec<Written>) -> Reproduction {
+        Reproduction {
+            rows: rows
+                .iter()
+                .map(|r| ReproductionRow {
+                    source: r.source.clone(),
+                    quantity: r.quantity.clone(),
+                    paper: finite(r.paper),
+                    wbv: finite(r.wbv),
+                    unit: r.unit.to_string(),
+                    note: r.note.clone(),
+                    reproduced: r.reproduced(),
+                })
+                .collect(),
+            reproduced: rows.iter().filter(|r| r.reproduced()).count(),
+            total: rows.len(),
+            tolerance_percent: 100.0 * crate::study::table::TOLERANCE,
+            written,
+        }
+    }
+}
+/// A sweep point's figure as JSON: the `comfort` column holds the index of the class in
+/// [`crate::analysis::comfort::RANGES`] and is written as the class; the others are numbers.
+fn figure(name: &str, v: f64) -> Value {
+    let class = crate::analysis::comfort::RANGES
+        .get(v as usize)
+        .filter(|_| name == "comfort" && v >= 0.0 && v.fract() == 0.0);
+    match class {
+        Some(r) => serde_json::to_value(r.0).unwrap_or(Value::Null),
+        None => finite(v).map_or(Value::Null, Value::from),
+    }
+}
+
+/// One point of `wbv sweep`.
+#[derive(Debug, Clone, Serialize)]
+pub struct SweepPoint {
+    pub point: usize,
+    /// Parameter value by parameter spec (SI units of the parameter).
+    pub values: BTreeMap<String, f64>,
+    pub peak_freq_hz: Option<f64>,
+    /// Peak magnitude in the response's unit.
+    pub peak_mag: Option<f64>,
+    /// Time-domain figures by column name (`a_w_seat_m_s2`, `a_v_m_s2`, `seat_pct`, and
+    /// `comfort` spelled as everywhere in JSON), with an excitation.
+    pub figures: BTreeMap<String, Value>,
+}
+
+/// `wbv sweep`.
+#[derive(Debug, Clone, Serialize)]
+pub struct Sweep {
+    pub model: String,
+    pub response: String,
+    /// Unit of the response magnitude.
+    pub response_unit: String,
+    pub params: Vec<String>,
+    pub points: Vec<SweepPoint>,
+    pub written: Vec<Written>,
+}
+
+impl Sweep {
+    /// The peaks table of a sweep, with the columns of `hooks` under `figures`.
+    pub fn of(
+        model: &str,
+        spec: &crate::study::sweep::Spec,
+        points: &[crate::study::sweep::Point],
+        hooks: &[&dyn crate::study::sweep::PointFigures],
+        response_unit: &str,
+    ) -> Sweep {
+        let names: Vec<String> = hooks.iter().flat_map(|h| h.names()).collect();
+        let params: Vec<String> = spec.params.iter().map(|p| p.spec.clone()).collect();
+        Sweep {
+            model: model.into(),
+            response: spec.response.clone(),
+            response_unit: response_unit.into(),
+            points: points
+                .iter()
+                .map(|p| SweepPoint {
+                    point: p.index,
+                    values: params
+                        .iter()
+                        .cloned()
+                        .zip(p.values.iter().copied())
+                        .collect(),
+                    peak_freq_hz: finite(p.peak.freq_hz),
+                    peak_mag: finite(p.peak.value),
+                    figures: names
+                        .iter()
+                        .zip(&p.extra)
+                        .map(|(n, v)| (n.clone(), figure(n, *v)))
+                        .collect(),
+                })
+                .collect(),
+            params,
+            written: Vec::new(),
+        }
+    }
+}
+
+/// One row of `wbv sensitivity`.
+#[derive(Debug, Clone, Serialize)]
+pub struct SensitivityRow {
+    pub point: usize,
+    pub param: String,
+    /// Level in % of the model's value.
+    pub level_pct: f64,
+    /// Parameter value at this level (SI unit of the parameter).
+    pub value: f64,
+    pub peak_freq_hz: Option<f64>,
+    /// Peak magnitude in the response's unit.
+    pub peak_mag: Option<f64>,
+}
+
+/// One influence weight of `wbv sensitivity` (paper 000 eq. 10).
+#[derive(Debug, Clone, Serialize)]
+pub struct InfluenceWeight {
+    pub param: String,
+    /// Range of the peak frequency over the levels, % of the nominal.
+    pub peak_freq_range_pct: Option<f64>,
+    /// Range of the peak magnitude over the levels, % of the nominal.
+    pub peak_mag_range_pct: Option<f64>,
+    /// Normalised weight (the weights sum to 1).
+    pub weight: Option<f64>,
+}
+
+/// `wbv sensitivity`.
+#[derive(Debug, Clone, Serialize)]
+pub struct Sensitivity {
+    pub model: String,
+    pub response: String,
+    pub rows: Vec<SensitivityRow>,
+    /// Empty for a shard (merge the shards first).
+    pub influence: Vec<InfluenceWeight>,
+    pub written: Vec<Written>,
+}
+
+impl Sensitivity {
+    /// The rows and weights of a study.
+    pub fn of(
+        model: &str,
+        response: &str,
+        rows: &[crate::study::sensitivity::Row],
+        influence: &[crate::study::sensitivity::Influence],
+    ) -> Sensitivity {
+        Sensitivity {
+            model: model.into(),
+            response: response.into(),
+            rows: rows
+                .iter()
+                .map(|r| SensitivityRow {
+                    point: r.point,
+                    param: r.param.clone(),
+                    level_pct: r.level_pct,
+                    value: r.value,
+                    peak_freq_hz: finite(r.peak_freq_hz),
+                    peak_mag: finite(r.peak_mag),
+                })
+                .collect(),
+            influence: influence
+                .iter()
+                .map(|i| InfluenceWeight {
+                    param: i.param.clone(),
+                    peak_freq_range_pct: finite(i.freq_range_pct),
+                    peak_mag_range_pct: finite(i.mag_range_pct),
+                    weight: finite(i.weight),
+                })
+                .collect(),
+            written: Vec::new(),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_sweep_comfort_column_is_the_class() {
+        assert_eq!(figure("comfort", 1.0), "a_little_uncomfortable");
+        assert_eq!(figure("seat_pct", 1.0), 1.0);
+        assert_eq!(figure("seat_pct", f64::NAN), Value::Null);
+    }
+}
