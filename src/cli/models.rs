@@ -21,19 +21,8 @@ pub fn run(args: Args) -> crate::Result<()> {
         );
     }
     let width = models.iter().map(|m| m.name.len()).max().unwrap_or(0);
-    for (title, kind) in [
-        ("Configurations (occupant on a seat):", Kind::System),
-        ("Occupants (rigid seat):", Kind::Occupant),
-        (
-            "Seat components (stack below an occupant with +):",
-            Kind::Seat,
-        ),
-        (
-            "Planar occupant–seat systems (x, z, pitch; DOF = generalized coordinates):",
-            Kind::Planar,
-        ),
-    ] {
-        println!("{title}");
+    for kind in Kind::ALL {
+        println!("{}", kind.title());
         for m in models.iter().filter(|m| m.kind() == kind) {
             println!("  {:width$}  {:>2} DOF  {}", m.name, m.dof(), m.description);
             if args.params {

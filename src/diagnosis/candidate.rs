@@ -266,7 +266,7 @@ impl Candidate {
 
     /// Applies the effect with parameter values `p` to `v` (system and measuring chain), so that
     /// effects can be stacked (forward selection). Cushion effects act on every Kelvin–Voigt
-    /// cushion link (a planar model's foam under each contact, in both axes) with one relative
+    /// cushion link (a segment model's foam under each contact, in both axes) with one relative
     /// law: k3 is stated for the first such link and scaled by each link's stiffness, so every
     /// link stiffens at the same deflection.
     pub fn apply_to(self, v: &mut Variant, p: &[f64]) -> Result<()> {
@@ -642,9 +642,9 @@ mod tests {
         assert!(support_target(Candidate::FeetSupport, &bare).is_none());
         assert!(support_target(Candidate::Backrest, &bare).is_some());
         // The segment model has its own backrest and footrest (and no point-mass body).
-        let planar = system("planar-occupant");
-        assert!(!Candidate::Backrest.applies_to(&planar));
-        assert!(!Candidate::FeetSupport.applies_to(&planar));
+        let segments = system(catalog::PAPER_000);
+        assert!(!Candidate::Backrest.applies_to(&segments));
+        assert!(!Candidate::FeetSupport.applies_to(&segments));
     }
 
     #[test]

@@ -30,7 +30,7 @@ pub enum Path {
     /// Apparent mass f_seat/a_seat in kg.
     ApparentMass,
     /// Vertical base to fore-and-aft seat acceleration a_seat_x/a_base_z (1): the cross-axis
-    /// response of a pitching occupant (a planar model's seat point).
+    /// response of a pitching occupant (a segment model's seat point).
     BaseSeatX,
     /// Vertical base to fore-and-aft head acceleration a_head_x/a_base_z (1).
     BaseHeadX,

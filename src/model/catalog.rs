@@ -107,6 +107,33 @@ pub enum Kind {
     Planar,
 }
 
+impl Kind {
+    /// Every kind, in listing order.
+    pub const ALL: [Kind; 4] = [Kind::System, Kind::Occupant, Kind::Seat, Kind::Planar];
+
+    /// The word used in JSON listings.
+    pub fn as_str(self) -> &'static str {
+        match self {
+            Kind::System => "system",
+            Kind::Occupant => "occupant",
+            Kind::Seat => "seat",
+            Kind::Planar => "planar",
+        }
+    }
+
+    /// The heading of the kind in `wbv models`.
+    pub fn title(self) -> &'static str {
+        match self {
+            Kind::System => "Configurations (occupant on a seat):",
+            Kind::Occupant => "Occupants (rigid seat):",
+            Kind::Seat => "Seat components (stack below an occupant with +):",
+            Kind::Planar => {
+                "Planar occupant–seat systems (x, z, pitch; DOF = generalized coordinates):"
+            }
+        }
+    }
+}
+
 /// The definition a model was built from.
 #[derive(Debug, Clone, PartialEq)]
 enum Definition {

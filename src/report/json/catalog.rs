@@ -8,7 +8,7 @@ use serde::Serialize;
 #[derive(Debug, Clone, Serialize)]
 pub struct ModelEntry {
     pub name: String,
-    /// `system`, `occupant`, `seat` or `planar`.
+    /// The model's kind ([`crate::model::Kind::as_str`]).
     pub kind: &'static str,
     /// Degrees of freedom (generalized coordinates).
     pub dof: usize,
@@ -19,17 +19,11 @@ pub struct ModelEntry {
 
 /// `wbv models`: every built-in model.
 pub fn models(models: &[crate::model::Model]) -> Vec<ModelEntry> {
-    use crate::model::Kind;
     models
         .iter()
         .map(|m| ModelEntry {
             name: m.name.clone(),
-            kind: match m.kind() {
-                Kind::System => "system",
-                Kind::Occupant => "occupant",
-                Kind::Seat => "seat",
-                Kind::Planar => "planar",
-            },
+            kind: m.kind().as_str(),
             dof: m.dof(),
             description: m.description.clone(),
             params: m.params(),
