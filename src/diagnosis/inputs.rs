@@ -1,0 +1,103 @@
+//! Checks of the measured runs before a diagnosis: the paths every run shares, coherence, and the
+//! paths left out where too few bins are coherent.
+
+use super::measure::{Path, RunSpectra};
+use super::*;
+use crate::error::{Error, Result};
+
+pub(super) fn paths_of(r: &RunSpectra) -> Vec<Path> {
+    r.paths.iter().map(|p| p.path).collect()
+}
+
+pub(super) fn check_inputs(
+    train: &[RunSpectra],
+    check: &RunSpectra,
+    warnings: &mut Vec<String>,
+) -> Result<()> {
+    if train.is_empty() {
+        return Err(Error::parameter(
+            "--run",
+            "at least one training run is needed",
+        ));
+    }
+    let want = paths_of(check);
+    for r in train {
+        if paths_of(r) != want {
+            let names = |p: &[Path]| p.iter().map(|p| p.name()).collect::<Vec<_>>().join(", ");
+            return Err(Error::data(
+                &r.source,
+                None,
+                format!(
+                    "has paths [{}] but the check run {} has [{}]; all runs need the same channels",
+                    names(&paths_of(r)),
+                    check.source,
+                    names(&want)
+                ),
+            ));
+        }
+    }
+    if !want.contains(&Path::BaseSeat) {
+        return Err(Error::data(
+            &check.source,
+            None,
+            "needs a_base_z and a_seat_z",
+        ));
+    }
+    // Low coherence leaves a path (or some of its bands) out, with a warning; only a run whose
+    // seat does not follow its base anywhere (base→seat without coherent bins) cannot be used.
+    for r in train.iter().chain(std::iter::once(check)) {
+        let mut usable = true;
+        for p in &r.paths {
+            let total = p.coherence.len();
+            let good = p.coherence.iter().filter(|&&g| score::trusted(g)).count();
+            if p.path == Path::BaseSeat && good < MIN_PATH_BINS {
+                usable = false;
+            }
+            if good < MIN_PATH_BINS {
+                warnings.push(format!(
+                    "{}: path {} left out: only {good} of {total} bins have coherence ≥ 0.8 (its output is barely driven by its input there)",
+                    r.source,
+                    p.path.name()
+                ));
+            } else if good * 4 < total * 3 {
+                warnings.push(format!(
+                    "{}: path {} judged on {good} of {total} bins (coherence ≥ 0.8); the rest is not judged",
+                    r.source,
+                    p.path.name()
+                ));
+            }
+        }
+        if !usable {
+            return Err(Error::data(
+                &r.source,
+                None,
+                format!(
+                    "path base-seat has fewer than {MIN_PATH_BINS} bins with coherence ≥ 0.8: a_seat_z is not driven by a_base_z (wrong channels, another run's outputs, or noise)"
+                ),
+            ));
+        }
+    }
+    let (lo, hi) = train.iter().fold((f64::INFINITY, 0.0f64), |(a, b), r| {
+        (a.min(r.base_rms), b.max(r.base_rms))
+    });
+    if check.base_rms < 0.95 * lo || check.base_rms > 1.05 * hi {
+        warnings.push(format!(
+            "the check run's base r.m.s. {:.3} m/s² lies outside the training range {:.3}–{:.3} m/s²: the held-out score extrapolates in magnitude",
+            check.base_rms, lo, hi
+        ));
+    }
+    if train.len() < 2 {
+        warnings.push("one training run: magnitude-dependent effects cannot be trained".into());
+    }
+    Ok(())
+}
+
+/// Removes from a run the paths with fewer than [`MIN_PATH_BINS`] coherent bins (their cells are
+/// untrusted everywhere), by zeroing their coherence, so that every run keeps the same paths.
+pub(super) fn mask_incoherent(r: &mut RunSpectra) {
+    for p in &mut r.paths {
+        if p.coherence.iter().filter(|&&g| score::trusted(g)).count() < MIN_PATH_BINS {
+            p.coherence.iter_mut().for_each(|g| *g = 0.0);
+        }
+    }
+}

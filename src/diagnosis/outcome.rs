@@ -1,0 +1,126 @@
+//! What a diagnosis returns: fitted estimates, each model variant's stage on the held-out run,
+//! the ranked candidates, per-run summaries and the band coverage.
+
+use super::gapmap::{BandCell, Weighted};
+use serde::Serialize;
+
+/// A fitted parameter.
+#[derive(Debug, Clone, Serialize)]
+pub struct Estimate {
+    /// Name (with unit suffix).
+    pub name: String,
+    /// Fitted value.
+    pub value: f64,
+    /// 1-σ uncertainty from the curvature of the objective (delta method for log parameters).
+    pub sigma: f64,
+    /// Relative change from nominal, for base parameters.
+    pub change_percent: Option<f64>,
+    /// The fit ended on a bound (structure being absorbed, or the effect absent).
+    pub at_bound: bool,
+}
+
+/// A model evaluated on the held-out run.
+#[derive(Debug, Clone, Serialize)]
+pub struct Stage {
+    /// Reduced χ² on the held-out run.
+    pub chi2_red: f64,
+    /// RMS of the trusted band gaps, all paths, dB.
+    pub gap_db_rms: f64,
+    /// RMS of the trusted band phase gaps, all paths, degrees.
+    pub phase_deg_rms: f64,
+    /// Weighted r.m.s. and SEAT gap.
+    pub weighted: Weighted,
+    /// The per-band gap map.
+    pub cells: Vec<BandCell>,
+}
+
+/// One fitted candidate.
+#[derive(Debug, Clone, Serialize)]
+pub struct Ranked {
+    /// Candidate id (`null` for the re-fit base model).
+    pub id: String,
+    /// Effect parameters (for `null`: the base parameters).
+    pub params: Vec<Estimate>,
+    /// Reduced χ² on the training runs.
+    pub train_chi2_red: f64,
+    /// BIC on the held-out run minus that of the null re-fit.
+    pub delta_bic: f64,
+    /// BIC on the training and held-out runs together minus that of the null re-fit: the
+    /// evidence for an amplitude-dependent effect, which a held-out run between the training
+    /// magnitudes barely shows.
+    pub delta_bic_all: f64,
+    /// BIC weight among the null and all candidates.
+    pub probability: f64,
+    /// Fraction of the structural gap closed on the held-out run.
+    pub fraction_closed: f64,
+    /// The held-out evaluation.
+    pub check: Stage,
+    /// Size of the effect on the check run (effect minus null re-fit): change of the seat a_w, %.
+    pub aw_change_percent: f64,
+    /// Change of the SEAT value, percentage points.
+    pub seat_change_points: f64,
+    /// Change of the band-gap RMS, dB (negative: the gap shrinks).
+    pub band_gap_change_db: f64,
+}
+
+/// One run's summary for the homogeneity view.
+#[derive(Debug, Clone, Serialize)]
+pub struct RunSummary {
+    /// File or source name.
+    pub source: String,
+    /// Role: `train` or `check`.
+    pub role: &'static str,
+    /// Unweighted base r.m.s., m/s².
+    pub base_rms: f64,
+    /// Measured body-mode peak of base→head (or base→seat), Hz.
+    pub peak_hz: Option<f64>,
+    /// Nominal-model gap (replay) RMS per path, dB.
+    pub gap_db_rms: Vec<(&'static str, f64)>,
+}
+
+/// The whole diagnosis.
+#[derive(Debug, Clone, Serialize)]
+pub struct Diagnosis {
+    /// Winning candidate id, `none`, `unexplained` or `not-identifiable`.
+    pub verdict: String,
+    /// The effects named (detected and closing part of the gap), best first; empty for `none`,
+    /// `unexplained` and `not-identifiable`.
+    pub named: Vec<String>,
+    /// Per path, the one-third-octave bands judged (coherent on the check run) and those that
+    /// could not be.
+    pub bands: Vec<BandCoverage>,
+    /// One-sentence explanation of the verdict.
+    pub verdict_text: String,
+    /// Input problems that did not stop the diagnosis.
+    pub warnings: Vec<String>,
+    /// Per-run summaries (training runs, then the check run).
+    pub runs: Vec<RunSummary>,
+    /// Change of the body-mode peak per doubling of magnitude, % (measured).
+    pub peak_shift_percent_per_doubling: Option<f64>,
+    /// Gap map of the nominal model replayed with the check run's measured base.
+    pub gap_map: Vec<BandCell>,
+    /// Verbal classification of the nominal gap.
+    pub classification: Vec<String>,
+    /// The nominal model on the held-out run (analytic FRFs).
+    pub nominal: Stage,
+    /// The null re-fit.
+    pub null: Ranked,
+    /// Candidates, best first.
+    pub candidates: Vec<Ranked>,
+    /// The best candidate plus a forward-selected second effect, when that pair is detected
+    /// against the best alone (`delta_bic` and `fraction_closed` are relative to the best).
+    pub second: Option<Ranked>,
+    /// For `not-identifiable`: the measurement that would separate the two best.
+    pub separating_measurement: Option<String>,
+}
+
+/// Which bands of a path were judged.
+#[derive(Debug, Clone, Serialize)]
+pub struct BandCoverage {
+    /// Path name.
+    pub path: &'static str,
+    /// Band centres (Hz) with coherent bins on the check run.
+    pub judged_hz: Vec<f64>,
+    /// Band centres (Hz) that could not be judged (coherence < 0.8, or no bin at this resolution).
+    pub not_judged_hz: Vec<f64>,
+}
