@@ -298,23 +298,14 @@ impl BatchTemplate {
         self.len == 0
     }
 
-    /// Appends the message of `n` samples: value `j` of sample `k` is
-    /// `values[k * stride + offset + j]` (the row-major block of the recorder).
-    pub fn render(
-        &self,
-        values: &[f64],
-        stride: usize,
-        offset: usize,
-        n: usize,
-        out: &mut Vec<u8>,
-    ) {
+    /// Appends the message of the samples `column(j)` of each leaf `j` (every column as long
+    /// as the first): headers, then each column's doubles copied in one run.
+    pub fn render<'a>(&self, column: impl Fn(usize) -> &'a [f64], out: &mut Vec<u8>) {
         use prost::encoding::encoded_len_varint;
+        let n = if self.len == 0 { 0 } else { column(0).len() };
         let bytes = 8 * n as u64;
         let packed = |f: u32| key_len(f) + encoded_len_varint(bytes) + 8 * n;
-        // Headers and room for every column first, then the block's rows read once, in order,
-        // each value put into its column: one pass over the row-major block instead of one per
-        // column (the strided reads were 13 % of a batched run's CPU).
-        let mut columns = Vec::with_capacity(self.len);
+        let mut j = 0;
         for (outer, fields) in &self.groups {
             if let Some(outer) = outer {
                 encode_key(*outer, WireType::LengthDelimited, out);
@@ -324,14 +315,13 @@ impl BatchTemplate {
             for &f in fields {
                 encode_key(f, WireType::LengthDelimited, out);
                 encode_varint(bytes, out);
-                columns.push(out.len());
-                out.resize(out.len() + 8 * n, 0);
-            }
-        }
-        for k in 0..n {
-            let row = &values[k * stride + offset..][..self.len];
-            for (&at, v) in columns.iter().zip(row) {
-                out[at + 8 * k..at + 8 * k + 8].copy_from_slice(&v.to_le_bytes());
+                let values = column(j);
+                assert_eq!(values.len(), n, "every column has the same samples");
+                out.reserve(8 * n);
+                for v in values {
+                    out.extend_from_slice(&v.to_le_bytes());
+                }
+                j += 1;
             }
         }
     }
@@ -697,12 +687,12 @@ mod tests {
             (masses.iter()).flat_map(|m| fields.iter().map(move |f| Leaf::new(&[m, f], ""))),
         );
         let t = BatchTemplate::new(&fds, "wbv.StateBatch", &leaves).unwrap();
-        // a block of 3 rows of [pad, t, 12 values, pad]: stride 15, offset 1
-        let (stride, n) = (15, 3);
-        let block: Vec<f64> = (0..stride * n).map(|i| i as f64 * -0.25 + 1e-300).collect();
+        // 3 samples of [t, 12 values]
+        let n = 3;
+        let block: Vec<f64> = (0..13 * n).map(|i| i as f64 * -0.25 + 1e-300).collect();
+        let col = |j: usize| -> Vec<f64> { block[j * n..(j + 1) * n].to_vec() };
         let mut out = Vec::new();
-        t.render(&block, stride, 1, n, &mut out);
-        let col = |j: usize| -> Vec<f64> { (0..n).map(|k| block[k * stride + 1 + j]).collect() };
+        t.render(|j| &block[j * n..(j + 1) * n], &mut out);
         let mut expected = Vec::new();
         prost::encoding::double::encode_packed(1, &col(0), &mut expected);
         for (i, _) in masses.iter().enumerate() {

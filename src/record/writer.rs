@@ -388,8 +388,7 @@ impl McapRecorder {
             self.values[i] = s.t; // time is exact, never filtered
         }
         // Finite before filtering stays finite through a stable low-pass.
-        self.block.values.extend_from_slice(&self.values);
-        self.block.steps.push((sequence, time_ns));
+        self.block.push(&self.values, sequence, time_ns);
         self.last_time_ns = time_ns;
         Ok(())
     }
@@ -490,7 +489,8 @@ impl McapRecorder {
         let file = w
             .into_inner()
             .into_inner()
-            .map_err(|e| Error::io(&self.partial, e.into_error()))?;
+            .map_err(|e| Error::io(&self.partial, e.into_error()))?
+            .into_file();
         let guard = self
             .guard
             .take()
