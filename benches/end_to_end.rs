@@ -79,7 +79,8 @@ fn main() {
             let res = cmd.output().expect("run wbv");
             let wall = start.elapsed().as_secs_f64();
             let cpu = children_cpu_s() - cpu0;
-            let text = String::from_utf8_lossy(&res.stdout);
+            // The summary line ("… peak memory N MB") goes to stderr, the analysis to stdout.
+            let text = String::from_utf8_lossy(&res.stderr);
             assert!(
                 res.status.success(),
                 "{}",

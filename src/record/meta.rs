@@ -1,9 +1,11 @@
 //! Provenance ↔ MCAP metadata records. Metadata values are strings (MCAP spec, "Metadata"); numbers
 //! are written with Rust's shortest round-trip formatting so they parse back to the same `f64`.
 
-use super::Provenance;
+use super::{MessageLayout, Provenance, RecordOptions};
 use crate::error::{Error, Result};
+use crate::simulate::observer::Layout;
 use std::collections::BTreeMap;
+use std::io::{Seek, Write};
 use std::path::Path;
 
 pub const RUN: &str = "wbv.run";
@@ -17,6 +19,73 @@ pub type Map = BTreeMap<String, String>;
 
 fn map<const N: usize>(pairs: [(&str, String); N]) -> Map {
     pairs.into_iter().map(|(k, v)| (k.to_string(), v)).collect()
+}
+
+/// How a run is recorded, for the `wbv.run` record.
+pub struct Settings<'a> {
+    pub options: &'a RecordOptions,
+    pub layout_kind: MessageLayout,
+    pub layout: &'a Layout,
+    /// Every how many simulation steps a sample is kept.
+    pub decimation: u64,
+    /// −3 dB frequency (Hz) of the anti-alias low-pass, when decimated.
+    pub anti_alias_hz: Option<f64>,
+}
+
+impl Settings<'_> {
+    /// The `wbv.run` entries of the recording: rates, decimation and its anti-alias filter, scene,
+    /// encoding, layout, compression, and the size and names of the model layout.
+    pub fn entries(&self) -> Map {
+        let (o, layout) = (self.options, self.layout);
+        let fs = 1.0 / layout.dt;
+        map([
+            ("simulation_rate_hz", fs.to_string()),
+            ("sample_rate_hz", (fs / self.decimation as f64).to_string()),
+            ("decimation", self.decimation.to_string()),
+            (
+                "anti_alias",
+                self.anti_alias_hz.map_or("none (full rate)".into(), |fc| {
+                    format!("4th-order Butterworth low-pass, -3 dB at {fc} Hz, before decimation")
+                }),
+            ),
+            ("scene_rate_hz", o.scene_rate_hz.to_string()),
+            ("display_magnification", o.magnification.to_string()),
+            ("encoding", o.encoding.as_str().to_string()),
+            ("layout", self.layout_kind.as_str().to_string()),
+            ("compression", o.compression.as_str().to_string()),
+            ("steps", layout.steps.to_string()),
+            ("masses", layout.masses.join(",")),
+            ("links", layout.links.join(",")),
+        ])
+    }
+}
+
+/// Writes analysis results `(name, JSON)` as the attachments `<name>.json` (at `log_time` ns) and
+/// the `wbv.results` record (nothing when there are none).
+pub fn write_results<W: Write + Seek>(
+    w: &mut mcap::Writer<W>,
+    results: &[(String, serde_json::Value)],
+    log_time: u64,
+) -> mcap::McapResult<()> {
+    let mut record = BTreeMap::new();
+    for (name, json) in results {
+        let text = serde_json::to_string_pretty(json).expect("a JSON value serialises");
+        w.attach(&mcap::Attachment {
+            log_time,
+            create_time: 0,
+            name: format!("{name}.json"),
+            media_type: "application/json".into(),
+            data: text.as_bytes().into(),
+        })?;
+        record.insert(name.clone(), json.to_string());
+    }
+    if !record.is_empty() {
+        w.write_metadata(&mcap::records::Metadata {
+            name: RESULTS.into(),
+            metadata: record,
+        })?;
+    }
+    Ok(())
 }
 
 /// The `wbv.model` and `wbv.excitation` records of a provenance.

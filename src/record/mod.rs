@@ -32,8 +32,11 @@
 //! to [`McapRecorder::attach_results`] go to `wbv.results` metadata and `<name>.json` attachments.
 //! SIGINT/SIGTERM close what was simulated as `run.interrupted.mcap` (metadata `wbv.interrupted`).
 
+mod channels;
 pub mod csv;
 pub mod demo;
+mod file;
+mod interrupt;
 mod json;
 mod lowpass;
 mod meta;
@@ -210,6 +213,35 @@ pub struct RecordOptions {
     /// Threads that format messages and, with zstd, compress chunks; `None`: one per core, at
     /// most 4. The file does not depend on it.
     pub threads: Option<usize>,
+}
+
+impl RecordOptions {
+    /// Checks the options that do not depend on the run (rates, factors, combinations).
+    pub fn check(&self) -> crate::error::Result<()> {
+        if !(15.0..=120.0).contains(&self.scene_rate_hz) {
+            return Err(crate::Error::parameter(
+                "scene rate",
+                format!(
+                    "{} Hz: expected 15–120 Hz (30–60 is typical)",
+                    self.scene_rate_hz
+                ),
+            ));
+        }
+        if !(self.magnification.is_finite() && self.magnification > 0.0) {
+            return Err(crate::Error::parameter(
+                "display magnification",
+                format!("{}: expected a positive factor", self.magnification),
+            ));
+        }
+        if self.encoding == Encoding::Json && self.layout == Some(MessageLayout::Batched) {
+            return Err(crate::Error::parameter(
+                "layout",
+                "`batched` is protobuf only: JSON runs are recorded per sample (drop --layout \
+             or record with --encoding protobuf)",
+            ));
+        }
+        Ok(())
+    }
 }
 
 impl Default for RecordOptions {

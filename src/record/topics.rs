@@ -246,6 +246,17 @@ pub fn eval(quantities: &[Quantity], s: &Step<'_>, measured: &[f64], out: &mut V
     out.extend(quantities.iter().map(|q| q.eval(s, measured)));
 }
 
+/// The channel name of value `i` of a step (the values of `topics`' fields, topic after topic).
+pub fn field_name(topics: &[(Topic, u16)], mut i: usize) -> String {
+    for (t, _) in topics {
+        if i < t.leaves.len() {
+            return channel_name(t.topic, &t.leaves[i].path);
+        }
+        i -= t.leaves.len();
+    }
+    String::new()
+}
+
 /// The [`Signals`](crate::signals::Signals) channel name of a field of `topic`: the measured-run
 /// names as they are, the others as the plot path without the `/wbv/` prefix (`state.head.a_abs`).
 pub fn channel_name(topic: &str, path: &[String]) -> String {

@@ -1,27 +1,24 @@
 //! [`McapRecorder`]: an [`Observer`] that records every step of a run to an MCAP file.
 //!
 //! The simulation thread only evaluates and checks each step's values and renders the 3-D scene;
-//! JSON formatting, framing and compression run on other threads (see [`super::pipeline`]), in an
+//! JSON formatting, framing and compression run on other threads (see `pipeline`), in an
 //! order fixed by the step index, so the file does not depend on thread timing or count.
 
+use super::channels;
+use super::file::{self, McapWriter};
+use super::interrupt;
 use super::lowpass::{LowPass, decimation};
 use super::meta;
-use super::pipeline::{
-    self, BLOCK_STEPS, Block, Channel, Encoder, McapWriter, Pipeline, json_channel,
-    protobuf_channel,
-};
-use super::proto::{self, BatchTemplate, ProtoTemplate};
-use super::scene::{self, FRAME_TRANSFORMS_SCHEMA, SCENE_UPDATE_SCHEMA, Scene};
-use super::topics::{Quantity, Topic, channel_name, eval, plot_key, topics};
+use super::pipeline::{BLOCK_STEPS, Block, Channel, Encoder, Pipeline};
+use super::scene::Scene;
+use super::topics::{Quantity, Topic, eval, field_name, topics};
 use super::{Encoding, MessageLayout, Provenance, RecordOptions};
 use crate::error::{Error, Result};
 use crate::io::atomic::{Overwrite, Partial};
 use crate::simulate::observer::{Layout, Observer, Step};
 use mcap::records::{MessageHeader, Metadata};
-use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
-use std::sync::atomic::{AtomicBool, Ordering};
-use std::sync::{Arc, OnceLock};
+use std::sync::atomic::Ordering;
 
 /// Formatter threads and zstd workers: [`RecordOptions::threads`], else one per core (at most 4).
 /// The file is the same for any count: blocks are written in step order, and zstd's output does
@@ -31,34 +28,6 @@ fn threads(options: &RecordOptions) -> usize {
         .threads
         .unwrap_or_else(|| std::thread::available_parallelism().map_or(1, |n| n.get().min(4)))
         .max(1)
-}
-
-/// Set by SIGINT or SIGTERM once a recorder exists: the recorder then closes what it has as
-/// [`interrupted_path`] and stops the run with an error. A second signal ends the process at
-/// once (exit status 130), leaving only the `.partial` that the next run removes.
-fn interrupt_flag() -> &'static Arc<AtomicBool> {
-    static FLAG: OnceLock<Arc<AtomicBool>> = OnceLock::new();
-    FLAG.get_or_init(|| {
-        let flag = Arc::new(AtomicBool::new(false));
-        for signal in [signal_hook::consts::SIGINT, signal_hook::consts::SIGTERM] {
-            // Registration fails only for forbidden signals; without it the default applies.
-            let _ =
-                signal_hook::flag::register_conditional_shutdown(signal, 130, Arc::clone(&flag));
-            let _ = signal_hook::flag::register(signal, Arc::clone(&flag));
-        }
-        flag
-    })
-}
-
-/// Steps between two looks at the interrupt flag (≈ 1 ms of simulation at 1 kHz, far less in
-/// wall time).
-const INTERRUPT_CHECK_STEPS: u64 = 1024;
-
-/// Where an interrupted recording of `path` is closed: `run.mcap` → `run.interrupted.mcap`, a
-/// name no reader of complete runs takes for one.
-pub fn interrupted_path(path: &Path) -> PathBuf {
-    let stem = path.file_stem().unwrap_or_default().to_string_lossy();
-    path.with_file_name(format!("{stem}.interrupted.mcap"))
 }
 
 /// Records a run to `<path>` (through `<path>.partial`, moved into place only once complete;
@@ -109,33 +78,12 @@ impl McapRecorder {
                 "already exists; refusing to overwrite it (pass --force to replace it)",
             ));
         }
-        if !(15.0..=120.0).contains(&options.scene_rate_hz) {
-            return Err(Error::parameter(
-                "scene rate",
-                format!(
-                    "{} Hz: expected 15–120 Hz (30–60 is typical)",
-                    options.scene_rate_hz
-                ),
-            ));
-        }
-        if !(options.magnification.is_finite() && options.magnification > 0.0) {
-            return Err(Error::parameter(
-                "display magnification",
-                format!("{}: expected a positive factor", options.magnification),
-            ));
-        }
-        if options.encoding == Encoding::Json && options.layout == Some(MessageLayout::Batched) {
-            return Err(Error::parameter(
-                "layout",
-                "`batched` is protobuf only: JSON runs are recorded per sample (drop --layout \
-                 or record with --encoding protobuf)",
-            ));
-        }
-        interrupt_flag();
+        options.check()?;
+        interrupt::flag();
         let (guard, file) = Partial::create(path, options.overwrite)?;
         let partial = guard.tmp().to_path_buf();
         let library = format!("wbv/{} mcap-rust/0.26", provenance.version);
-        let writer = pipeline::open(file, options.compression, threads(&options), library)
+        let writer = file::open(file, options.compression, threads(&options), library)
             .map_err(mcap_err(&partial))?;
         Ok(McapRecorder {
             path: path.to_path_buf(),
@@ -223,33 +171,18 @@ impl McapRecorder {
         self.layout = Some(layout.clone());
 
         let mut run = meta::run_record(&self.provenance);
-        let o = &self.options;
-        for (k, v) in [
-            ("simulation_rate_hz", fs.to_string()),
-            ("sample_rate_hz", (fs / self.every as f64).to_string()),
-            ("decimation", self.every.to_string()),
-            (
-                "anti_alias",
-                self.lowpass
-                    .as_ref()
-                    .map_or("none (full rate)".into(), |_| {
-                        format!(
-                            "4th-order Butterworth low-pass, -3 dB at {} Hz, before decimation",
-                            LowPass::CUTOFF_FRACTION * rate
-                        )
-                    }),
-            ),
-            ("scene_rate_hz", o.scene_rate_hz.to_string()),
-            ("display_magnification", o.magnification.to_string()),
-            ("encoding", o.encoding.as_str().to_string()),
-            ("layout", kind.as_str().to_string()),
-            ("compression", o.compression.as_str().to_string()),
-            ("steps", layout.steps.to_string()),
-            ("masses", layout.masses.join(",")),
-            ("links", layout.links.join(",")),
-        ] {
-            run.insert(k.to_string(), v);
-        }
+        let anti_alias_hz = self
+            .lowpass
+            .as_ref()
+            .map(|_| LowPass::CUTOFF_FRACTION * rate);
+        let settings = meta::Settings {
+            options: &self.options,
+            layout_kind: kind,
+            layout,
+            decimation: self.every,
+            anti_alias_hz,
+        };
+        run.extend(settings.entries());
         let mut records = vec![(meta::RUN, run)];
         records.extend(meta::records(&self.provenance));
         for (name, metadata) in records {
@@ -269,58 +202,9 @@ impl McapRecorder {
         .map_err(&err)?;
 
         let scene = Scene::new(layout, self.options.magnification);
-        let (scene_id, tf_id) = match self.options.encoding {
-            Encoding::Json => {
-                for t in topics {
-                    let schema = serde_json::to_vec(&t.schema).expect("schema serialises");
-                    let cid = json_channel(w, t.topic, t.schema_name, &schema).map_err(&err)?;
-                    self.encoders.push(Encoder::Json(t.template.clone()));
-                    self.topics.push((t, cid));
-                }
-                let scene_id = json_channel(
-                    w,
-                    "/wbv/scene",
-                    "foxglove.SceneUpdate",
-                    SCENE_UPDATE_SCHEMA.as_bytes(),
-                )
-                .map_err(&err)?;
-                let tf_id = json_channel(
-                    w,
-                    "/tf",
-                    "foxglove.FrameTransforms",
-                    FRAME_TRANSFORMS_SCHEMA.as_bytes(),
-                )
-                .map_err(&err)?;
-                (scene_id, tf_id)
-            }
-            Encoding::Protobuf => {
-                let keys = |names: &[String]| names.iter().map(|n| plot_key(n)).collect::<Vec<_>>();
-                let fds = proto::run_descriptor(&keys(&layout.masses), &keys(&layout.links))?;
-                let bytes = prost::Message::encode_to_vec(&fds);
-                for t in topics {
-                    let (name, encoder) = if batched {
-                        let name = format!("{}Batch", t.schema_name);
-                        let template = BatchTemplate::new(&fds, &name, &t.leaves)?;
-                        (name, Encoder::Batched(template))
-                    } else {
-                        let template = ProtoTemplate::new(&fds, t.schema_name, &t.leaves)?;
-                        (t.schema_name.to_string(), Encoder::Protobuf(template))
-                    };
-                    let cid = protobuf_channel(w, t.topic, &name, &bytes).map_err(&err)?;
-                    self.encoders.push(encoder);
-                    self.topics.push((t, cid));
-                }
-                let mut ids = [0; 2];
-                for (id, (topic, schema)) in ids.iter_mut().zip([
-                    ("/wbv/scene", scene::pb::scene_update_schema()),
-                    ("/tf", scene::pb::frame_transforms_schema()),
-                ]) {
-                    *id = protobuf_channel(w, topic, &schema.name, &schema.data).map_err(&err)?;
-                }
-                (ids[0], ids[1])
-            }
-        };
-        self.scene = Some((scene, scene_id, tf_id));
+        let c = channels::add(w, layout, topics, self.options.encoding, batched, &err)?;
+        (self.topics, self.encoders) = (c.topics, c.encoders);
+        self.scene = Some((scene, c.scene, c.transforms));
         let writer = self.writer.take().expect("checked above");
         let channels = (self.topics.iter().zip(&self.encoders))
             .map(|((_, id), template)| Channel {
@@ -388,23 +272,14 @@ impl McapRecorder {
             self.values[i] = s.t; // time is exact, never filtered
         }
         // Finite before filtering stays finite through a stable low-pass.
-        self.block.values.extend_from_slice(&self.values);
-        self.block.steps.push((sequence, time_ns));
+        self.block.push(&self.values, sequence, time_ns);
         self.last_time_ns = time_ns;
         Ok(())
     }
 
-    fn non_finite(&self, s: &Step<'_>, mut i: usize) -> Error {
-        let mut field = String::new();
-        for (t, _) in &self.topics {
-            if i < t.leaves.len() {
-                field = channel_name(t.topic, &t.leaves[i].path);
-                break;
-            }
-            i -= t.leaves.len();
-        }
+    fn non_finite(&self, s: &Step<'_>, i: usize) -> Error {
         Error::parameter(
-            field,
+            field_name(&self.topics, i),
             format!(
                 "is not finite at step {} (t = {} s); refusing to record NaN or infinity",
                 s.index, s.t
@@ -450,54 +325,23 @@ impl McapRecorder {
         }
         let mut w = self.stop()?;
         let err = mcap_err(&self.partial);
-        let mut results = BTreeMap::new();
-        for (name, json) in &self.results {
-            let text = serde_json::to_string_pretty(json).expect("a JSON value serialises");
-            w.attach(&mcap::Attachment {
-                log_time: self.last_time_ns,
-                create_time: 0,
-                name: format!("{name}.json"),
-                media_type: "application/json".into(),
-                data: text.as_bytes().into(),
-            })
-            .map_err(&err)?;
-            results.insert(name.clone(), json.to_string());
-        }
-        if !results.is_empty() {
-            w.write_metadata(&Metadata {
-                name: meta::RESULTS.into(),
-                metadata: results,
-            })
-            .map_err(&err)?;
-        }
+        meta::write_results(&mut w, &self.results, self.last_time_ns).map_err(&err)?;
         if let Some(t) = interrupted_at {
-            let record = [
-                ("interrupted_at_s".to_string(), t.to_string()),
-                (
-                    "reason".to_string(),
-                    "SIGINT or SIGTERM: the run stopped after this step; the file holds every \
-                     step up to it and no analysis results"
-                        .to_string(),
-                ),
-            ];
-            w.write_metadata(&Metadata {
-                name: meta::INTERRUPTED.into(),
-                metadata: record.into_iter().collect(),
-            })
-            .map_err(&err)?;
+            w.write_metadata(&interrupt::record(t)).map_err(&err)?;
         }
         w.finish().map_err(&err)?;
         let file = w
             .into_inner()
             .into_inner()
-            .map_err(|e| Error::io(&self.partial, e.into_error()))?;
+            .map_err(|e| Error::io(&self.partial, e.into_error()))?
+            .into_file();
         let guard = self
             .guard
             .take()
             .expect("the partial file is held until finished");
         let dest = match interrupted_at {
             None => self.path.clone(),
-            Some(_) => interrupted_path(&self.path),
+            Some(_) => interrupt::interrupted_path(&self.path),
         };
         // An interrupted recording replaces an earlier interrupted one: it is the latest state.
         let overwrite = match interrupted_at {
@@ -534,8 +378,8 @@ impl Observer for McapRecorder {
         }
         self.record(step)?;
         self.record_scene(step)?;
-        if step.index.is_multiple_of(INTERRUPT_CHECK_STEPS)
-            && interrupt_flag().load(Ordering::Relaxed)
+        if step.index.is_multiple_of(interrupt::CHECK_STEPS)
+            && interrupt::flag().load(Ordering::Relaxed)
         {
             return Err(self.interrupt(step.t));
         }

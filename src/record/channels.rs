@@ -1,0 +1,92 @@
+//! The channels of a run: one per time-series topic, with its schema and the encoder of its
+//! messages, and the 3-D scene's two (`/wbv/scene`, `/tf`), in either encoding.
+
+use super::Encoding;
+use super::file::{McapWriter, json_channel, protobuf_channel};
+use super::pipeline::Encoder;
+use super::proto::{self, BatchTemplate, ProtoTemplate};
+use super::scene::{self, FRAME_TRANSFORMS_SCHEMA, SCENE_UPDATE_SCHEMA};
+use super::topics::{Topic, plot_key};
+use crate::error::{Error, Result};
+use crate::simulate::observer::Layout;
+
+/// The channels added to a run's writer.
+pub struct Channels {
+    /// Each time-series topic with its channel id, in message order.
+    pub topics: Vec<(Topic, u16)>,
+    /// How each topic's messages are written, in `topics` order.
+    pub encoders: Vec<Encoder>,
+    /// Channel ids of `/wbv/scene` and `/tf`.
+    pub scene: u16,
+    pub transforms: u16,
+}
+
+/// Adds to `w` the channels of `topics` (those of `layout`, made `timed()` when `batched`) and
+/// of the scene, in `encoding`; a failed MCAP write becomes `err(e)`.
+pub fn add(
+    w: &mut McapWriter,
+    layout: &Layout,
+    topics: Vec<Topic>,
+    encoding: Encoding,
+    batched: bool,
+    err: &impl Fn(mcap::McapError) -> Error,
+) -> Result<Channels> {
+    let (mut channels, mut encoders) = (Vec::new(), Vec::new());
+    let (scene, transforms) = match encoding {
+        Encoding::Json => {
+            for t in topics {
+                let schema = serde_json::to_vec(&t.schema).expect("schema serialises");
+                let cid = json_channel(w, t.topic, t.schema_name, &schema).map_err(err)?;
+                encoders.push(Encoder::Json(t.template.clone()));
+                channels.push((t, cid));
+            }
+            let scene_id = json_channel(
+                w,
+                "/wbv/scene",
+                "foxglove.SceneUpdate",
+                SCENE_UPDATE_SCHEMA.as_bytes(),
+            )
+            .map_err(err)?;
+            let tf_id = json_channel(
+                w,
+                "/tf",
+                "foxglove.FrameTransforms",
+                FRAME_TRANSFORMS_SCHEMA.as_bytes(),
+            )
+            .map_err(err)?;
+            (scene_id, tf_id)
+        }
+        Encoding::Protobuf => {
+            let keys = |names: &[String]| names.iter().map(|n| plot_key(n)).collect::<Vec<_>>();
+            let fds = proto::run_descriptor(&keys(&layout.masses), &keys(&layout.links))?;
+            let bytes = prost::Message::encode_to_vec(&fds);
+            for t in topics {
+                let (name, encoder) = if batched {
+                    let name = format!("{}Batch", t.schema_name);
+                    let template = BatchTemplate::new(&fds, &name, &t.leaves)?;
+                    (name, Encoder::Batched(template))
+                } else {
+                    let template = ProtoTemplate::new(&fds, t.schema_name, &t.leaves)?;
+                    (t.schema_name.to_string(), Encoder::Protobuf(template))
+                };
+                let cid = protobuf_channel(w, t.topic, &name, &bytes).map_err(err)?;
+                encoders.push(encoder);
+                channels.push((t, cid));
+            }
+            let mut ids = [0; 2];
+            for (id, (topic, schema)) in ids.iter_mut().zip([
+                ("/wbv/scene", scene::pb::scene_update_schema()),
+                ("/tf", scene::pb::frame_transforms_schema()),
+            ]) {
+                *id = protobuf_channel(w, topic, &schema.name, &schema.data).map_err(err)?;
+            }
+            (ids[0], ids[1])
+        }
+    };
+    Ok(Channels {
+        topics: channels,
+        encoders,
+        scene,
+        transforms,
+    })
+}
