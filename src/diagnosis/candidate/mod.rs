@@ -1,0 +1,319 @@
+//! The candidate unmodelled effects: each a small physical extension of the base model with one or
+//! two parameters (gap.md §3.4), plus the null candidate (the base model's own parameters re-fitted).
+
+use super::predict::{MagnitudeSchedule, Variant};
+use crate::error::{Error, Result};
+use crate::model::{Model, Quantity};
+use crate::system::{Dof, Element, Law, Link, Role, System, Unit};
+use nalgebra::{DMatrix, DVector};
+use std::f64::consts::PI;
+
+mod apply;
+mod prior;
+mod structure;
+
+pub use prior::{BASE_BOUND, base_params, prior_sigma, scaled};
+use structure::{add_dof, kv_link, on_base};
+pub use structure::{
+    add_frame, cushion_links, heaviest_body_mass, interface_link, role_link, support_target,
+};
+
+/// Starting mass of the seat frame added by `missing-dof`, in kg (a typical seat pan and frame).
+pub const FRAME_MASS_KG: f64 = 5.0;
+/// Reference velocity of the friction law in m/s (tanh regularisation width).
+pub const FRICTION_V_REF: f64 = 0.01;
+/// End-stop stiffness as a multiple of the suspension stiffness.
+pub const END_STOP_RATIO: f64 = 10.0;
+/// Damping ratio of the feet-support knee and heel pad (a soft-tissue contact).
+pub const SUPPORT_ZETA: f64 = 0.3;
+
+/// One fitted parameter, optimised in `u` space (u = ln value for `log`, else u = value).
+#[derive(Debug, Clone)]
+pub struct Param {
+    /// Name with unit, e.g. `d_ref_m`.
+    pub name: String,
+    /// Lower and upper bound of the value.
+    pub bounds: (f64, f64),
+    /// Starting values tried (multistart).
+    pub starts: Vec<f64>,
+    /// Optimised on a log scale.
+    pub log: bool,
+}
+
+impl Param {
+    fn new(name: &str, lo: f64, hi: f64, starts: &[f64], log: bool) -> Self {
+        Param {
+            name: name.into(),
+            bounds: (lo, hi),
+            starts: starts.to_vec(),
+            log,
+        }
+    }
+    /// The value from u.
+    pub fn value(&self, u: f64) -> f64 {
+        if self.log { u.exp() } else { u }
+    }
+    /// u from the value.
+    pub fn u(&self, v: f64) -> f64 {
+        if self.log { v.ln() } else { v }
+    }
+}
+
+/// The candidate effects.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Candidate {
+    /// Softening body link (tanh law, k·d_ref·tanh(d/d_ref)) at the seat interface: resonance falls
+    /// as magnitude rises.
+    BodySoftening,
+    /// Body stiffness and damping scheduled with the run's magnitude (E1): linear within a run,
+    /// softer between runs of different magnitude.
+    BodySofteningMagnitude,
+    /// Cubic stiffening of the cushion, F = k d + k3 d³.
+    CushionStiffening,
+    /// Quadratic contact stiffening of the cushion, F = k d (1 + |d|/d0): the second stiffening
+    /// form, so that the report names the form that fits better.
+    CushionContact,
+    /// Viscoelastic cushion: a Maxwell arm (k_m in series with c_m = k_m·τ) in parallel with the
+    /// Kelvin–Voigt cushion, with free stiffness ratio and relaxation time τ.
+    CushionViscoelastic,
+    /// Lag on the seat and/or head channel (phase gap linear in frequency).
+    SensorDelay,
+    /// 4-pole Butterworth anti-alias low-pass on the seat and/or head channel.
+    SensorLowpass,
+    /// Calibration gain error on the base, seat and head accelerometers.
+    SensorGain,
+    /// Mount resonance of the seat-pad accelerometer.
+    SensorMountSeat,
+    /// Mount resonance of the head accelerometer.
+    SensorMountHead,
+    /// Coulomb friction on the suspension, F_c tanh(v/v_ref).
+    SuspensionFriction,
+    /// End-stops on the suspension beyond ±gap.
+    EndStop,
+    /// A seat-frame mass–spring–damper between the base and the cushion.
+    MissingDof,
+    /// A second body mode: part of the heaviest body mass (viscera) on its own spring–damper.
+    BodyMode,
+    /// A backrest (gap.md E7): the upper torso (heaviest body mass) leans on a spring–damper to the
+    /// seat frame, a load path that bypasses the seat pan, so seat→head is no longer body-only.
+    Backrest,
+    /// Feet on the floor (gap.md E9): a legs mass joined to the lowest body mass (pelvis and
+    /// thighs) by a knee spring–damper and to the base by a heel pad (ζ 0.3 each): a load path
+    /// past the seat pan that the seat-pan force does not see.
+    FeetSupport,
+}
+
+impl Candidate {
+    /// Every candidate in report order.
+    pub const ALL: [Candidate; 16] = [
+        Candidate::BodySoftening,
+        Candidate::BodySofteningMagnitude,
+        Candidate::CushionStiffening,
+        Candidate::CushionContact,
+        Candidate::CushionViscoelastic,
+        Candidate::SensorDelay,
+        Candidate::SensorLowpass,
+        Candidate::SensorGain,
+        Candidate::SensorMountSeat,
+        Candidate::SensorMountHead,
+        Candidate::SuspensionFriction,
+        Candidate::EndStop,
+        Candidate::MissingDof,
+        Candidate::BodyMode,
+        Candidate::Backrest,
+        Candidate::FeetSupport,
+    ];
+
+    /// Identifier used in verdicts.
+    pub fn id(self) -> &'static str {
+        match self {
+            Candidate::BodySoftening => "body-softening",
+            Candidate::BodySofteningMagnitude => "body-softening-magnitude",
+            Candidate::CushionStiffening => "cushion-stiffening",
+            Candidate::CushionContact => "cushion-contact",
+            Candidate::CushionViscoelastic => "cushion-viscoelastic",
+            Candidate::SensorDelay => "sensor-delay",
+            Candidate::SensorLowpass => "sensor-lowpass",
+            Candidate::SensorGain => "sensor-gain",
+            Candidate::SensorMountSeat => "sensor-mount-seat",
+            Candidate::SensorMountHead => "sensor-mount-head",
+            Candidate::SuspensionFriction => "suspension-friction",
+            Candidate::EndStop => "end-stop",
+            Candidate::MissingDof => "missing-dof",
+            Candidate::BodyMode => "body-mode",
+            Candidate::Backrest => "backrest",
+            Candidate::FeetSupport => "feet-support",
+        }
+    }
+
+    /// The kind of physics the candidate stands for; candidates of one family are alternative
+    /// forms of the same effect, so a close call between them is not a reason to abstain.
+    pub fn family(self) -> &'static str {
+        match self {
+            Candidate::BodySoftening | Candidate::BodySofteningMagnitude => "body softening",
+            Candidate::CushionStiffening | Candidate::CushionContact => "cushion stiffening",
+            Candidate::CushionViscoelastic => "cushion viscoelasticity",
+            Candidate::SensorDelay
+            | Candidate::SensorLowpass
+            | Candidate::SensorGain
+            | Candidate::SensorMountSeat
+            | Candidate::SensorMountHead => "sensor",
+            Candidate::SuspensionFriction | Candidate::EndStop => "suspension",
+            Candidate::MissingDof | Candidate::BodyMode => "missing degree of freedom",
+            Candidate::Backrest | Candidate::FeetSupport => "second support path",
+        }
+    }
+
+    /// The candidate called `id`.
+    pub fn from_id(id: &str) -> Option<Candidate> {
+        Candidate::ALL.into_iter().find(|c| c.id() == id)
+    }
+
+    /// Whether the system has the part this candidate extends.
+    pub fn applies_to(self, system: &System) -> bool {
+        match self {
+            Candidate::BodySoftening => interface_link(system).is_some(),
+            Candidate::BodySofteningMagnitude => system
+                .links
+                .iter()
+                .any(|l| l.role == Role::Body && matches!(l.element, Element::KelvinVoigt { .. })),
+            Candidate::CushionStiffening
+            | Candidate::CushionContact
+            | Candidate::CushionViscoelastic => !cushion_links(system).is_empty(),
+            Candidate::SuspensionFriction | Candidate::EndStop => {
+                role_link(system, Role::Suspension).is_some()
+            }
+            Candidate::SensorDelay
+            | Candidate::SensorLowpass
+            | Candidate::SensorGain
+            | Candidate::SensorMountSeat => true,
+            Candidate::SensorMountHead => system.channel_index("a_head_z").is_some(),
+            Candidate::MissingDof => cushion_links(system)
+                .iter()
+                .any(|&i| on_base(&system.links[i])),
+            Candidate::BodyMode => heaviest_body_mass(system).is_some(),
+            Candidate::Backrest | Candidate::FeetSupport => support_target(self, system).is_some(),
+        }
+    }
+
+    /// The effect parameters.
+    pub fn params(self) -> Vec<Param> {
+        match self {
+            Candidate::BodySoftening => {
+                vec![Param::new(
+                    "d_ref_m",
+                    2e-4,
+                    0.05,
+                    &[0.001, 0.004, 0.015],
+                    true,
+                )]
+            }
+            Candidate::BodySofteningMagnitude => vec![
+                Param::new("alpha_k", -0.3, 1.0, &[0.0, 0.3], false),
+                Param::new("alpha_c", -0.6, 1.0, &[0.0], false),
+            ],
+            Candidate::CushionStiffening => {
+                vec![Param::new("k3_n_m3", 1e6, 1e12, &[1e8, 3e9, 1e11], true)]
+            }
+            Candidate::CushionContact => {
+                vec![Param::new("d0_m", 1e-4, 1.0, &[0.002, 0.02, 0.2], true)]
+            }
+            Candidate::CushionViscoelastic => vec![
+                Param::new("k_m_over_k", 0.01, 30.0, &[0.3, 2.0], true),
+                Param::new("tau_s", 5e-4, 0.5, &[0.005, 0.05], true),
+            ],
+            // Relative to the base channel, so a lag on the base accelerometer is a negative
+            // delay of both outputs.
+            Candidate::SensorDelay => vec![
+                Param::new("delay_seat_s", -0.05, 0.05, &[0.0], false),
+                Param::new("delay_head_s", -0.05, 0.05, &[0.0], false),
+            ],
+            Candidate::SensorLowpass => vec![
+                Param::new("lowpass_seat_hz", 10.0, 5000.0, &[150.0], true),
+                Param::new("lowpass_head_hz", 10.0, 5000.0, &[150.0], true),
+            ],
+            Candidate::SensorGain => vec![
+                Param::new("gain_base", 0.7, 1.4, &[1.0], true),
+                Param::new("gain_seat", 0.7, 1.4, &[1.0], true),
+                Param::new("gain_head", 0.7, 1.4, &[1.0], true),
+            ],
+            Candidate::SensorMountSeat | Candidate::SensorMountHead => vec![
+                Param::new("f_mount_hz", 8.0, 300.0, &[15.0, 40.0, 120.0], true),
+                Param::new("zeta_mount", 0.01, 0.7, &[0.08], true),
+            ],
+            Candidate::SuspensionFriction => {
+                vec![Param::new("f_c_n", 0.5, 1000.0, &[5.0, 50.0], true)]
+            }
+            Candidate::EndStop => vec![Param::new("gap_m", 5e-4, 0.1, &[0.003, 0.02], true)],
+            Candidate::MissingDof => vec![
+                Param::new("f_frame_hz", 6.0, 80.0, &[12.0, 25.0, 45.0], true),
+                Param::new("zeta_frame", 0.02, 0.7, &[0.1], true),
+                Param::new("m_frame_kg", 1.0, 40.0, &[FRAME_MASS_KG], true),
+            ],
+            Candidate::BodyMode => vec![
+                Param::new("mass_fraction", 0.02, 0.7, &[0.1, 0.3], true),
+                Param::new("f_mode_hz", 2.0, 30.0, &[5.0, 10.0], true),
+                Param::new("zeta_mode", 0.03, 0.8, &[0.25], true),
+            ],
+            Candidate::Backrest => vec![
+                Param::new("f_support_hz", 0.5, 25.0, &[2.0, 6.0], true),
+                Param::new("zeta_support", 0.05, 3.0, &[0.4], true),
+            ],
+            Candidate::FeetSupport => vec![
+                Param::new("m_legs_kg", 1.0, 25.0, &[6.0], true),
+                Param::new("f_knee_hz", 0.5, 25.0, &[2.0, 6.0], true),
+                Param::new("f_heel_hz", 3.0, 60.0, &[12.0], true),
+            ],
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::model::catalog;
+
+    fn system(name: &str) -> System {
+        catalog::resolve(name).unwrap().system().clone()
+    }
+
+    #[test]
+    fn support_paths_act_on_the_torso_and_the_pelvis_of_a_chain_only() {
+        let s = system("reference");
+        let name = |c| support_target(c, &s).map(|i| s.dofs[i].name.clone());
+        assert_eq!(name(Candidate::Backrest).as_deref(), Some("upper_torso"));
+        assert_eq!(name(Candidate::FeetSupport).as_deref(), Some("pelvis"));
+        // A body on a rigid seat already rests its pelvis on the base: no feet path beside it.
+        let bare = system("seed001-bare");
+        assert!(support_target(Candidate::FeetSupport, &bare).is_none());
+        assert!(support_target(Candidate::Backrest, &bare).is_some());
+        // The segment model has its own backrest and footrest (and no point-mass body).
+        let segments = system(catalog::PAPER_000);
+        assert!(!Candidate::Backrest.applies_to(&segments));
+        assert!(!Candidate::FeetSupport.applies_to(&segments));
+    }
+
+    #[test]
+    fn feet_support_adds_a_legs_mass_tuned_to_its_knee_and_heel() {
+        let s = system("reference");
+        let v = Candidate::FeetSupport.apply(&s, &[6.0, 3.0, 12.0]).unwrap();
+        let t = &v.system;
+        assert_eq!(t.dof(), s.dof() + 1);
+        let j = t.dof() - 1;
+        assert_eq!(t.m[(j, j)], 6.0);
+        // With the pelvis held, the legs mass rests on knee and heel in parallel:
+        // ω² = (k_knee + k_heel)/m = (2π)²·(3² + 12²).
+        let k: f64 = t
+            .links
+            .iter()
+            .filter(|l| l.role == Role::Footrest)
+            .map(|l| l.element.static_stiffness())
+            .sum();
+        let w2 = k / 6.0;
+        let expect = (2.0 * PI).powi(2) * (9.0 + 144.0);
+        assert!((w2 / expect - 1.0).abs() < 1e-12, "{w2} vs {expect}");
+        // The seat-pan force still reads the body–seat interface alone.
+        let f = t.channel_index("f_seat_z").unwrap();
+        assert_eq!(t.channels[f].rule, s.channels[f].rule);
+    }
+}

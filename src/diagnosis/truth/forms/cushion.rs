@@ -1,0 +1,175 @@
+//! Cushion truth forms: viscoelastic (standard linear solid, two Maxwell arms, fractional foam as a
+//! Prony series) and stiffening (cubic, quadratic contact, exponential).
+
+use super::*;
+
+/// Plants the cushion `form` with strength `u` (tangent change `t` for stiffening).
+pub(super) fn plant(
+    form: Form,
+    u: f64,
+    t: f64,
+    rng: &mut ChaCha8Rng,
+    model: &mut Chain,
+    lines: &[(f64, f64)],
+) -> Result<String> {
+    let w5 = 2.0 * PI * 5.0;
+    Ok(match form {
+        Form::Sls => {
+            let i = cushion(model);
+            let (k, c) = kv(model, i);
+            let tau = log_uniform(rng, 0.002, 0.06);
+            let share = 0.06 + 0.6 * u;
+            let k_m = share * k / arm_storage(1.0, tau, w5);
+            let keep = uniform(rng, 0.3, 1.0);
+            model.links[i].element = Element::KelvinVoigt { k, c: keep * c };
+            add_arm(model, i, "arm", k_m, tau);
+            format!(
+                "standard linear solid: k_m = {k_m:.0} N/m, τ = {:.1} ms, parallel c ×{keep:.2}",
+                tau * 1e3
+            )
+        }
+        Form::Maxwell2 => {
+            let i = cushion(model);
+            let (k, c) = kv(model, i);
+            let (t1, t2) = (log_uniform(rng, 0.002, 0.01), log_uniform(rng, 0.03, 0.2));
+            let share = 0.06 + 0.6 * u;
+            let split = uniform(rng, 0.3, 0.7);
+            let k1 = split * share * k / arm_storage(1.0, t1, w5);
+            let k2 = (1.0 - split) * share * k / arm_storage(1.0, t2, w5);
+            let keep = uniform(rng, 0.3, 1.0);
+            model.links[i].element = Element::KelvinVoigt { k, c: keep * c };
+            add_arm(model, i, "arm1", k1, t1);
+            add_arm(model, i, "arm2", k2, t2);
+            format!(
+                "two Maxwell arms: {k1:.0} N/m τ {:.1} ms, {k2:.0} N/m τ {:.0} ms, parallel c ×{keep:.2}",
+                t1 * 1e3,
+                t2 * 1e3
+            )
+        }
+        Form::Fractional => {
+            let i = cushion(model);
+            let (k, c) = kv(model, i);
+            let alpha = uniform(rng, 0.2, 0.6);
+            let share = 0.06 + 0.6 * u;
+            let kf = share * k / (alpha * PI / 2.0).cos();
+            let g = |w: f64| {
+                num_complex::Complex64::from_polar(kf * (w / w5).powf(alpha), alpha * PI / 2.0)
+            };
+            // Relaxation times at 0.1–300 Hz (one per half decade) cover the 0.3–100 Hz fit band.
+            let taus: Vec<f64> = [0.1, 0.4, 1.5, 5.0, 18.0, 70.0, 300.0]
+                .iter()
+                .map(|f: &f64| 1.0 / (2.0 * PI * f))
+                .collect();
+            let omegas: Vec<f64> = (0..40)
+                .map(|j| 2.0 * PI * 0.3 * (100.0f64 / 0.3).powf(j as f64 / 39.0))
+                .collect();
+            let gs = prony_fit(&taus, &omegas, g);
+            let keep = uniform(rng, 0.3, 1.0);
+            model.links[i].element = Element::KelvinVoigt { k, c: keep * c };
+            for (j, (&gj, &tj)) in gs.iter().zip(&taus).enumerate() {
+                if gj > 0.0 {
+                    add_arm(model, i, &format!("prony{j}"), gj, tj);
+                }
+            }
+            format!(
+                "fractional foam k_f (iω/ω₅)^α: α = {alpha:.2}, k_f = {kf:.0} N/m (Prony series of {} Maxwell arms, 0.3–100 Hz), parallel c ×{keep:.2}",
+                gs.iter().filter(|&&g| g > 0.0).count()
+            )
+        }
+        Form::Cubic | Form::Contact | Form::Exponential => {
+            let i = cushion(model);
+            let (s, _) = link_sigma(model, i, lines)?;
+            let law = match form {
+                // E[k + 3 k3 d²] = k (1 + t).
+                Form::Cubic => Law::Cubic {
+                    k3: t * kv(model, i).0 / (3.0 * s * s),
+                },
+                // E[k (1 + 2|d|/d0)] = k (1 + 2σ√(2/π)/d0).
+                Form::Contact => Law::Contact {
+                    d0: 2.0 * s * (2.0 / PI).sqrt() / t,
+                },
+                // E[k cosh(d/d0)] = k exp(σ²/(2 d0²)).
+                _ => Law::Exponential {
+                    d0: s / (2.0 * (1.0 + t).ln()).sqrt(),
+                },
+            };
+            model.links[i].law = Some(law);
+            format!(
+                "{law:?} on the cushion (σ_d {:.2} mm at the top magnitude, +{:.0} % tangent)",
+                s * 1e3,
+                100.0 * t
+            )
+        }
+        _ => unreachable!("{form:?} is not a cushion form"),
+    })
+}
+
+/// A Maxwell arm in parallel with link `i` (same nodes), `k_m` N/m, relaxation time `tau` s.
+pub(super) fn add_arm(model: &mut Chain, i: usize, name: &str, k_m: f64, tau: f64) {
+    let l = &model.links[i];
+    model.links.push(Link {
+        name: format!("{}-{name}", l.name),
+        a: l.a,
+        b: l.b,
+        element: Element::Maxwell {
+            k: k_m,
+            c: k_m * tau,
+        },
+        law: None,
+        role: l.role,
+    });
+}
+
+/// Storage stiffness of a Maxwell arm (k_m, τ) at ω: k_m (ωτ)²/(1 + (ωτ)²).
+pub(super) fn arm_storage(k_m: f64, tau: f64, w: f64) -> f64 {
+    let x = (w * tau).powi(2);
+    k_m * x / (1.0 + x)
+}
+
+/// Non-negative least-squares Prony fit of Maxwell arms with fixed relaxation times `taus` to the
+/// complex modulus `g(ω)` on `omegas`, relative error weighting; simple active-set (drop negative
+/// arms and refit), which is enough for six well-separated arms.
+pub fn prony_fit(
+    taus: &[f64],
+    omegas: &[f64],
+    g: impl Fn(f64) -> num_complex::Complex64,
+) -> Vec<f64> {
+    let mut active: Vec<usize> = (0..taus.len()).collect();
+    loop {
+        let n = active.len();
+        let rows = 2 * omegas.len();
+        let mut a = nalgebra::DMatrix::<f64>::zeros(rows, n);
+        let mut b = nalgebra::DVector::<f64>::zeros(rows);
+        for (r, &w) in omegas.iter().enumerate() {
+            let target = g(w);
+            let s = 1.0 / target.norm();
+            for (j, &t) in active.iter().enumerate() {
+                let x = w * taus[t];
+                // iωτ/(1 + iωτ) = (x² + i x)/(1 + x²).
+                a[(2 * r, j)] = s * x * x / (1.0 + x * x);
+                a[(2 * r + 1, j)] = s * x / (1.0 + x * x);
+            }
+            b[2 * r] = s * target.re;
+            b[2 * r + 1] = s * target.im;
+        }
+        let svd = a.svd(true, true);
+        let sol = svd
+            .solve(&b, 1e-12)
+            .unwrap_or_else(|_| nalgebra::DVector::zeros(n));
+        if let Some(j) = (0..n)
+            .filter(|&j| sol[j] < 0.0)
+            .min_by(|&x, &y| sol[x].total_cmp(&sol[y]))
+        {
+            active.remove(j);
+            if active.is_empty() {
+                return vec![0.0; taus.len()];
+            }
+            continue;
+        }
+        let mut out = vec![0.0; taus.len()];
+        for (j, &t) in active.iter().enumerate() {
+            out[t] = sol[j];
+        }
+        return out;
+    }
+}

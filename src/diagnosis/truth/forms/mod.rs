@@ -1,0 +1,407 @@
+//! Truth forms: each unmodelled effect in several functional forms that are *not* the diagnosis
+//! candidates' families (gap.md §4.1; issue 15). This module never calls the candidate code: frame
+//! and viscera insertion, Prony fits and strength targets are written here on their own.
+//!
+//! Strength `u ∈ [0, 1]` maps to a physical size: for the amplitude-dependent forms the change of the
+//! link's Gaussian-equivalent tangent stiffness at the highest run magnitude (3–40 %), for linear
+//! forms a stiffness share, a frequency or a gain step (see each form).
+
+use crate::error::Result;
+use crate::model::{Chain, Element, Law, Link, Mass, Node, Role};
+use rand::RngExt;
+use rand_chacha::ChaCha8Rng;
+use serde::Serialize;
+use std::f64::consts::PI;
+
+mod body;
+mod cushion;
+mod structure;
+
+pub use body::scheduled;
+pub use cushion::prony_fit;
+
+/// Effect families scored by the bench (the diagnosis is right when it names the family).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, PartialOrd, Ord)]
+#[serde(rename_all = "kebab-case")]
+pub enum Family {
+    /// Cushion viscoelasticity (frequency-dependent stiffness and loss).
+    Viscoelastic,
+    /// Cushion stiffening with amplitude.
+    Stiffening,
+    /// Body softening with amplitude (within or between runs).
+    Softening,
+    /// Sensor dynamics or calibration on one channel.
+    Sensor,
+    /// A missing degree of freedom (seat frame, second body mode).
+    MissingDof,
+    /// A second load path from the base to the body (backrest, feet on the floor).
+    SupportPath,
+}
+
+impl Family {
+    /// Every family, in report order.
+    pub const ALL: [Family; 6] = [
+        Family::Viscoelastic,
+        Family::Stiffening,
+        Family::Softening,
+        Family::Sensor,
+        Family::MissingDof,
+        Family::SupportPath,
+    ];
+    /// Name used in reports.
+    pub fn name(self) -> &'static str {
+        match self {
+            Family::Viscoelastic => "viscoelastic",
+            Family::Stiffening => "stiffening",
+            Family::Softening => "softening",
+            Family::Sensor => "sensor",
+            Family::MissingDof => "missing-dof",
+            Family::SupportPath => "support-path",
+        }
+    }
+    /// The family a diagnosis verdict or candidate id belongs to (the scorer's join; `None` for
+    /// `none`, `unexplained`, `not-identifiable` and unknown ids).
+    pub fn of_verdict(id: &str) -> Option<Family> {
+        let id = id.trim();
+        if id.starts_with("sensor-") {
+            Some(Family::Sensor)
+        } else if id.starts_with("cushion-viscoelastic") {
+            Some(Family::Viscoelastic)
+        } else if id.starts_with("cushion-stiffening") || id.starts_with("cushion-contact") {
+            Some(Family::Stiffening)
+        } else if id.starts_with("body-softening") {
+            Some(Family::Softening)
+        } else if id == "missing-dof" || id.starts_with("body-mode") || id.starts_with("seat-frame")
+        {
+            Some(Family::MissingDof)
+        } else if id == "backrest" || id == "feet-support" {
+            Some(Family::SupportPath)
+        } else {
+            None
+        }
+    }
+}
+
+/// One truth form.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, PartialOrd, Ord)]
+#[serde(rename_all = "kebab-case")]
+pub enum Form {
+    /// Standard linear solid with its own relaxation time, keeping a parallel dashpot.
+    Sls,
+    /// Two Maxwell arms (generalized Maxwell) in parallel with the Kelvin–Voigt cushion.
+    Maxwell2,
+    /// Fractional-derivative foam k_f·(iω/ω_r)^α, realised as a Prony series of six Maxwell arms
+    /// least-squares fitted to the fractional modulus over 0.3–100 Hz.
+    Fractional,
+    /// Cubic stiffening `k·d + k3·d³`.
+    Cubic,
+    /// Quadratic contact stiffening `k·d·(1 + |d|/d0)`.
+    Contact,
+    /// Exponential stiffening `k·d0·sinh(d/d0)`.
+    Exponential,
+    /// Saturating body interface `k·d_ref·tanh(d/d_ref)`.
+    Tanh,
+    /// Bilinear body interface (stiffness drops to `ratio·k` beyond a knee).
+    Bilinear,
+    /// Body stiffness scheduled with the run's r.m.s. (linear within a run, softer between runs).
+    Scheduled,
+    /// Pure delay on one output channel.
+    Delay,
+    /// Accelerometer anti-alias low-pass (4-pole Butterworth or Bessel) on one channel.
+    LowPass,
+    /// Sensor mount resonance on one channel.
+    Mount,
+    /// Calibration gain error on one channel.
+    Gain,
+    /// Seat-frame mode between base and cushion.
+    Frame,
+    /// Second body mode: a viscera mass split off the upper torso.
+    Viscera,
+    /// Backrest foam (standard linear solid) from the frame to the upper torso, with a softer
+    /// lumbar contact on the body mass below it.
+    Backrest,
+    /// Feet on the floor: thighs split off the pelvis on a hip joint, lower legs on a knee joint
+    /// and a heel pad to the base.
+    Legs,
+}
+
+impl Form {
+    /// Every form, in report order.
+    pub const ALL: [Form; 17] = [
+        Form::Sls,
+        Form::Maxwell2,
+        Form::Fractional,
+        Form::Cubic,
+        Form::Contact,
+        Form::Exponential,
+        Form::Tanh,
+        Form::Bilinear,
+        Form::Scheduled,
+        Form::Delay,
+        Form::LowPass,
+        Form::Mount,
+        Form::Gain,
+        Form::Frame,
+        Form::Viscera,
+        Form::Backrest,
+        Form::Legs,
+    ];
+    /// The family of the form.
+    pub fn family(self) -> Family {
+        match self {
+            Form::Sls | Form::Maxwell2 | Form::Fractional => Family::Viscoelastic,
+            Form::Cubic | Form::Contact | Form::Exponential => Family::Stiffening,
+            Form::Tanh | Form::Bilinear | Form::Scheduled => Family::Softening,
+            Form::Delay | Form::LowPass | Form::Mount | Form::Gain => Family::Sensor,
+            Form::Frame | Form::Viscera => Family::MissingDof,
+            Form::Backrest | Form::Legs => Family::SupportPath,
+        }
+    }
+    /// The forms of `family`.
+    pub fn of(family: Family) -> Vec<Form> {
+        Form::ALL
+            .into_iter()
+            .filter(|f| f.family() == family)
+            .collect()
+    }
+    /// Name used in reports.
+    pub fn name(self) -> &'static str {
+        match self {
+            Form::Sls => "sls",
+            Form::Maxwell2 => "maxwell-2arm",
+            Form::Fractional => "fractional",
+            Form::Cubic => "cubic",
+            Form::Contact => "contact",
+            Form::Exponential => "exponential",
+            Form::Tanh => "tanh",
+            Form::Bilinear => "bilinear",
+            Form::Scheduled => "scheduled",
+            Form::Delay => "delay",
+            Form::LowPass => "low-pass",
+            Form::Mount => "mount",
+            Form::Gain => "gain",
+            Form::Frame => "frame",
+            Form::Viscera => "viscera",
+            Form::Backrest => "backrest",
+            Form::Legs => "legs",
+        }
+    }
+}
+
+/// A sensor's own dynamics on one channel (applied at the simulation rate, before sampling).
+#[derive(Debug, Clone, PartialEq)]
+pub enum Sensor {
+    /// Pure delay in s.
+    Delay(f64),
+    /// 4-pole low-pass at `fc_hz`; Bessel when `bessel`, else Butterworth.
+    LowPass { fc_hz: f64, bessel: bool },
+    /// Base-excited mount resonance (absolute transmissibility) at `f_hz` with damping ratio `zeta`.
+    Mount { f_hz: f64, zeta: f64 },
+    /// Gain factor (1 = calibrated).
+    Gain(f64),
+}
+
+/// Body stiffness and damping that change with the run's r.m.s. — linear within a run, softer
+/// between runs — in a form that is not the diagnosis's power law: body link `i` has
+/// `k_i·(1 − loss_k·w_i·s)` and `c_i·(1 − loss_c·w_i·s)` with `s = (rms − rms_lo)/(rms_hi − rms_lo)`
+/// linear in the magnitude, per-link weights `w_i` ∈ [0.4, 1] (the links soften unequally) and a
+/// damping loss of either sign.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Schedule {
+    /// Lowest and highest run magnitude (base r.m.s.), m/s².
+    pub rms_lo: f64,
+    /// See `rms_lo`.
+    pub rms_hi: f64,
+    /// Fractional stiffness loss at `rms_hi` for a link of weight one.
+    pub loss_k: f64,
+    /// Fractional damping loss at `rms_hi` for a link of weight one (negative: damping rises).
+    pub loss_c: f64,
+    /// Per-body-link weights, in the order of the model's body links.
+    pub weights: Vec<f64>,
+}
+
+/// What a form planted: changes to the model, a per-run schedule, or a sensor on a channel.
+#[derive(Debug, Clone, Default)]
+pub struct Planted {
+    /// Schedule of the body stiffness between runs.
+    pub schedule: Option<Schedule>,
+    /// Sensor dynamics per channel.
+    pub sensors: Vec<(String, Sensor)>,
+}
+
+/// r.m.s. deflection and rate of a link (m, m/s), from the linear model's exact response to the
+/// run's base spectrum, given as `(frequency Hz, mean square (m/s²)² in that line)` pairs.
+pub fn link_sigma(model: &Chain, link: usize, lines: &[(f64, f64)]) -> Result<(f64, f64)> {
+    let mut m = model.clone();
+    for l in &mut m.links {
+        l.law = None;
+    }
+    let (mut vd, mut vv) = (0.0, 0.0);
+    // The linear model's exact FRF (crate::response::frf), not the diagnosis's predictor.
+    let system = m.system();
+    for &(f, ms) in lines {
+        if f <= 0.0 || ms <= 0.0 {
+            continue;
+        }
+        let xs = crate::response::frf::displacements(&system, f)?;
+        let w2 = (2.0 * PI * f).powi(2);
+        // Base-relative displacement per unit base acceleration (D(ω)·X = −M·r).
+        let x = |n: Node| match n {
+            Node::Base => num_complex::Complex64::new(0.0, 0.0),
+            Node::Mass(i) => xs[i],
+        };
+        let l = &m.links[link];
+        let d2 = (x(l.a) - x(l.b)).norm_sqr() * ms;
+        vd += d2;
+        vv += d2 * w2;
+    }
+    Ok((vd.sqrt(), vv.sqrt()))
+}
+
+/// E[g(σ z)] for z ~ N(0, 1): trapezoid rule on |z| ≤ 7, 2801 points (the truth side's own
+/// quadrature, independent of the diagnosis's statistical linearisation).
+pub fn gauss_mean(sigma: f64, g: impl Fn(f64) -> f64) -> f64 {
+    const N: usize = 2801;
+    let h = 14.0 / (N - 1) as f64;
+    let (mut num, mut den) = (0.0, 0.0);
+    for i in 0..N {
+        let z = -7.0 + i as f64 * h;
+        let w = (-0.5 * z * z).exp();
+        num += w * g(sigma * z);
+        den += w;
+    }
+    num / den
+}
+
+/// Bisection for the x in [lo, hi] where the increasing `f` crosses `target`.
+fn bisect(mut lo: f64, mut hi: f64, target: f64, f: impl Fn(f64) -> f64) -> f64 {
+    for _ in 0..80 {
+        let m = 0.5 * (lo + hi);
+        if f(m) < target { lo = m } else { hi = m }
+    }
+    0.5 * (lo + hi)
+}
+
+fn log_uniform(rng: &mut ChaCha8Rng, lo: f64, hi: f64) -> f64 {
+    (lo.ln() + rng.random::<f64>() * (hi.ln() - lo.ln())).exp()
+}
+
+fn uniform(rng: &mut ChaCha8Rng, lo: f64, hi: f64) -> f64 {
+    lo + rng.random::<f64>() * (hi - lo)
+}
+
+fn kv(model: &Chain, i: usize) -> (f64, f64) {
+    match model.links[i].element {
+        Element::KelvinVoigt { k, c } => (k, c),
+        e => (e.static_stiffness(), e.parallel_damping()),
+    }
+}
+
+/// Indices of the cushion link, the body–seat interface link and the heaviest body mass.
+fn cushion(model: &Chain) -> usize {
+    model
+        .links
+        .iter()
+        .position(|l| l.role == Role::Cushion)
+        .expect("the bench's base model has a cushion")
+}
+
+fn interface(model: &Chain) -> usize {
+    model.measure.interface[0]
+}
+
+/// Plants `form` with strength `u` into `model`; `lines` is the highest-magnitude run's base
+/// spectrum as (Hz, mean square) lines, `fs` the acquisition rate (Hz), `rms` the three runs'
+/// base r.m.s. (train, train, check). Returns what was planted and a description.
+pub fn plant(
+    form: Form,
+    u: f64,
+    rng: &mut ChaCha8Rng,
+    model: &mut Chain,
+    lines: &[(f64, f64)],
+    fs: f64,
+    rms: [f64; 3],
+) -> Result<(Planted, String)> {
+    let mut planted = Planted::default();
+    // Tangent-stiffness change at the highest magnitude for the amplitude-dependent forms.
+    let t = 0.04 + 0.36 * u;
+    let detail = match form {
+        Form::Sls
+        | Form::Maxwell2
+        | Form::Fractional
+        | Form::Cubic
+        | Form::Contact
+        | Form::Exponential => cushion::plant(form, u, t, rng, model, lines)?,
+        Form::Tanh | Form::Bilinear | Form::Scheduled => {
+            body::plant(form, t, rng, model, lines, rms, &mut planted)?
+        }
+        Form::Delay | Form::LowPass | Form::Mount | Form::Gain => {
+            let ch = if rng.random::<f64>() < 0.5 {
+                "a_seat_z"
+            } else {
+                "a_head_z"
+            };
+            let s = match form {
+                Form::Delay => Sensor::Delay(0.001 + 0.019 * u),
+                Form::LowPass => Sensor::LowPass {
+                    fc_hz: (0.4 - 0.2 * u) * fs,
+                    bessel: rng.random::<f64>() < 0.5,
+                },
+                Form::Mount => Sensor::Mount {
+                    f_hz: 100.0 * 0.2f64.powf(u),
+                    zeta: uniform(rng, 0.03, 0.1),
+                },
+                _ => {
+                    let sign = if rng.random::<f64>() < 0.5 { -1.0 } else { 1.0 };
+                    Sensor::Gain(1.0 + sign * (0.03 + 0.07 * u))
+                }
+            };
+            let d = format!("{s:?} on {ch}");
+            planted.sensors.push((ch.into(), s));
+            d
+        }
+        Form::Frame | Form::Viscera | Form::Backrest | Form::Legs => {
+            structure::plant(form, u, rng, model)?
+        }
+    };
+    Ok((planted, detail))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn prony_series_follows_the_fractional_modulus() {
+        // k_f (iω/ω₀)^α with α = 0.4: the seven-arm fit stays within 5 % in 0.3–100 Hz.
+        let w0 = 2.0 * PI * 5.0;
+        let g = |w: f64| num_complex::Complex64::from_polar((w / w0).powf(0.4), 0.2 * PI);
+        let taus: Vec<f64> = [0.1, 0.4, 1.5, 5.0, 18.0, 70.0, 300.0]
+            .iter()
+            .map(|f: &f64| 1.0 / (2.0 * PI * f))
+            .collect();
+        let om: Vec<f64> = (0..40)
+            .map(|j| 2.0 * PI * 0.3 * (100.0f64 / 0.3).powf(j as f64 / 39.0))
+            .collect();
+        let gs = prony_fit(&taus, &om, g);
+        for &w in &om {
+            let fit: num_complex::Complex64 = gs
+                .iter()
+                .zip(&taus)
+                .map(|(&k, &t)| {
+                    let iwt = num_complex::Complex64::new(0.0, w * t);
+                    k * iwt / (1.0 + iwt)
+                })
+                .sum();
+            let rel = ((fit - g(w)) / g(w)).norm();
+            assert!(rel < 0.05, "{} Hz: {rel}", w / (2.0 * PI));
+        }
+    }
+
+    #[test]
+    fn verdict_families() {
+        assert_eq!(Family::of_verdict("sensor-gain"), Some(Family::Sensor));
+        assert_eq!(Family::of_verdict("body-mode"), Some(Family::MissingDof));
+        assert_eq!(Family::of_verdict("none"), None);
+    }
+}

@@ -1,0 +1,181 @@
+//! Structural truth forms: a seat-frame mode, a viscera mode, a backrest and legs on the floor.
+
+use super::*;
+
+/// Plants the structural `form` with strength `u`.
+pub(super) fn plant(form: Form, u: f64, rng: &mut ChaCha8Rng, model: &mut Chain) -> Result<String> {
+    Ok(match form {
+        Form::Frame => {
+            let i = cushion(model);
+            let mf = uniform(rng, 3.0, 15.0);
+            let f = 40.0 - 32.0 * u;
+            let z = uniform(rng, 0.03, 0.15);
+            let j = model.masses.len();
+            model.masses.push(Mass {
+                name: "truth-frame".into(),
+                m: mf,
+                role: Role::Frame,
+            });
+            let l = &mut model.links[i];
+            if l.b == Node::Base {
+                l.b = Node::Mass(j);
+            } else if l.a == Node::Base {
+                l.a = Node::Mass(j);
+            }
+            let w = 2.0 * PI * f;
+            model.links.push(Link {
+                name: "truth-frame".into(),
+                a: Node::Mass(j),
+                b: Node::Base,
+                element: Element::KelvinVoigt {
+                    k: mf * w * w,
+                    c: 2.0 * z * mf * w,
+                },
+                law: None,
+                role: Role::Frame,
+            });
+            format!("seat frame {mf:.1} kg at {f:.1} Hz, ζ = {z:.3}")
+        }
+        Form::Viscera => {
+            let (ti, tm) = heaviest_body(model);
+            let phi = 0.1 + 0.3 * u;
+            let f = uniform(rng, 5.0, 12.0);
+            let z = uniform(rng, 0.15, 0.35);
+            let mv = phi * tm;
+            model.masses[ti].m = tm - mv;
+            let j = model.masses.len();
+            model.masses.push(Mass {
+                name: "truth-viscera".into(),
+                m: mv,
+                role: Role::Body,
+            });
+            let w = 2.0 * PI * f;
+            model.links.push(Link {
+                name: "truth-viscera".into(),
+                a: Node::Mass(j),
+                b: Node::Mass(ti),
+                element: Element::KelvinVoigt {
+                    k: mv * w * w,
+                    c: 2.0 * z * mv * w,
+                },
+                law: None,
+                role: Role::Body,
+            });
+            format!(
+                "viscera {mv:.1} kg ({:.0} % of {}) at {f:.1} Hz, ζ = {z:.2}",
+                100.0 * phi,
+                model.masses[ti].name
+            )
+        }
+        Form::Backrest => {
+            let (ti, tm) = heaviest_body(model);
+            let f = 1.5 + 4.5 * u;
+            let kb = tm * (2.0 * PI * f).powi(2);
+            let share = uniform(rng, 0.3, 1.5);
+            let tau = log_uniform(rng, 0.005, 0.05);
+            model.links.push(Link {
+                name: "truth-backrest".into(),
+                a: Node::Mass(ti),
+                b: Node::Base,
+                element: Element::Zener {
+                    k: kb,
+                    k_m: share * kb,
+                    c_m: share * kb * tau,
+                },
+                law: None,
+                role: Role::Backrest,
+            });
+            // The lumbar contact: a third of the stiffness on the body mass below, ζ 0.3.
+            let below = model
+                .links
+                .iter()
+                .find(|l| l.role == Role::Body && l.a == Node::Mass(ti))
+                .map(|l| l.b);
+            if let Some(Node::Mass(j)) = below {
+                let kl = kb / 3.0;
+                model.links.push(Link {
+                    name: "truth-lumbar".into(),
+                    a: Node::Mass(j),
+                    b: Node::Base,
+                    element: Element::KelvinVoigt {
+                        k: kl,
+                        c: 0.6 * (kl * model.masses[j].m).sqrt(),
+                    },
+                    law: None,
+                    role: Role::Backrest,
+                });
+            }
+            format!(
+                "backrest foam on {} at {f:.1} Hz (SLS: k {kb:.0} N/m, arm ×{share:.2}, τ {:.0} ms) plus a lumbar contact of k/3",
+                model.masses[ti].name,
+                tau * 1e3
+            )
+        }
+        Form::Legs => {
+            let p = model.links[interface(model)].a;
+            let Node::Mass(pi) = p else {
+                return Err(crate::error::Error::parameter(
+                    "legs",
+                    "the bench's base model has no body mass on the seat",
+                ));
+            };
+            // Thighs split off the pelvis on a hip joint, the lower legs on a knee joint to the
+            // thighs and a heel pad to the floor: two masses the candidate's one legs mass only
+            // approximates.
+            let phi = uniform(rng, 0.25, 0.45);
+            let mt = phi * model.masses[pi].m;
+            model.masses[pi].m -= mt;
+            let ml = uniform(rng, 4.0, 9.0);
+            let (fhip, fk, fh) = (
+                uniform(rng, 8.0, 15.0),
+                1.5 + 6.5 * u,
+                uniform(rng, 8.0, 20.0),
+            );
+            let (zk, zh) = (uniform(rng, 0.2, 0.5), uniform(rng, 0.2, 0.4));
+            let (jt, jl) = (model.masses.len(), model.masses.len() + 1);
+            for (name, m) in [("truth-thighs", mt), ("truth-legs", ml)] {
+                model.masses.push(Mass {
+                    name: name.into(),
+                    m,
+                    role: Role::Footrest,
+                });
+            }
+            let kv_link = |name: &str, a: Node, b: Node, m: f64, f: f64, z: f64| {
+                let w = 2.0 * PI * f;
+                Link {
+                    name: name.into(),
+                    a,
+                    b,
+                    element: Element::KelvinVoigt {
+                        k: m * w * w,
+                        c: 2.0 * z * m * w,
+                    },
+                    law: None,
+                    role: Role::Footrest,
+                }
+            };
+            model.links.extend([
+                kv_link("truth-hip", Node::Mass(pi), Node::Mass(jt), mt, fhip, 0.3),
+                kv_link("truth-knee", Node::Mass(jt), Node::Mass(jl), ml, fk, zk),
+                kv_link("truth-heel", Node::Mass(jl), Node::Base, ml, fh, zh),
+            ]);
+            format!(
+                "thighs {mt:.1} kg ({:.0} % of {}) on a {fhip:.1} Hz hip, legs {ml:.1} kg on the floor: knee {fk:.1} Hz (ζ {zk:.2}), heel pad {fh:.1} Hz (ζ {zh:.2})",
+                100.0 * phi,
+                model.masses[pi].name
+            )
+        }
+        _ => unreachable!("{form:?} is not a structural form"),
+    })
+}
+
+/// Index and mass (kg) of the heaviest body mass.
+pub(super) fn heaviest_body(model: &Chain) -> (usize, f64) {
+    model
+        .masses
+        .iter()
+        .enumerate()
+        .filter(|(_, m)| m.role == Role::Body)
+        .map(|(i, m)| (i, m.m))
+        .fold((0, 0.0), |a, b| if b.1 > a.1 { b } else { a })
+}
