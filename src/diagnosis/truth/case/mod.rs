@@ -6,6 +6,11 @@
 //! in the [`Case`] and only read by the scorer.
 
 use super::forms::{self, Family, Form, Planted, Sensor};
+use acquire::{measure, simulate};
+use detect::detectability;
+
+mod acquire;
+mod detect;
 use crate::analysis::spectrum::{Segment, Welch, WelchOptions};
 use crate::error::Result;
 use crate::excitation::{ExcitationSpec, Kind};
@@ -190,121 +195,6 @@ fn perturb(model: &mut Chain, rng: &mut ChaCha8Rng) -> f64 {
         }
     }
     100.0 * worst
-}
-
-/// Simulates one noise-free run at the internal rate, applies the sensors there, and samples it at
-/// `fs` (every `step`-th sample); channels in the collector's order.
-fn simulate(
-    model: &Chain,
-    exc: &ExcitationSpec,
-    fs: f64,
-    duration_s: f64,
-    seed: u64,
-    sensors: &[(String, Sensor)],
-) -> Result<Signals> {
-    let step = (SIM_RATE / fs).ceil().max(1.0) as usize;
-    let fs_sim = fs * step as f64;
-    let sc = Scenario {
-        model: crate::model::Model::from_chain(model.clone()),
-        excitation: exc.clone(),
-        settings: Settings {
-            dt: 1.0 / fs_sim,
-            duration_s,
-            method: Method::AVERAGE_ACCELERATION,
-        },
-        seed,
-    };
-    let full = sc.signals()?;
-    let mut out = Signals::new(fs, format!("bench run (seed {seed})"));
-    for (name, data) in full.names.iter().zip(&full.data) {
-        let mut x = data.clone();
-        for (ch, s) in sensors {
-            if ch == name {
-                super::sensor::apply(s, &mut x, fs_sim);
-            }
-        }
-        out.push(name.clone(), x.iter().step_by(step).copied().collect())?;
-    }
-    Ok(out)
-}
-
-/// Adds white noise of `level` × channel r.m.s. and drops `f_seat_z` when `force` is false.
-fn measure(
-    s: &Signals,
-    level: f64,
-    force: bool,
-    rng: &mut ChaCha8Rng,
-    name: String,
-) -> Result<Signals> {
-    let mut out = Signals::new(s.sample_rate_hz, name);
-    for (n, d) in s.names.iter().zip(&s.data) {
-        if !matches!(
-            n.as_str(),
-            "a_base_z" | "a_seat_z" | "a_head_z" | "f_seat_z"
-        ) {
-            continue;
-        }
-        if n == "f_seat_z" && !force {
-            continue;
-        }
-        let sd = level * crate::analysis::figures::rms(d);
-        out.push(
-            n.clone(),
-            d.iter()
-                .map(|v| v + sd * rng.sample::<f64, _>(StandardNormal))
-                .collect(),
-        )?;
-    }
-    Ok(out)
-}
-
-/// The bench's Welch resolution for a run of `duration_s`: 0.25 Hz, coarser for short runs so that
-/// every estimate has ≥ 23 averages.
-fn resolution(duration_s: f64) -> f64 {
-    (12.0 / duration_s).max(0.25)
-}
-
-/// Detectability of the planted effects in the check run (see [`Label::detectability`]).
-fn detectability(truth: &Signals, without: &Signals, measured: &Signals) -> Result<f64> {
-    let fs = measured.sample_rate_hz;
-    let opts = WelchOptions {
-        segment: Segment::ResolutionHz(resolution(measured.duration_s())),
-        ..WelchOptions::default()
-    };
-    let mut w = Welch::new(fs, &opts)?;
-    let mut worst = 0.0f64;
-    for (x, y) in [
-        ("a_base_z", "a_seat_z"),
-        ("a_seat_z", "a_head_z"),
-        ("a_seat_z", "f_seat_z"),
-    ] {
-        let (Some(mx), Some(my)) = (measured.get(x), measured.get(y)) else {
-            continue;
-        };
-        let m = w.cross(mx, my)?;
-        let a = w.cross(truth.require(x)?, truth.require(y)?)?;
-        let b = w.cross(without.require(x)?, without.require(y)?)?;
-        let (coh, ha, hb) = (m.coherence(), a.h1(), b.h1());
-        let l = m.segments.max(1) as f64;
-        let (mut sum, mut n) = (0.0, 0usize);
-        for i in 0..m.freq_hz.len() {
-            let f = m.freq_hz[i];
-            if !(0.45..=35.5).contains(&f) || coh[i] < 0.8 {
-                continue;
-            }
-            let g = coh[i];
-            let var = (1.0 - g) / (2.0 * g * l) + 1e-4;
-            let z = (ha[i] / hb[i]).ln();
-            if z.re.is_finite() && z.im.is_finite() {
-                sum += z.norm_sqr() / var;
-                n += 1;
-            }
-        }
-        if n > 0 {
-            worst = worst.max((sum / n as f64).sqrt());
-        }
-    }
-    Ok(worst)
 }
 
 /// What case `index` of a bench with master `seed` plants: `None` for every seventh case, otherwise

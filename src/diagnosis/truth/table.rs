@@ -1,0 +1,312 @@
+//! The bench's summary: rows by family, form, nuisance and strength tier, the confusion of
+//! verdicts, the acceptance rule of issue 15, and its text and Markdown tables.
+
+use super::*;
+
+/// One row of a summary table.
+#[derive(Debug, Clone, Serialize)]
+pub struct Row {
+    /// Grouping (`family`, `form`, `nuisance`, `tier`).
+    pub group: String,
+    /// Row key.
+    pub key: String,
+    /// Cases in the row.
+    pub cases: usize,
+    /// Top-1 rate.
+    pub top1: f64,
+    /// Top-2 rate.
+    pub top2: f64,
+    /// Cases above the detectability threshold.
+    pub detectable: usize,
+    /// Top-1 rate above the detectability threshold.
+    pub top1_detectable: Option<f64>,
+    /// Median fraction closed by the truth's family (cases where it was fitted).
+    pub median_closed: Option<f64>,
+    /// Cases that ended in an error.
+    pub errors: usize,
+}
+
+/// The bench summary.
+#[derive(Debug, Clone, Serialize)]
+pub struct Summary {
+    /// Cases.
+    pub cases: usize,
+    /// Master seed.
+    pub seed: u64,
+    /// Wall time of the whole bench, s.
+    pub wall_s: f64,
+    /// Detectability threshold.
+    pub detectable_threshold: f64,
+    /// `none` false-positive rate on no-effect cases (verdict other than `none`, errors included).
+    pub none_false_positive_rate: Option<f64>,
+    /// No-effect cases.
+    pub null_cases: usize,
+    /// Cases that ended in an error.
+    pub errors: usize,
+    /// Rows by family, form, nuisance and tier.
+    pub rows: Vec<Row>,
+    /// Confusion counts (truth family → verdict, count).
+    pub confusion: Vec<(String, String, usize)>,
+    /// Median diagnosis wall time per case, s.
+    pub median_diagnosis_s: f64,
+}
+
+fn median(mut v: Vec<f64>) -> Option<f64> {
+    if v.is_empty() {
+        return None;
+    }
+    v.sort_by(f64::total_cmp);
+    let n = v.len();
+    Some(if n % 2 == 1 {
+        v[n / 2]
+    } else {
+        0.5 * (v[n / 2 - 1] + v[n / 2])
+    })
+}
+
+fn row(group: &str, key: String, c: &[&CaseScore]) -> Row {
+    let n = c.len().max(1) as f64;
+    let det: Vec<&&CaseScore> = c
+        .iter()
+        .filter(|s| s.tier == "medium" || s.tier == "strong")
+        .collect();
+    Row {
+        group: group.into(),
+        key,
+        cases: c.len(),
+        top1: c.iter().filter(|s| s.top1).count() as f64 / n,
+        top2: c.iter().filter(|s| s.top2_hit).count() as f64 / n,
+        detectable: det.len(),
+        top1_detectable: (!det.is_empty())
+            .then(|| det.iter().filter(|s| s.top1).count() as f64 / det.len() as f64),
+        median_closed: median(c.iter().filter_map(|s| s.fraction_closed).collect()),
+        errors: c.iter().filter(|s| s.error.is_some()).count(),
+    }
+}
+
+/// Summarises case scores.
+pub fn summary(scores: &[CaseScore], seed: u64, wall_s: f64) -> Summary {
+    let mut rows = Vec::new();
+    let effect: Vec<&CaseScore> = scores
+        .iter()
+        .filter(|s| !s.label.effects.is_empty())
+        .collect();
+    for f in Family::ALL {
+        let c: Vec<&CaseScore> = effect
+            .iter()
+            .copied()
+            .filter(|s| s.label.effects[0].family == f)
+            .collect();
+        if !c.is_empty() {
+            rows.push(row("family", f.name().into(), &c));
+        }
+    }
+    for f in Form::ALL {
+        let c: Vec<&CaseScore> = effect
+            .iter()
+            .copied()
+            .filter(|s| s.label.effects[0].form == f)
+            .collect();
+        if !c.is_empty() {
+            rows.push(row(
+                "form",
+                format!("{}/{}", f.family().name(), f.name()),
+                &c,
+            ));
+        }
+    }
+    type Pred = Box<dyn Fn(&CaseScore) -> bool>;
+    let nuisances: Vec<(String, Pred)> = vec![
+        (
+            "spectrum white".into(),
+            Box::new(|s: &CaseScore| s.label.nuisance.spectrum == "white"),
+        ),
+        (
+            "spectrum helicopter".into(),
+            Box::new(|s: &CaseScore| s.label.nuisance.spectrum == "helicopter"),
+        ),
+        (
+            "spectrum road".into(),
+            Box::new(|s: &CaseScore| s.label.nuisance.spectrum == "road"),
+        ),
+        (
+            "spectrum shaped".into(),
+            Box::new(|s: &CaseScore| s.label.nuisance.spectrum == "shaped"),
+        ),
+        (
+            "fs ≤ 256 Hz".into(),
+            Box::new(|s: &CaseScore| s.label.nuisance.fs_hz <= 256.0),
+        ),
+        (
+            "fs 500–512 Hz".into(),
+            Box::new(|s: &CaseScore| (500.0..=512.0).contains(&s.label.nuisance.fs_hz)),
+        ),
+        (
+            "fs ≥ 1000 Hz".into(),
+            Box::new(|s: &CaseScore| s.label.nuisance.fs_hz >= 1000.0),
+        ),
+        (
+            "duration < 120 s".into(),
+            Box::new(|s: &CaseScore| s.label.nuisance.duration_s < 120.0),
+        ),
+        (
+            "duration ≥ 120 s".into(),
+            Box::new(|s: &CaseScore| s.label.nuisance.duration_s >= 120.0),
+        ),
+        (
+            "noise < 1.5 %".into(),
+            Box::new(|s: &CaseScore| s.label.nuisance.noise_percent < 1.5),
+        ),
+        (
+            "noise ≥ 1.5 %".into(),
+            Box::new(|s: &CaseScore| s.label.nuisance.noise_percent >= 1.5),
+        ),
+        (
+            "with f_seat_z".into(),
+            Box::new(|s: &CaseScore| s.label.nuisance.force),
+        ),
+        (
+            "without f_seat_z".into(),
+            Box::new(|s: &CaseScore| !s.label.nuisance.force),
+        ),
+        (
+            "mass error ≥ 7 %".into(),
+            Box::new(|s: &CaseScore| s.label.nuisance.mass_error_percent >= 7.0),
+        ),
+        (
+            "two effects".into(),
+            Box::new(|s: &CaseScore| s.label.effects.len() > 1),
+        ),
+    ];
+    for (k, p) in &nuisances {
+        let c: Vec<&CaseScore> = effect.iter().copied().filter(|s| p(s)).collect();
+        if !c.is_empty() {
+            rows.push(row("nuisance", k.clone(), &c));
+        }
+    }
+    for t in ["weak", "medium", "strong"] {
+        let c: Vec<&CaseScore> = effect.iter().copied().filter(|s| s.tier == t).collect();
+        if !c.is_empty() {
+            rows.push(row("tier", t.into(), &c));
+        }
+    }
+    let nulls: Vec<&CaseScore> = scores
+        .iter()
+        .filter(|s| s.label.effects.is_empty())
+        .collect();
+    for (k, p) in &nuisances {
+        let c: Vec<&CaseScore> = nulls.iter().copied().filter(|s| p(s)).collect();
+        if !c.is_empty() && !k.starts_with("two") {
+            rows.push(row("null", k.clone(), &c));
+        }
+    }
+    let mut confusion: Vec<(String, String, usize)> = Vec::new();
+    for s in scores {
+        let t = s
+            .label
+            .effects
+            .first()
+            .map_or("none".to_string(), |e| e.family.name().to_string());
+        let v = s
+            .named
+            .first()
+            .and_then(|n| Family::of_verdict(n))
+            .map_or(s.verdict.clone(), |f| f.name().to_string());
+        match confusion.iter_mut().find(|c| c.0 == t && c.1 == v) {
+            Some(c) => c.2 += 1,
+            None => confusion.push((t, v, 1)),
+        }
+    }
+    confusion.sort();
+    Summary {
+        cases: scores.len(),
+        seed,
+        wall_s,
+        detectable_threshold: DETECTABLE,
+        none_false_positive_rate: (!nulls.is_empty()).then(|| {
+            nulls.iter().filter(|s| s.verdict != "none").count() as f64 / nulls.len() as f64
+        }),
+        null_cases: nulls.len(),
+        errors: scores.iter().filter(|s| s.error.is_some()).count(),
+        rows,
+        confusion,
+        median_diagnosis_s: median(scores.iter().map(|s| s.diagnosis_s).collect()).unwrap_or(0.0),
+    }
+}
+
+impl Summary {
+    /// The acceptance check of issue 15: per family top-1 ≥ 0.9 above the detectability threshold,
+    /// `none` false positives ≤ 0.1, no errors. Returns the failed conditions.
+    pub fn failures(&self) -> Vec<String> {
+        let mut out = Vec::new();
+        for r in self.rows.iter().filter(|r| r.group == "family") {
+            if let Some(a) = r.top1_detectable
+                && a < 0.9
+            {
+                out.push(format!(
+                    "family {}: top-1 {a:.2} < 0.90 on {} detectable cases",
+                    r.key, r.detectable
+                ));
+            }
+        }
+        if let Some(fp) = self.none_false_positive_rate
+            && fp > 0.1
+        {
+            out.push(format!("`none` false-positive rate {fp:.2} > 0.10"));
+        }
+        if self.errors > 0 {
+            out.push(format!("{} cases ended in an error", self.errors));
+        }
+        out
+    }
+
+    /// A Markdown table (the README's).
+    pub fn markdown(&self) -> String {
+        let f = |x: Option<f64>| x.map_or("–".to_string(), |v| format!("{v:.2}"));
+        let mut out = format!(
+            "`wbv gap-bench --cases {} --seed {}`: {} cases ({} without an effect), wall time {:.0} s on this 2-core machine, median diagnosis {:.1} s; detectability threshold {:.1}; `none` false-positive rate {}; {} errors.\n\n",
+            self.cases,
+            self.seed,
+            self.cases,
+            self.null_cases,
+            self.wall_s,
+            self.median_diagnosis_s,
+            self.detectable_threshold,
+            f(self.none_false_positive_rate),
+            self.errors
+        );
+        out += "| group | row | cases | top-1 | top-2 | detectable | top-1 detectable | median closed | errors |\n";
+        out += "|---|---|---:|---:|---:|---:|---:|---:|---:|\n";
+        for r in &self.rows {
+            out += &format!(
+                "| {} | {} | {} | {:.2} | {:.2} | {} | {} | {} | {} |\n",
+                r.group,
+                r.key,
+                r.cases,
+                r.top1,
+                r.top2,
+                r.detectable,
+                f(r.top1_detectable),
+                f(r.median_closed),
+                r.errors
+            );
+        }
+        out
+    }
+
+    /// Readable text: the table plus the confusion counts.
+    pub fn text(&self) -> String {
+        let mut out = self.markdown();
+        out += "\nconfusion (first planted family → named family or verdict: count)\n";
+        for (t, v, n) in &self.confusion {
+            out += &format!("  {t:<14} → {v:<18} {n}\n");
+        }
+        let fails = self.failures();
+        if fails.is_empty() {
+            out += "acceptance (issue 15): met\n";
+        } else {
+            out += &format!("acceptance (issue 15): NOT met — {}\n", fails.join("; "));
+        }
+        out
+    }
+}
