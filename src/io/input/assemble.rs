@@ -138,12 +138,9 @@ pub(crate) fn assemble(raw: Raw, source: &str, opts: &Options) -> Result<Input> 
     }
     // Sample rate.
     let (fs, rate_note) = match (&timing, time, opts.fs) {
-        (Timing::Rate { .. }, _, Some(_)) | (Timing::Stamps { .. }, _, Some(_)) => {
+        (Timing::Rate { .. }, _, Some(given)) | (Timing::Stamps { .. }, _, Some(given)) => {
             if matches!(timing, Timing::Stamps { .. }) {
-                (
-                    opts.fs.unwrap(),
-                    Some("time stamps ignored: --fs given".to_string()),
-                )
+                (given, Some("time stamps ignored: --fs given".to_string()))
             } else {
                 return Err(refuse(
                     "--fs",
