@@ -33,11 +33,6 @@ pub(super) fn kv_link(
 /// pelvis and thighs) for the feet. `None` when the model has no such point mass of its own or
 /// already carries that body on a link to the base (a segment model's backrest and footrest).
 pub fn support_target(c: Candidate, system: &System) -> Option<usize> {
-    let point = |i: usize| {
-        system.dofs[i].role == Role::Body
-            && system.dofs[i].unit == Unit::Metre
-            && (0..system.dof()).all(|j| j == i || system.m[(i, j)] == 0.0)
-    };
     let is_body = |name: &str| {
         system
             .dofs
@@ -51,7 +46,7 @@ pub fn support_target(c: Candidate, system: &System) -> Option<usize> {
             .iter()
             .filter(|l| l.role == Role::Body && !is_body(&l.nodes.1))
             .find_map(|l| system.dofs.iter().position(|d| d.name == l.nodes.0))
-            .filter(|&i| point(i)),
+            .filter(|&i| body_point_mass(system, i)),
         _ => None,
     }?;
     let name = &system.dofs[target].name;
@@ -66,11 +61,17 @@ pub fn support_target(c: Candidate, system: &System) -> Option<usize> {
 /// translation): the upper torso in the reference body; `None` for a segment model, whose
 /// coordinates share inertia.
 pub fn heaviest_body_mass(system: &System) -> Option<usize> {
-    let n = system.dof();
-    (0..n)
-        .filter(|&i| system.dofs[i].role == Role::Body && system.dofs[i].unit == Unit::Metre)
-        .filter(|&i| (0..n).all(|j| j == i || system.m[(i, j)] == 0.0))
+    (0..system.dof())
+        .filter(|&i| body_point_mass(system, i))
         .max_by(|&a, &b| system.m[(a, a)].total_cmp(&system.m[(b, b)]))
+}
+
+/// Whether coordinate `i` is a body translation with a point mass of its own (its row of M is
+/// diagonal), so a candidate can split it or hang a link on it.
+fn body_point_mass(system: &System, i: usize) -> bool {
+    system.dofs[i].role == Role::Body
+        && system.dofs[i].unit == Unit::Metre
+        && (0..system.dof()).all(|j| j == i || system.m[(i, j)] == 0.0)
 }
 
 /// Appends a translational coordinate of mass `mass_kg` with base influences `r`, `r_x` (no
