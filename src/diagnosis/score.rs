@@ -67,13 +67,22 @@ pub fn chi2(v: &Variant, runs: &[RunSpectra]) -> Result<f64> {
     Ok(r.iter().map(|x| x * x).sum())
 }
 
-/// Fraction of the structural gap closed, FGC = (D₀ − D)/(D₀ − 1) with D the reduced χ² after the
-/// null re-fit (D₀) and after the effect, 1 the noise floor; clipped to [0, 1] (gap.md §3.7).
-pub fn fraction_closed(d_null: f64, d_new: f64) -> f64 {
-    if d_null <= 1.0 {
+/// Fraction of the structural gap closed, FGC = (D₀ − D)/(D₀ − D_f) with D the reduced χ² after the
+/// null re-fit (D₀) and after the effect, D_f the noise floor; clipped to [0, 1] (gap.md §3.7).
+pub fn fraction_closed(d_null: f64, d_new: f64, floor: f64) -> f64 {
+    if d_null <= floor {
         return 0.0;
     }
-    ((d_null - d_new) / (d_null - 1.0)).clamp(0.0, 1.0)
+    ((d_null - d_new) / (d_null - floor)).clamp(0.0, 1.0)
+}
+
+/// The floor a structural gap is measured down to: 1 (the noise level σ stands for) when the null
+/// re-fit's reduced χ² `d_null` is above it; else 0, so that the fraction closed is the relative
+/// fall of χ². Clean, coherent data have σ set by [`FLOOR`], which is conservative, so a right
+/// model's reduced χ² falls below 1, and measuring down to 1 would call a residue that a clearly
+/// better model removes (null 0.74 → backrest 0.32) "no gap".
+pub fn gap_floor(d_null: f64) -> f64 {
+    if d_null > 1.0 { 1.0 } else { 0.0 }
 }
 
 #[cfg(test)]
@@ -92,9 +101,13 @@ mod tests {
 
     #[test]
     fn fraction_closed_is_clipped() {
-        assert_eq!(fraction_closed(11.0, 1.0), 1.0);
-        assert_eq!(fraction_closed(11.0, 6.0), 0.5);
-        assert_eq!(fraction_closed(11.0, 20.0), 0.0);
-        assert_eq!(fraction_closed(0.9, 0.5), 0.0);
+        assert_eq!(fraction_closed(11.0, 1.0, 1.0), 1.0);
+        assert_eq!(fraction_closed(11.0, 6.0, 1.0), 0.5);
+        assert_eq!(fraction_closed(11.0, 20.0, 1.0), 0.0);
+        assert_eq!(fraction_closed(0.9, 0.5, 1.0), 0.0);
+        // Below a conservative σ's floor the gap is measured down to the best fit.
+        assert_eq!(gap_floor(3.0), 1.0);
+        assert_eq!(gap_floor(0.9), 0.0);
+        assert!((fraction_closed(0.8, 0.6, gap_floor(0.8)) - 0.25).abs() < 1e-12);
     }
 }

@@ -164,6 +164,21 @@ impl Candidate {
         }
     }
 
+    /// Whether the effect changes with the run's magnitude (a nonlinear law or a magnitude
+    /// schedule): such an effect fitted on two training magnitudes may interpolate a held-out run
+    /// between them worse than the truth does, so it is also judged on all runs together.
+    pub fn amplitude_dependent(self) -> bool {
+        matches!(
+            self,
+            Candidate::BodySoftening
+                | Candidate::BodySofteningMagnitude
+                | Candidate::CushionStiffening
+                | Candidate::CushionContact
+                | Candidate::SuspensionFriction
+                | Candidate::EndStop
+        )
+    }
+
     /// The candidate called `id`.
     pub fn from_id(id: &str) -> Option<Candidate> {
         Candidate::ALL.into_iter().find(|c| c.id() == id)
