@@ -12,7 +12,7 @@ pub struct Args {
     /// Master seed.
     #[arg(long, default_value_t = 1)]
     seed: u64,
-    /// Print every case and the summary as JSON.
+    /// Print every case and the summary as JSON (with the Markdown table as `markdown`).
     #[arg(long)]
     json: bool,
     /// Print only the summary as a Markdown table (the README's).
@@ -30,7 +30,7 @@ pub fn run(args: Args) -> crate::Result<()> {
     if args.json {
         super::print_json(
             "gap-bench",
-            &serde_json::json!({"cases": scores, "summary": s}),
+            &serde_json::json!({"cases": scores, "summary": s, "markdown": s.markdown()}),
             &[],
         )?;
     } else if args.markdown {
