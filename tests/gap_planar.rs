@@ -6,7 +6,9 @@
 //! (a real subject is never the model's), a foam relaxation planted as a standard linear solid on
 //! the contacts' *normal* axes only with its own relaxation time and a lower parallel damping —
 //! not the candidate's form, which puts one Maxwell arm of one ratio on every cushion axis —
-//! simulated in the time domain at 2 kHz, sampled at 500 Hz and measured with 1 % noise.
+//! simulated in the time domain at 2 kHz, sampled at 500 Hz and measured with 1 % noise. A second
+//! foam is fractional-derivative (a power-law relaxation spectrum of fourteen Maxwell arms), a
+//! form outside the candidate's family.
 
 use rand::{RngExt, SeedableRng};
 use rand_chacha::ChaCha8Rng;
@@ -68,6 +70,47 @@ fn plant_sls(system: &mut System, ratio: (f64, f64), tau_s: f64, c_scale: f64) {
             record_deflection: false,
             ..l
         });
+    }
+}
+
+/// A fractional-derivative foam under each cushion contact, k_f·(iω)^α: Maxwell arms with
+/// relaxation times three per decade over 0.05–500 Hz whose stiffnesses follow the power law's
+/// relaxation spectrum, k_j ∝ τ_j^(−α) (the discrete form of G(t) ∝ t^(−α)), scaled so that their
+/// storage stiffness at 5 Hz is `share.0`·k on the normal axes and `share.1`·k in shear; the
+/// normal axes' parallel damping scaled by `c_scale`. Neither the candidate's single arm nor the
+/// bench's least-squares Prony fit.
+fn plant_fractional(system: &mut System, alpha: f64, share: (f64, f64), c_scale: f64) {
+    let w5 = 2.0 * std::f64::consts::PI * 5.0;
+    let taus: Vec<f64> = (0..=13)
+        .map(|j| 1.0 / (2.0 * std::f64::consts::PI * 0.05 * 10f64.powf(j as f64 / 3.0)))
+        .collect();
+    // Storage stiffness at 5 Hz of arms with unit scale.
+    let storage: f64 = taus
+        .iter()
+        .map(|&t| t.powf(-alpha) * (w5 * t).powi(2) / (1.0 + (w5 * t).powi(2)))
+        .sum();
+    let cushion: Vec<usize> = (0..system.links.len())
+        .filter(|&i| system.links[i].role == wbv::system::Role::Cushion)
+        .collect();
+    for i in cushion {
+        let l = system.links[i].clone();
+        let Element::KelvinVoigt { k, c } = l.element else {
+            panic!("contact axes are Kelvin–Voigt")
+        };
+        let normal = l.name.ends_with("_n");
+        let a = if normal { share.0 } else { share.1 } * k / storage;
+        if normal {
+            system.links[i].element = Element::KelvinVoigt { k, c: c * c_scale };
+        }
+        for (j, &t) in taus.iter().enumerate() {
+            let kj = a * t.powf(-alpha);
+            system.links.push(Link {
+                name: format!("{}-arm{j}", l.name),
+                element: Element::Maxwell { k: kj, c: kj * t },
+                record_deflection: false,
+                ..l.clone()
+            });
+        }
     }
 }
 
@@ -151,4 +194,21 @@ fn planar_clean_seat_with_another_subject_is_none() {
     let d = diagnose(&model, &train, &check).unwrap();
     eprintln!("{}", wbv::diagnosis::report::text(&d));
     assert_eq!(d.verdict, "none", "{}", d.verdict_text);
+}
+
+#[test]
+fn planar_fractional_foam_is_named_viscoelastic() {
+    let model = catalog::resolve("planar-occupant").unwrap();
+    let mut rng = ChaCha8Rng::seed_from_u64(5);
+    let mut truth = subject(&model, &mut rng).system().clone();
+    plant_fractional(&mut truth, 0.35, (0.5, 0.2), 0.6);
+    let (train, check) = runs(&truth);
+    let d = diagnose(&model, &train, &check).unwrap();
+    eprintln!("{}", wbv::diagnosis::report::text(&d));
+    assert_eq!(
+        d.named.first().map(String::as_str),
+        Some("cushion-viscoelastic"),
+        "{}",
+        d.verdict_text
+    );
 }
