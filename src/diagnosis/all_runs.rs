@@ -10,7 +10,7 @@
 //! closes part of the all-run structural gap.
 
 use super::candidate::Candidate;
-use super::fitting::{Base, Fitted, fit_candidate};
+use super::fitting::{Base, Fitted, estimates, fit_candidate};
 use super::measure::RunSpectra;
 use super::*;
 
@@ -32,6 +32,34 @@ impl AllRuns {
     /// Fraction of the all-run structural gap the effect closes.
     pub(super) fn fraction_closed(&self) -> f64 {
         score::fraction_closed(self.null_chi2_red, self.chi2_red, self.floor)
+    }
+
+    /// Puts the all-run fit into the named candidate's entry of `cands` (parameters, all-run ΔBIC
+    /// and fraction closed, the check run's stage and sizes against the null) and its parameter
+    /// vector into `fits`, the forward selection's warm start.
+    pub(super) fn adopt(
+        &self,
+        base: &Base,
+        null: &Ranked,
+        check: &RunSpectra,
+        cands: &mut [Ranked],
+        fits: &mut [(Candidate, Vec<f64>)],
+    ) -> Result<()> {
+        let st = stage(&self.fitted.variant, check)?;
+        let (aw, seat, db) = sizes(&st, &null.check);
+        if let Some(r) = cands.iter_mut().find(|r| r.id == self.candidate.id()) {
+            r.params = estimates(base, &[self.candidate], &self.fitted.fit);
+            r.delta_bic_all = self.delta_bic;
+            r.fraction_closed = self.fraction_closed();
+            r.aw_change_percent = aw;
+            r.seat_change_points = seat;
+            r.band_gap_change_db = db;
+            r.check = st;
+        }
+        if let Some(f) = fits.iter_mut().find(|(c, _)| *c == self.candidate) {
+            f.1 = self.fitted.fit.u.clone();
+        }
+        Ok(())
     }
 }
 

@@ -263,20 +263,7 @@ pub fn diagnose(model: &Model, train: &[Signals], check: &Signals) -> Result<Dia
             None
         };
     if let Some(a) = &all_runs {
-        let st = stage(&a.fitted.variant, &ck)?;
-        let (aw, seat, db) = sizes(&st, &null.check);
-        if let Some(r) = cands.iter_mut().find(|r| r.id == a.candidate.id()) {
-            r.params = estimates(&base, &[a.candidate], &a.fitted.fit);
-            r.delta_bic_all = a.delta_bic;
-            r.fraction_closed = a.fraction_closed();
-            r.aw_change_percent = aw;
-            r.seat_change_points = seat;
-            r.band_gap_change_db = db;
-            r.check = st;
-        }
-        if let Some(f) = fits.iter_mut().find(|(c, _)| *c == a.candidate) {
-            f.1 = a.fitted.fit.u.clone();
-        }
+        a.adopt(&base, &null, &ck, &mut cands, &mut fits)?;
     }
     let (verdict, verdict_text, separating) = decide(&null, &cands, all_runs.as_ref());
 
