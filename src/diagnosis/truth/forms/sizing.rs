@@ -1,0 +1,90 @@
+//! Sizing the truth forms: a link's r.m.s. deflection under the run's spectrum, Gaussian means for
+//! tangent-stiffness targets, and the random draws — the truth side's own, independent of the
+//! diagnosis's statistical linearisation.
+
+use crate::error::Result;
+use crate::model::{Chain, Element, Node, Role};
+use rand::RngExt;
+use rand_chacha::ChaCha8Rng;
+use std::f64::consts::PI;
+
+/// r.m.s. deflection and rate of a link (m, m/s), from the linear model's exact response to the
+/// run's base spectrum, given as `(frequency Hz, mean square (m/s²)² in that line)` pairs.
+pub fn link_sigma(model: &Chain, link: usize, lines: &[(f64, f64)]) -> Result<(f64, f64)> {
+    let mut m = model.clone();
+    for l in &mut m.links {
+        l.law = None;
+    }
+    let (mut vd, mut vv) = (0.0, 0.0);
+    // The linear model's exact FRF (crate::response::frf), not the diagnosis's predictor.
+    let system = m.system();
+    for &(f, ms) in lines {
+        if f <= 0.0 || ms <= 0.0 {
+            continue;
+        }
+        let xs = crate::response::frf::displacements(&system, f)?;
+        let w2 = (2.0 * PI * f).powi(2);
+        // Base-relative displacement per unit base acceleration (D(ω)·X = −M·r).
+        let x = |n: Node| match n {
+            Node::Base => num_complex::Complex64::new(0.0, 0.0),
+            Node::Mass(i) => xs[i],
+        };
+        let l = &m.links[link];
+        let d2 = (x(l.a) - x(l.b)).norm_sqr() * ms;
+        vd += d2;
+        vv += d2 * w2;
+    }
+    Ok((vd.sqrt(), vv.sqrt()))
+}
+
+/// E[g(σ z)] for z ~ N(0, 1): trapezoid rule on |z| ≤ 7, 2801 points (the truth side's own
+/// quadrature, independent of the diagnosis's statistical linearisation).
+pub fn gauss_mean(sigma: f64, g: impl Fn(f64) -> f64) -> f64 {
+    const N: usize = 2801;
+    let h = 14.0 / (N - 1) as f64;
+    let (mut num, mut den) = (0.0, 0.0);
+    for i in 0..N {
+        let z = -7.0 + i as f64 * h;
+        let w = (-0.5 * z * z).exp();
+        num += w * g(sigma * z);
+        den += w;
+    }
+    num / den
+}
+
+/// Bisection for the x in [lo, hi] where the increasing `f` crosses `target`.
+pub(super) fn bisect(mut lo: f64, mut hi: f64, target: f64, f: impl Fn(f64) -> f64) -> f64 {
+    for _ in 0..80 {
+        let m = 0.5 * (lo + hi);
+        if f(m) < target { lo = m } else { hi = m }
+    }
+    0.5 * (lo + hi)
+}
+
+pub(super) fn log_uniform(rng: &mut ChaCha8Rng, lo: f64, hi: f64) -> f64 {
+    (lo.ln() + rng.random::<f64>() * (hi.ln() - lo.ln())).exp()
+}
+
+pub(super) fn uniform(rng: &mut ChaCha8Rng, lo: f64, hi: f64) -> f64 {
+    lo + rng.random::<f64>() * (hi - lo)
+}
+
+pub(super) fn kv(model: &Chain, i: usize) -> (f64, f64) {
+    match model.links[i].element {
+        Element::KelvinVoigt { k, c } => (k, c),
+        e => (e.static_stiffness(), e.parallel_damping()),
+    }
+}
+
+/// Indices of the cushion link, the body–seat interface link and the heaviest body mass.
+pub(super) fn cushion(model: &Chain) -> usize {
+    model
+        .links
+        .iter()
+        .position(|l| l.role == Role::Cushion)
+        .expect("the bench's base model has a cushion")
+}
+
+pub(super) fn interface(model: &Chain) -> usize {
+    model.measure.interface[0]
+}
