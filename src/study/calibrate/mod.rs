@@ -20,7 +20,10 @@ use std::time::Instant;
 pub const LM_SETTINGS: lm::Settings = lm::Settings {
     max_iter: 200,
     jacobian_step: 1e-6,
+    jacobian_side: lm::Side::InwardAtUpper,
     tolerance: 1e-6,
+    gradient_tolerance: 0.0,
+    damping: lm::Damping::Marquardt,
     active_set: true,
 };
 

@@ -114,6 +114,21 @@ fn apply(model: &Model, p: &[f64]) -> Result<Model> {
     Ok(m)
 }
 
+/// The Levenberg–Marquardt settings of this calibration in `u ∈ [0, 1]`: the schedule its
+/// reproduction rows (`docs/reproduction.md`) were made with — gain-ratio damping
+/// ([`lm::Damping::GainRatio`]), a Jacobian step of 1e-6 differenced toward the middle of the
+/// range, at most 60 iterations, stopping when max|Jᵀr| < 1e-15 or an accepted step lowers Σr² by
+/// a relative 1e-14 or less (so the fit runs to the local minimum it is in), no active set.
+pub const LM_SETTINGS: lm::Settings = lm::Settings {
+    max_iter: 60,
+    jacobian_step: 1e-6,
+    jacobian_side: lm::Side::TowardCentre,
+    tolerance: 1e-14,
+    gradient_tolerance: 1e-15,
+    damping: lm::Damping::GainRatio,
+    active_set: false,
+};
+
 /// Fits [`PARAMETERS`] of `model` (log-scaled within their bounds) to paper 000's figures.
 pub fn calibrate(model: &Model) -> Result<Calibration> {
     const POINTS: usize = 221;
@@ -128,10 +143,6 @@ pub fn calibrate(model: &Model) -> Result<Calibration> {
         .collect();
     let m = residuals(&figures(model, POINTS)?).len();
     let (lo, hi) = (vec![0.0; u0.len()], vec![1.0; u0.len()]);
-    let settings = lm::Settings {
-        max_iter: 60,
-        ..crate::study::calibrate::LM_SETTINGS
-    };
     let eval = |_: &mut (), u: &[f64]| -> Result<Vec<f64>> {
         let r = residuals(&figures(&apply(model, &to_physical(u))?, POINTS)?);
         if r.len() != m || r.iter().any(|v| !v.is_finite()) {
@@ -142,7 +153,7 @@ pub fn calibrate(model: &Model) -> Result<Calibration> {
         }
         Ok(r)
     };
-    let out = lm::minimise(|| Ok(()), eval, &u0, &lo, &hi, &settings)?;
+    let out = lm::minimise(|| Ok(()), eval, &u0, &lo, &hi, &LM_SETTINGS)?;
     let fitted = to_physical(&out.u);
     let calibrated = apply(model, &fitted)?;
     let sq = |m: &Model| -> Result<f64> {
