@@ -5,9 +5,6 @@
 //! frequencies are in Hz unless a name says `omega` (rad/s).
 
 pub mod analysis;
-#[cfg(feature = "cli")]
-#[doc(hidden)]
-pub mod cli;
 pub mod diagnosis;
 pub mod error;
 pub mod excitation;

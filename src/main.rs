@@ -1,5 +1,7 @@
 //! The `wbv` command: a thin shell over the library (see `wbv --help`).
 
+mod cli;
+
 fn main() -> std::process::ExitCode {
     // Output piped into `head` and closed early ends the process quietly, as for other Unix
     // tools, instead of a panic in `println!`.
@@ -8,5 +10,5 @@ fn main() -> std::process::ExitCode {
     unsafe {
         libc::signal(libc::SIGPIPE, libc::SIG_DFL);
     }
-    wbv::cli::main()
+    cli::main()
 }

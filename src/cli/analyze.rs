@@ -1,7 +1,7 @@
-use crate::analysis::{self, Options, Report, Segment, WelchOptions, Window};
-use crate::io::atomic::Overwrite;
-use crate::report::json::{WithFiles, Written};
 use std::path::PathBuf;
+use wbv::analysis::{self, Options, Report, Segment, WelchOptions, Window};
+use wbv::io::atomic::Overwrite;
+use wbv::report::json::{WithFiles, Written};
 
 /// Arguments of `wbv analyze`.
 #[derive(Debug, clap::Args)]
@@ -11,7 +11,7 @@ pub struct Args {
     /// (docs/inputs.md). Whatever acceleration channels exist are analysed.
     path: PathBuf,
     #[command(flatten)]
-    input: crate::io::input::InputArgs,
+    input: wbv::io::input::InputArgs,
     /// Print the report as JSON (keys `a_w`, `vdv`, `mtvv`, `crest_factor`, `seat_percent`,
     /// `comfort`, …; units under `units`).
     #[arg(long)]
@@ -37,14 +37,14 @@ pub struct Args {
     timing: bool,
 }
 
-pub fn run(args: Args) -> crate::Result<()> {
+pub fn run(args: Args) -> wbv::Result<()> {
     if args.plot.is_none() {
         for (set, flag) in [
             (args.force, "--force"),
             (args.plot_format != "png", "--plot-format"),
         ] {
             if set {
-                return Err(crate::Error::parameter(
+                return Err(wbv::Error::parameter(
                     flag,
                     "applies to the plots; give --plot DIR",
                 ));
@@ -55,8 +55,8 @@ pub fn run(args: Args) -> crate::Result<()> {
     // Refuse an overwrite before any work.
     let plot = match &args.plot {
         Some(dir) => {
-            let (dir, ext) = crate::plot::plot_dir(dir, &args.plot_format)?;
-            crate::plot::check_targets(&analysis::plots::plot_files(&dir, ext), ow)?;
+            let (dir, ext) = wbv::plot::plot_dir(dir, &args.plot_format)?;
+            wbv::plot::check_targets(&analysis::plots::plot_files(&dir, ext), ow)?;
             Some((dir, ext))
         }
         None => None,

@@ -1,7 +1,7 @@
-use crate::error::Error;
-use crate::study::calibrate::{self, Fit, Method, Problem, Target, ga};
-use crate::study::param::{Param, parse_bounds};
 use std::path::PathBuf;
+use wbv::error::Error;
+use wbv::study::calibrate::{self, Fit, Method, Problem, Target, ga};
+use wbv::study::param::{Param, parse_bounds};
 
 /// Arguments of `wbv calibrate`.
 #[derive(Debug, clap::Args)]
@@ -61,7 +61,7 @@ fn report(problem: &Problem, fit: &Fit) {
     );
 }
 
-pub fn run(args: Args) -> crate::Result<()> {
+pub fn run(args: Args) -> wbv::Result<()> {
     let model = args.model.resolve()?;
     if args.params.len() != args.bounds.len() {
         return Err(Error::parameter(
@@ -74,12 +74,12 @@ pub fn run(args: Args) -> crate::Result<()> {
             .params
             .iter()
             .map(|p| Param::parse(p, &model))
-            .collect::<crate::Result<_>>()?,
+            .collect::<wbv::Result<_>>()?,
         bounds: args
             .bounds
             .iter()
             .map(|b| parse_bounds(b, "--bounds"))
-            .collect::<crate::Result<_>>()?,
+            .collect::<wbv::Result<_>>()?,
         model,
         response: args.response.clone(),
         target: Target::read(&args.target)?,
@@ -108,7 +108,7 @@ pub fn run(args: Args) -> crate::Result<()> {
     };
     let fits = calibrate::compare(&problem, &methods)?;
     if args.json {
-        let out = crate::report::json::Calibrated::of(&problem, &fits);
+        let out = wbv::report::json::Calibrated::of(&problem, &fits);
         return super::print_json("calibrate", &out, &[]);
     }
     for fit in &fits {

@@ -1,12 +1,12 @@
 //! `wbv excitations` (list the built-ins) and `wbv excitation-export` (write a base input to CSV).
 
-use crate::error::Error;
-use crate::excitation::{ExcitationArgs, ExcitationSpec, builtin, resolve};
-use crate::io::atomic::Overwrite;
-use crate::io::csv_run;
-use crate::report::json::{ExcitationEntry, Files, Written};
-use crate::signals::Signals;
 use std::path::PathBuf;
+use wbv::error::Error;
+use wbv::excitation::{ExcitationArgs, ExcitationSpec, builtin, resolve};
+use wbv::io::atomic::Overwrite;
+use wbv::io::csv_run;
+use wbv::report::json::{ExcitationEntry, Files, Written};
+use wbv::signals::Signals;
 
 /// Arguments of `wbv excitations`.
 #[derive(Debug, clap::Args)]
@@ -41,13 +41,13 @@ pub struct ExportArgs {
     json: bool,
 }
 
-pub fn list(args: ListArgs) -> crate::Result<()> {
+pub fn list(args: ListArgs) -> wbv::Result<()> {
     let names = builtin::names();
     if args.json {
         let list = names
             .iter()
             .map(|n| Ok(ExcitationEntry::of(n, &ExcitationSpec::load(n)?)))
-            .collect::<crate::Result<Vec<_>>>()?;
+            .collect::<wbv::Result<Vec<_>>>()?;
         return super::print_json(
             "excitations",
             &serde_json::json!({ "excitations": list }),
@@ -71,10 +71,10 @@ pub fn list(args: ListArgs) -> crate::Result<()> {
     Ok(())
 }
 
-pub fn export(args: ExportArgs) -> crate::Result<()> {
+pub fn export(args: ExportArgs) -> wbv::Result<()> {
     let overwrite = Overwrite::from_force(args.force);
     // Refuse an overwrite before any work.
-    crate::io::atomic::check_overwrite(&args.out, overwrite)?;
+    wbv::io::atomic::check_overwrite(&args.out, overwrite)?;
     let spec = resolve(&args.excitation)?;
     if !(args.duration.is_finite() && args.duration > 0.0) {
         return Err(Error::parameter(
@@ -83,7 +83,7 @@ pub fn export(args: ExportArgs) -> crate::Result<()> {
         ));
     }
     let n = (args.duration / args.dt).round() as usize;
-    let mut exc = crate::measurement::excitation(&spec, args.dt, args.duration, args.seed)?;
+    let mut exc = wbv::measurement::excitation(&spec, args.dt, args.duration, args.seed)?;
     let mut samples = vec![0.0; n];
     exc.fill(&mut samples);
     let mut signals = Signals::new(1.0 / args.dt, exc.describe());

@@ -2,13 +2,13 @@
 //! tool (scipy, MATLAB, a DAQ) can run exactly the same model or filter — `tools/bench-peers` uses
 //! them to compare wbv with scipy on identical work.
 
-use crate::analysis::{Weighting, WeightingFilter};
-use crate::error::Error;
-use crate::io::atomic::{Overwrite, write_atomic};
-use crate::report::json::{Files, Written};
 use serde_json::json;
 use std::io::Write;
 use std::path::PathBuf;
+use wbv::analysis::{Weighting, WeightingFilter};
+use wbv::error::Error;
+use wbv::io::atomic::{Overwrite, write_atomic};
+use wbv::report::json::{Files, Written};
 
 /// Arguments of `wbv state-space`.
 #[derive(Debug, clap::Args)]
@@ -50,7 +50,7 @@ fn emit(
     out: &Option<PathBuf>,
     force: bool,
     json: bool,
-) -> crate::Result<()> {
+) -> wbv::Result<()> {
     let text = serde_json::to_string_pretty(value)
         .map_err(|e| Error::parameter(command, e.to_string()))?;
     match out {
@@ -73,11 +73,11 @@ fn emit(
 }
 
 /// Prints `ẏ = A·y + B·a_base`, `a_abs = C·y` (absolute mass accelerations; D = 0) of the model
-/// linearised at rest ([`crate::system::System::state_space`]).
-pub fn state_space(args: StateSpaceArgs) -> crate::Result<()> {
+/// linearised at rest ([`wbv::system::System::state_space`]).
+pub fn state_space(args: StateSpaceArgs) -> wbv::Result<()> {
     if let Some(out) = &args.out {
         // Refuse an overwrite before any work.
-        crate::io::atomic::check_overwrite(out, Overwrite::from_force(args.force))?;
+        wbv::io::atomic::check_overwrite(out, Overwrite::from_force(args.force))?;
     }
     let model = args.model.resolve()?;
     let system = model.system();
@@ -102,7 +102,7 @@ pub fn state_space(args: StateSpaceArgs) -> crate::Result<()> {
     let name_of = |channel: &str| {
         let c = &system.channels[system.channel_index(channel)?];
         match &c.rule {
-            crate::system::Rule::Kinematic { row, base } if *base == 0.0 && row.len() == 1 => {
+            wbv::system::Rule::Kinematic { row, base } if *base == 0.0 && row.len() == 1 => {
                 Some(system.dofs[row[0].0].name.clone())
             }
             _ => None,
@@ -125,8 +125,8 @@ pub fn state_space(args: StateSpaceArgs) -> crate::Result<()> {
 }
 
 /// Prints the digital filter of a weighting as second-order sections in scipy's `sos` layout
-/// `[b0, b1, b2, 1, a1, a2]` ([`crate::analysis::filter`]).
-pub fn weighting(args: WeightingArgs) -> crate::Result<()> {
+/// `[b0, b1, b2, 1, a1, a2]` ([`wbv::analysis::filter`]).
+pub fn weighting(args: WeightingArgs) -> wbv::Result<()> {
     let w = Weighting::parse(&args.weighting).ok_or_else(|| {
         Error::parameter(
             "weighting",

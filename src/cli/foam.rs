@@ -1,7 +1,7 @@
-use crate::error::Error;
-use crate::excitation::ExcitationArgs;
-use crate::study::foam::{Foam, FoamPoint, PAPER_TABLE_4, paper_run, thickness_study};
-use crate::study::iso::IsoRun;
+use wbv::error::Error;
+use wbv::excitation::ExcitationArgs;
+use wbv::study::foam::{Foam, FoamPoint, PAPER_TABLE_4, paper_run, thickness_study};
+use wbv::study::iso::IsoRun;
 
 /// Arguments of `wbv foam`.
 #[derive(Debug, clap::Args)]
@@ -35,7 +35,7 @@ pub struct Args {
     time: Option<super::TimeArgs>,
 }
 
-fn positive(v: Option<f64>, default: f64, flag: &str) -> crate::Result<f64> {
+fn positive(v: Option<f64>, default: f64, flag: &str) -> wbv::Result<f64> {
     match v {
         None => Ok(default),
         Some(x) if x.is_finite() && x > 0.0 => Ok(x),
@@ -44,7 +44,7 @@ fn positive(v: Option<f64>, default: f64, flag: &str) -> crate::Result<f64> {
 }
 
 /// The paper's value for thickness `t_m`, formatted, or `–`.
-fn paper(t_m: f64, f: impl Fn(&crate::study::foam::PaperRow) -> String) -> String {
+fn paper(t_m: f64, f: impl Fn(&wbv::study::foam::PaperRow) -> String) -> String {
     PAPER_TABLE_4
         .iter()
         .find(|p| (p.thickness_m - t_m).abs() < 1e-9)
@@ -84,7 +84,7 @@ fn print(points: &[FoamPoint]) {
     }
 }
 
-pub fn run(args: Args) -> crate::Result<()> {
+pub fn run(args: Args) -> wbv::Result<()> {
     let model = args.model.resolve()?;
     let d = Foam::default();
     let foam = Foam {
@@ -105,7 +105,7 @@ pub fn run(args: Args) -> crate::Result<()> {
         };
         Some(IsoRun {
             excitation: match &args.excitation {
-                Some(e) => crate::excitation::resolve(e)?,
+                Some(e) => wbv::excitation::resolve(e)?,
                 None => paper.excitation,
             },
             settings,
@@ -114,7 +114,7 @@ pub fn run(args: Args) -> crate::Result<()> {
     };
     let points = thickness_study(&model, &foam, &thicknesses, iso.as_ref())?;
     if args.json {
-        let table = crate::report::json::Foam::of(&model.name, &foam, iso.as_ref(), &points);
+        let table = wbv::report::json::Foam::of(&model.name, &foam, iso.as_ref(), &points);
         return super::print_json("foam", &table, &[]);
     }
     println!(

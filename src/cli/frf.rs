@@ -1,9 +1,9 @@
-use crate::error::Error;
-use crate::io::atomic::{Overwrite, write_atomic};
-use crate::report::json::Written;
-use crate::response::frf;
 use std::io::Write;
 use std::path::PathBuf;
+use wbv::error::Error;
+use wbv::io::atomic::{Overwrite, write_atomic};
+use wbv::report::json::Written;
+use wbv::response::frf;
 
 /// Arguments of `wbv frf`.
 #[derive(Debug, clap::Args)]
@@ -61,20 +61,20 @@ fn write_csv(set: &frf::FrfSet, out: &mut dyn Write) -> std::io::Result<()> {
     Ok(())
 }
 
-pub fn run(args: Args) -> crate::Result<()> {
+pub fn run(args: Args) -> wbv::Result<()> {
     let overwrite = Overwrite::from_force(args.force);
     // Refuse an overwrite before any work.
     let plot = match &args.plot {
         Some(dir) => {
-            let (dir, ext) = crate::plot::plot_dir(dir, &args.plot_format)?;
+            let (dir, ext) = wbv::plot::plot_dir(dir, &args.plot_format)?;
             let path = dir.join(format!("frf.{ext}"));
-            crate::plot::check_targets(std::slice::from_ref(&path), overwrite)?;
+            wbv::plot::check_targets(std::slice::from_ref(&path), overwrite)?;
             Some(path)
         }
         None => None,
     };
     if let Some(out) = &args.out {
-        crate::io::atomic::check_overwrite(out, overwrite)?;
+        wbv::io::atomic::check_overwrite(out, overwrite)?;
     }
     let mut model = args.model.resolve()?;
     if let Some(t) = args.foam_thickness {
@@ -96,13 +96,13 @@ pub fn run(args: Args) -> crate::Result<()> {
         }
     }
     if let Some(path) = &plot {
-        crate::plot::frf_plot(&set, &model.name, args.log, path, overwrite)?;
+        wbv::plot::frf_plot(&set, &model.name, args.log, path, overwrite)?;
         eprintln!("wrote {}", path.display());
         written.push(Written::of(path)?);
     }
     if args.json {
         let mut summary =
-            crate::report::json::Frf::of(&model.name, &set, args.log, args.out.is_none());
+            wbv::report::json::Frf::of(&model.name, &set, args.log, args.out.is_none());
         summary.written = written;
         super::print_json("frf", &summary, &[])?;
     }

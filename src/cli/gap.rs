@@ -1,7 +1,7 @@
-use crate::diagnosis::{diagnose, plot, report};
-use crate::io::atomic::Overwrite;
-use crate::model::catalog;
 use std::path::PathBuf;
+use wbv::diagnosis::{diagnose, plot, report};
+use wbv::io::atomic::Overwrite;
+use wbv::model::catalog;
 
 /// Arguments of `wbv gap`.
 #[derive(Debug, clap::Args)]
@@ -18,7 +18,7 @@ pub struct Args {
     check: PathBuf,
     /// How to read the runs (applies to every --run and --check).
     #[command(flatten)]
-    input: crate::io::input::InputArgs,
+    input: wbv::io::input::InputArgs,
     /// Print the report as JSON (top-level `verdict`, `named`, `warnings`, `written`); `wbv report
     /// RUN --gap FILE` shows it as the report's gap section.
     #[arg(long)]
@@ -34,9 +34,9 @@ pub struct Args {
     force: bool,
 }
 
-pub fn run(args: Args) -> crate::Result<()> {
+pub fn run(args: Args) -> wbv::Result<()> {
     if args.force && args.plot.is_none() {
-        return Err(crate::Error::parameter(
+        return Err(wbv::Error::parameter(
             "--force",
             "applies to the plots; give --plot DIR",
         ));
@@ -45,19 +45,19 @@ pub fn run(args: Args) -> crate::Result<()> {
     let plot = match &args.plot {
         // Refuse an overwrite before the diagnosis runs.
         Some(dir) => {
-            let (dir, ext) = crate::plot::plot_dir(dir, &args.plot_format)?;
-            crate::plot::check_targets(&plot::files(&dir, ext), ow)?;
+            let (dir, ext) = wbv::plot::plot_dir(dir, &args.plot_format)?;
+            wbv::plot::check_targets(&plot::files(&dir, ext), ow)?;
             Some((dir, ext))
         }
         None => None,
     };
     let model = catalog::resolve(&args.model)?;
     let opts = args.input.options()?;
-    let load = |p: &PathBuf| -> crate::Result<crate::signals::Signals> {
-        let s = crate::analysis::load_input(p, &opts)?.signals;
+    let load = |p: &PathBuf| -> wbv::Result<wbv::signals::Signals> {
+        let s = wbv::analysis::load_input(p, &opts)?.signals;
         for need in ["a_base_z", "a_seat_z"] {
             s.require(need).map_err(|_| {
-                crate::Error::data(
+                wbv::Error::data(
                     p,
                     None,
                     format!(
@@ -74,21 +74,21 @@ pub fn run(args: Args) -> crate::Result<()> {
         .runs
         .iter()
         .map(load)
-        .collect::<crate::Result<Vec<_>>>()?;
+        .collect::<wbv::Result<Vec<_>>>()?;
     let check = load(&args.check)?;
     let d = diagnose(&model, &train, &check)?;
     let mut written = Vec::new();
     if let Some((dir, ext)) = &plot {
         plot::write_as(&d, dir, ext, ow)?;
         eprintln!("wrote {}", dir.display());
-        written = crate::report::json::Written::existing(&plot::files(dir, ext))?;
+        written = wbv::report::json::Written::existing(&plot::files(dir, ext))?;
     }
     if args.json {
         // The diagnosis's own `warnings` are the document's; they go to stderr too.
         for w in &d.warnings {
             eprintln!("warning: {w}");
         }
-        let body = crate::report::json::WithFiles {
+        let body = wbv::report::json::WithFiles {
             result: report::json(&d),
             written,
         };

@@ -1,5 +1,5 @@
-use crate::diagnosis::truth::{run_case, summary};
 use rayon::prelude::*;
+use wbv::diagnosis::truth::{run_case, summary};
 
 /// Arguments of `wbv gap-bench`.
 #[derive(Debug, clap::Args)]
@@ -20,12 +20,12 @@ pub struct Args {
     markdown: bool,
 }
 
-pub fn run(args: Args) -> crate::Result<()> {
+pub fn run(args: Args) -> wbv::Result<()> {
     let t0 = std::time::Instant::now();
     let scores = (0..args.cases)
         .into_par_iter()
         .map(|i| run_case(i, args.seed))
-        .collect::<crate::Result<Vec<_>>>()?;
+        .collect::<wbv::Result<Vec<_>>>()?;
     let s = summary(&scores, args.seed, t0.elapsed().as_secs_f64());
     if args.json {
         super::print_json(

@@ -1,5 +1,5 @@
-use crate::record::inspect;
 use std::path::PathBuf;
+use wbv::record::inspect;
 
 /// Arguments of `wbv inspect`.
 #[derive(Debug, clap::Args)]
@@ -28,10 +28,10 @@ const RUN_KEYS: [&str; 12] = [
     "command_line",
 ];
 
-pub fn run(args: Args) -> crate::Result<()> {
-    let s = inspect(&crate::record::run_file(&args.run))?;
+pub fn run(args: Args) -> wbv::Result<()> {
+    let s = inspect(&wbv::record::run_file(&args.run))?;
     if args.json {
-        return super::print_json("inspect", &crate::report::json::Inspected::of(&s), &[]);
+        return super::print_json("inspect", &wbv::report::json::Inspected::of(&s), &[]);
     }
     println!("{}  ({})", s.path.display(), s.library);
     let duration = s.end_ns.saturating_sub(s.start_ns) as f64 * 1e-9;

@@ -81,14 +81,14 @@ enum Command {
 #[derive(Debug, Clone, clap::Args)]
 pub struct ModelArg {
     /// Model: a built-in name, a TOML file, or components joined by `+`.
-    #[arg(long = "model", default_value = crate::model::catalog::DEFAULT)]
+    #[arg(long = "model", default_value = wbv::model::catalog::DEFAULT)]
     pub name: String,
 }
 
 impl ModelArg {
     /// The validated model it names.
-    pub fn resolve(&self) -> crate::Result<crate::model::Model> {
-        crate::model::catalog::resolve(&self.name)
+    pub fn resolve(&self) -> wbv::Result<wbv::model::Model> {
+        wbv::model::catalog::resolve(&self.name)
     }
 }
 
@@ -126,29 +126,26 @@ impl TimeArgs {
     pub const DEFAULT_DURATION_S: f64 = 60.0;
 
     /// Step, duration and integrator.
-    pub fn settings(&self) -> crate::Result<crate::simulate::Settings> {
-        Ok(crate::simulate::Settings {
+    pub fn settings(&self) -> wbv::Result<wbv::simulate::Settings> {
+        Ok(wbv::simulate::Settings {
             dt: self.dt,
             duration_s: self.duration.unwrap_or(Self::DEFAULT_DURATION_S),
-            method: crate::integrator::Method::parse(&self.integrator)?,
+            method: wbv::integrator::Method::parse(&self.integrator)?,
         })
     }
 }
 
-/// Prints the JSON document of `command` (see [`crate::report::json`]) as the only output on
+/// Prints the JSON document of `command` (see [`wbv::report::json`]) as the only output on
 /// stdout; its `warnings` also go to stderr, like every status line.
 pub(crate) fn print_json<T: serde::Serialize>(
     command: &str,
     body: &T,
     warnings: &[String],
-) -> crate::Result<()> {
+) -> wbv::Result<()> {
     for w in warnings {
         eprintln!("warning: {w}");
     }
-    println!(
-        "{}",
-        crate::report::json::document(command, body, warnings)?
-    );
+    println!("{}", wbv::report::json::document(command, body, warnings)?);
     Ok(())
 }
 

@@ -1,4 +1,4 @@
-use crate::model::{Kind, catalog};
+use wbv::model::{Kind, catalog};
 
 /// Arguments of `wbv models`.
 #[derive(Debug, clap::Args)]
@@ -11,12 +11,12 @@ pub struct Args {
     json: bool,
 }
 
-pub fn run(args: Args) -> crate::Result<()> {
+pub fn run(args: Args) -> wbv::Result<()> {
     let models = catalog::all()?;
     if args.json {
         return super::print_json(
             "models",
-            &serde_json::json!({ "models": crate::report::json::models(&models) }),
+            &serde_json::json!({ "models": wbv::report::json::models(&models) }),
             &[],
         );
     }

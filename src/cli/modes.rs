@@ -1,5 +1,5 @@
-use crate::response::modes;
-use crate::system::System;
+use wbv::response::modes;
+use wbv::system::System;
 
 /// Arguments of `wbv modes`.
 #[derive(Debug, clap::Args)]
@@ -16,7 +16,7 @@ pub struct Args {
 
 /// The static equilibrium (when the model solves one) and the worded mode shapes (when the
 /// system names its motions).
-fn print_statics_and_words(system: &System) -> crate::Result<()> {
+fn print_statics_and_words(system: &System) -> wbv::Result<()> {
     if let Some(eq) = &system.statics {
         println!(
             "Model {}: static seated equilibrium ({} Newton iterations)",
@@ -72,7 +72,7 @@ fn print_statics_and_words(system: &System) -> crate::Result<()> {
 }
 
 /// The static equilibrium as JSON: loads in N, points in m, moments in N·m.
-fn statics_json(eq: &crate::system::Statics) -> serde_json::Value {
+fn statics_json(eq: &wbv::system::Statics) -> serde_json::Value {
     let f = eq.total_force();
     serde_json::json!({
         "newton_iterations": eq.iterations,
@@ -88,7 +88,7 @@ fn statics_json(eq: &crate::system::Statics) -> serde_json::Value {
     })
 }
 
-pub fn run(args: Args) -> crate::Result<()> {
+pub fn run(args: Args) -> wbv::Result<()> {
     let mut model = args.model.resolve()?;
     if let Some(t) = args.foam_thickness {
         model.set_foam_thickness(t)?;

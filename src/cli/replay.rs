@@ -1,6 +1,6 @@
-use crate::analysis::{Options, Report};
-use crate::report::json::Replay;
 use std::path::PathBuf;
+use wbv::analysis::{Options, Report};
+use wbv::report::json::Replay;
 
 /// Arguments of `wbv replay`.
 #[derive(Debug, clap::Args)]
@@ -15,10 +15,10 @@ pub struct Args {
 
 /// Re-reads the signals of a recorded run, re-runs the analysis and checks it equals the results
 /// stored at simulation time.
-pub fn run(args: Args) -> crate::Result<()> {
-    let path = crate::record::run_file(&args.run);
-    let stored = crate::record::read_run(&path)?.results;
-    let signals = crate::analysis::load_signals(&path)?;
+pub fn run(args: Args) -> wbv::Result<()> {
+    let path = wbv::record::run_file(&args.run);
+    let stored = wbv::record::read_run(&path)?.results;
+    let signals = wbv::analysis::load_signals(&path)?;
     let report = Report::from_signals(&signals, &Options::default())?;
     let replay = Replay::compare(&path, report, stored.get("analysis"))?;
     if args.json {

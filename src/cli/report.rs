@@ -1,6 +1,6 @@
-use crate::io::atomic::Overwrite;
-use crate::report::{Settings, default_path, write};
 use std::path::PathBuf;
+use wbv::io::atomic::Overwrite;
+use wbv::report::{Settings, default_path, write};
 
 /// Arguments of `wbv report`.
 #[derive(Debug, clap::Args)]
@@ -12,7 +12,7 @@ pub struct Args {
     #[arg(long)]
     out: Option<PathBuf>,
     /// Daily exposure in hours assumed for the health assessment.
-    #[arg(long, default_value_t = crate::analysis::health::DEFAULT_EXPOSURE_HOURS)]
+    #[arg(long, default_value_t = wbv::analysis::health::DEFAULT_EXPOSURE_HOURS)]
     exposure_hours: f64,
     /// Replace an existing report.
     #[arg(long)]
@@ -27,7 +27,7 @@ pub struct Args {
     json: bool,
 }
 
-pub fn run(args: Args) -> crate::Result<()> {
+pub fn run(args: Args) -> wbv::Result<()> {
     let out = args.out.clone().unwrap_or_else(|| default_path(&args.run));
     let settings = Settings {
         exposure_hours: args.exposure_hours,
@@ -40,7 +40,7 @@ pub fn run(args: Args) -> crate::Result<()> {
         Overwrite::from_force(args.force),
     )?;
     if args.json {
-        let summary = crate::report::json::ReportSummary::of(&out, &built)?;
+        let summary = wbv::report::json::ReportSummary::of(&out, &built)?;
         return super::print_json("report", &summary, &[]);
     }
     println!("{}", out.display());

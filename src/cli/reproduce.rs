@@ -1,7 +1,7 @@
-use crate::error::Error;
-use crate::io::atomic::{Overwrite, write_atomic};
 use std::io::Write;
 use std::path::PathBuf;
+use wbv::error::Error;
+use wbv::io::atomic::{Overwrite, write_atomic};
 
 /// Arguments of `wbv reproduce`.
 #[derive(Debug, clap::Args)]
@@ -17,19 +17,19 @@ pub struct Args {
     json: bool,
 }
 
-pub fn run(args: Args) -> crate::Result<()> {
+pub fn run(args: Args) -> wbv::Result<()> {
     let overwrite = Overwrite::from_force(args.force);
     // Refuse an overwrite before the studies run.
-    crate::io::atomic::check_overwrite(&args.out, overwrite)?;
-    let rows = crate::reproduce::rows()?;
-    let md = crate::reproduce::markdown(&rows);
+    wbv::io::atomic::check_overwrite(&args.out, overwrite)?;
+    let rows = wbv::reproduce::rows()?;
+    let md = wbv::reproduce::markdown(&rows);
     write_atomic(&args.out, overwrite, |w| {
         w.write_all(md.as_bytes())
             .map_err(|e| Error::io(&args.out, e))
     })?;
     if args.json {
-        let written = vec![crate::report::json::Written::of(&args.out)?];
-        let table = crate::report::json::Reproduction::of(&rows, written);
+        let written = vec![wbv::report::json::Written::of(&args.out)?];
+        let table = wbv::report::json::Reproduction::of(&rows, written);
         return super::print_json("reproduce", &table, &[]);
     }
     let n = rows.iter().filter(|r| r.reproduced()).count();

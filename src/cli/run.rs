@@ -1,8 +1,8 @@
-use crate::analysis::health::{self, DEFAULT_EXPOSURE_HOURS};
-use crate::record::{RUN_FILE, RecordOptions};
-use crate::report::json::Written;
-use crate::scenario::default_scenario;
 use std::path::PathBuf;
+use wbv::analysis::health::{self, DEFAULT_EXPOSURE_HOURS};
+use wbv::record::{RUN_FILE, RecordOptions};
+use wbv::report::json::Written;
+use wbv::scenario::default_scenario;
 
 /// Arguments of `wbv run`.
 #[derive(Debug, clap::Args)]
@@ -34,9 +34,9 @@ fn free_dir(stem: &str) -> PathBuf {
         .expect("an unused name")
 }
 
-pub fn run(args: Args) -> crate::Result<()> {
+pub fn run(args: Args) -> wbv::Result<()> {
     if !(args.exposure_hours.is_finite() && args.exposure_hours > 0.0) {
-        return Err(crate::Error::parameter(
+        return Err(wbv::Error::parameter(
             "--exposure-hours",
             "expected a daily exposure in hours > 0",
         ));
@@ -46,10 +46,10 @@ pub fn run(args: Args) -> crate::Result<()> {
         .out
         .unwrap_or_else(|| free_dir(&format!("default-s{}", scenario.seed)));
     let mcap = dir.join(RUN_FILE);
-    let html = crate::report::default_path(&mcap);
+    let html = wbv::report::default_path(&mcap);
     // Both outputs are refused before the run if they exist.
-    crate::io::atomic::check_overwrite(&mcap, crate::io::atomic::Overwrite::Refuse)?;
-    crate::io::atomic::check_overwrite(&html, crate::io::atomic::Overwrite::Refuse)?;
+    wbv::io::atomic::check_overwrite(&mcap, wbv::io::atomic::Overwrite::Refuse)?;
+    wbv::io::atomic::check_overwrite(&html, wbv::io::atomic::Overwrite::Refuse)?;
     eprintln!(
         "default scenario: `{}` ({}) under {} for {} s, dt {} s, seed {}",
         scenario.model.name,
@@ -69,16 +69,11 @@ pub fn run(args: Args) -> crate::Result<()> {
             .collect();
         health::assess(&axes, r.duration_s, args.exposure_hours)
     });
-    let settings = crate::report::Settings {
+    let settings = wbv::report::Settings {
         exposure_hours: args.exposure_hours,
         gap: None,
     };
-    crate::report::write(
-        &mcap,
-        &html,
-        &settings,
-        crate::io::atomic::Overwrite::Refuse,
-    )?;
+    wbv::report::write(&mcap, &html, &settings, wbv::io::atomic::Overwrite::Refuse)?;
     eprintln!(
         "Open {} in Foxglove or Lichtblick (layout: tools/viewer/wbv-layout.json) or PlotJuggler.",
         mcap.display()
@@ -86,9 +81,9 @@ pub fn run(args: Args) -> crate::Result<()> {
     if args.json {
         let mut written = super::simulate::written(Some(&dir), None)?;
         written.push(Written::of(&html)?);
-        let run = crate::report::json::Run {
+        let run = wbv::report::json::Run {
             run_dir: dir.display().to_string(),
-            simulated: crate::report::json::Simulated::of(&scenario, &outcome, written),
+            simulated: wbv::report::json::Simulated::of(&scenario, &outcome, written),
             exposure_hours: args.exposure_hours,
             health,
             report_html: html.display().to_string(),

@@ -1,12 +1,12 @@
 use super::sweep::{progress, sibling};
-use crate::error::Error;
-use crate::io::atomic::{Overwrite, write_atomic};
-use crate::report::json::{Sensitivity, Written};
-use crate::response::frf;
-use crate::study::param::{Param, parse_values};
-use crate::study::sensitivity;
-use crate::study::shard::Shard;
 use std::path::PathBuf;
+use wbv::error::Error;
+use wbv::io::atomic::{Overwrite, write_atomic};
+use wbv::report::json::{Sensitivity, Written};
+use wbv::response::frf;
+use wbv::study::param::{Param, parse_values};
+use wbv::study::sensitivity;
+use wbv::study::shard::Shard;
 
 /// Arguments of `wbv sensitivity`.
 #[derive(Debug, clap::Args)]
@@ -48,13 +48,13 @@ pub struct Args {
     json: bool,
 }
 
-pub fn run(args: Args) -> crate::Result<()> {
+pub fn run(args: Args) -> wbv::Result<()> {
     let ow = Overwrite::from_force(args.force);
     // Refuse an overwrite before any work (the weights file is written for unsharded runs only).
     if let Some(out) = &args.out {
-        crate::io::atomic::check_overwrite(out, ow)?;
+        wbv::io::atomic::check_overwrite(out, ow)?;
         if args.shard.is_none() {
-            crate::io::atomic::check_overwrite(&sibling(out, "-weights"), ow)?;
+            wbv::io::atomic::check_overwrite(&sibling(out, "-weights"), ow)?;
         }
     }
     let model = args.model.resolve()?;
@@ -62,7 +62,7 @@ pub fn run(args: Args) -> crate::Result<()> {
         .params
         .iter()
         .map(|p| Param::parse(p, &model))
-        .collect::<crate::Result<Vec<_>>>()?;
+        .collect::<wbv::Result<Vec<_>>>()?;
     let levels = parse_values(&args.levels, "--levels")?;
     let freq = frf::grid(args.from, args.to, args.points, false)?;
     let shard = args

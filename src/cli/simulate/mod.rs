@@ -1,8 +1,8 @@
-use crate::excitation::{ExcitationArgs, args::resolve};
-use crate::io::atomic::Overwrite;
-use crate::record::{Compression, Encoding, MessageLayout, RUN_FILE, RecordOptions};
-use crate::scenario::{Outcome, Outputs, Scenario};
 use std::path::{Path, PathBuf};
+use wbv::excitation::{ExcitationArgs, args::resolve};
+use wbv::io::atomic::Overwrite;
+use wbv::record::{Compression, Encoding, MessageLayout, RUN_FILE, RecordOptions};
+use wbv::scenario::{Outcome, Outputs, Scenario};
 
 mod provenance;
 
@@ -63,14 +63,14 @@ pub struct Args {
 
 impl Args {
     /// The scenario these arguments describe.
-    pub fn scenario(&self) -> crate::Result<Scenario> {
+    pub fn scenario(&self) -> wbv::Result<Scenario> {
         let excitation = resolve(&self.excitation)?;
         let mut settings = self.time.settings()?;
         // A recording lasts as long as it lasts: its length is the default duration.
         if self.time.duration.is_none()
-            && let crate::excitation::Kind::Recorded { csv, input } = &excitation.kind
+            && let wbv::excitation::Kind::Recorded { csv, input } = &excitation.kind
         {
-            let rec = crate::measurement::read_record(csv, input)?;
+            let rec = wbv::measurement::read_record(csv, input)?;
             settings.duration_s = rec.samples.len() as f64 / rec.sample_rate_hz;
         }
         Ok(Scenario {
@@ -101,7 +101,7 @@ pub fn execute(
     dir: Option<&Path>,
     options: RecordOptions,
     csv: Option<PathBuf>,
-) -> crate::Result<Outcome> {
+) -> wbv::Result<Outcome> {
     execute_as(scenario, dir, options, csv, command_line())
 }
 
@@ -112,7 +112,7 @@ fn execute_as(
     options: RecordOptions,
     csv: Option<PathBuf>,
     command_line: String,
-) -> crate::Result<Outcome> {
+) -> wbv::Result<Outcome> {
     let outputs = Outputs {
         overwrite: options.overwrite,
         mcap: dir.map(|d| (d.join(RUN_FILE), options)),
@@ -122,7 +122,7 @@ fn execute_as(
     let bar = progress(scenario.settings.steps());
     let outcome = scenario.execute(&outputs, Some(&|n| bar.set_position(n)))?;
     bar.finish_and_clear();
-    let memory = crate::io::memory::peak_resident_bytes().map_or(String::new(), |b| {
+    let memory = wbv::io::memory::peak_resident_bytes().map_or(String::new(), |b| {
         format!(", peak memory {:.0} MB", b as f64 / 1e6)
     });
     eprintln!(
@@ -146,13 +146,13 @@ fn execute_as(
 pub fn written(
     dir: Option<&Path>,
     csv: Option<&Path>,
-) -> crate::Result<Vec<crate::report::json::Written>> {
+) -> wbv::Result<Vec<wbv::report::json::Written>> {
     let files: Vec<PathBuf> = dir
         .map(|d| d.join(RUN_FILE))
         .into_iter()
         .chain(csv.map(Path::to_path_buf))
         .collect();
-    crate::report::json::Written::existing(&files)
+    wbv::report::json::Written::existing(&files)
 }
 
 /// The result of a run on stdout: its ISO 2631-1 table, or with `json` the JSON document.
@@ -162,9 +162,9 @@ fn print_result(
     dir: Option<&Path>,
     csv: Option<&Path>,
     json: bool,
-) -> crate::Result<()> {
+) -> wbv::Result<()> {
     if json {
-        let s = crate::report::json::Simulated::of(scenario, outcome, written(dir, csv)?);
+        let s = wbv::report::json::Simulated::of(scenario, outcome, written(dir, csv)?);
         return super::print_json("simulate", &s, &[]);
     }
     print_table(outcome);
@@ -182,10 +182,10 @@ pub fn print_table(outcome: &Outcome) {
 
 /// Times, in extra runs, generating the excitation alone and the simulation core (excitation +
 /// integration, no observers), in s: what `scipy.signal.lsim` does, for `tools/bench-peers`.
-fn time_core(scenario: &Scenario) -> crate::Result<(f64, f64)> {
+fn time_core(scenario: &Scenario) -> wbv::Result<(f64, f64)> {
     let s = &scenario.settings;
     let start = std::time::Instant::now();
-    let mut exc = crate::measurement::excitation(
+    let mut exc = wbv::measurement::excitation(
         &scenario.excitation,
         s.excitation_step(),
         s.duration_s,
@@ -207,13 +207,13 @@ fn time_core(scenario: &Scenario) -> crate::Result<(f64, f64)> {
 
 /// Refuses existing outputs before any input is read or anything simulated: the recording in
 /// `dir` and the CSV.
-fn refuse_existing(dir: Option<&Path>, csv: Option<&Path>, force: bool) -> crate::Result<()> {
+fn refuse_existing(dir: Option<&Path>, csv: Option<&Path>, force: bool) -> wbv::Result<()> {
     let ow = Overwrite::from_force(force);
     if let Some(d) = dir {
-        crate::io::atomic::check_overwrite(&d.join(RUN_FILE), ow)?;
+        wbv::io::atomic::check_overwrite(&d.join(RUN_FILE), ow)?;
     }
     if let Some(c) = csv {
-        crate::io::atomic::check_overwrite(c, ow)?;
+        wbv::io::atomic::check_overwrite(c, ow)?;
     }
     Ok(())
 }
@@ -223,7 +223,7 @@ fn default_dir(model: &str, seed: u64) -> PathBuf {
     PathBuf::from("runs").join(format!("{}-s{seed}", model.replace('+', "_")))
 }
 
-pub fn run(args: Args) -> crate::Result<()> {
+pub fn run(args: Args) -> wbv::Result<()> {
     if let Some(run) = &args.from {
         check_from_alone(std::env::args().skip(1))?;
         refuse_existing(args.out.as_deref(), args.csv.as_deref(), args.force)?;
@@ -233,7 +233,7 @@ pub fn run(args: Args) -> crate::Result<()> {
             ..options
         };
         let dir = args.out.clone().ok_or_else(|| {
-            crate::Error::parameter("--out", "required with --from (a new run directory)")
+            wbv::Error::parameter("--out", "required with --from (a new run directory)")
         })?;
         let outcome = execute_as(&scenario, Some(&dir), options, args.csv.clone(), line)?;
         return print_result(
@@ -251,7 +251,7 @@ pub fn run(args: Args) -> crate::Result<()> {
             (args.out.is_some(), "--out"),
         ] {
             if set {
-                return Err(crate::Error::parameter(
+                return Err(wbv::Error::parameter(
                     flag,
                     "has no effect with --no-record (nothing is recorded)",
                 ));

@@ -1,9 +1,9 @@
 //! The command line a run records (normalised for provenance), and re-running a recorded run
 //! from it (`wbv simulate --from RUN`).
 
-use crate::record::{Compression, Encoding, MessageLayout, RecordOptions};
-use crate::scenario::Scenario;
 use std::path::Path;
+use wbv::record::{Compression, Encoding, MessageLayout, RecordOptions};
+use wbv::scenario::Scenario;
 
 /// The command line for provenance, normalised so that the same run gives the same bytes
 /// wherever it is written and whichever binary ran it: program name `wbv`, and without the
@@ -33,7 +33,7 @@ fn normalise(args: impl Iterator<Item = String>) -> String {
 }
 
 /// The options `--from` accepts beside itself: outputs and timing, nothing that changes the run.
-pub(super) fn check_from_alone(args: impl Iterator<Item = String>) -> crate::Result<()> {
+pub(super) fn check_from_alone(args: impl Iterator<Item = String>) -> wbv::Result<()> {
     let mut args = args.peekable();
     while let Some(a) = args.next() {
         let name = a.split('=').next().unwrap_or_default();
@@ -43,7 +43,7 @@ pub(super) fn check_from_alone(args: impl Iterator<Item = String>) -> crate::Res
                 args.next();
             }
         } else if !["simulate", "--force", "--timing", "--json"].contains(&a.as_str()) {
-            return Err(crate::Error::parameter(
+            return Err(wbv::Error::parameter(
                 a,
                 "cannot be given with --from, which re-runs the recorded run exactly (only --out, \
                  --force, --csv and --timing may be added)",
@@ -65,11 +65,11 @@ fn integrator_option(name: &str) -> &str {
 }
 
 /// The scenario, recording options and command line of a recorded run, for `--from`.
-pub fn from_run(run: &Path) -> crate::Result<(Scenario, RecordOptions, String)> {
-    let path = crate::record::run_file(run);
-    let (p, meta) = crate::record::read_provenance(&path)?;
+pub fn from_run(run: &Path) -> wbv::Result<(Scenario, RecordOptions, String)> {
+    let path = wbv::record::run_file(run);
+    let (p, meta) = wbv::record::read_provenance(&path)?;
     let bad = |key: &str| {
-        crate::Error::data(
+        wbv::Error::data(
             &path,
             None,
             format!("metadata `wbv.run.{key}` missing or invalid: cannot re-run"),
@@ -79,15 +79,15 @@ pub fn from_run(run: &Path) -> crate::Result<(Scenario, RecordOptions, String)> 
     let num = |key: &str| get(key)?.parse::<f64>().map_err(|_| bad(key));
     // A single model file is its TOML; a stack (`stack = [...]`) stores the texts of its parts,
     // which load again through the catalogue name, checked to give the same text.
-    let model = match crate::model::catalog::parse(&p.model_toml, &p.model) {
+    let model = match wbv::model::catalog::parse(&p.model_toml, &p.model) {
         Ok(mut m) => {
             m.name = p.model.clone();
             m
         }
-        Err(e) => match crate::model::catalog::resolve(&p.model) {
+        Err(e) => match wbv::model::catalog::resolve(&p.model) {
             Ok(m) if m.text == p.model_toml => m,
             _ => {
-                return Err(crate::Error::data(
+                return Err(wbv::Error::data(
                     &path,
                     None,
                     format!(
@@ -99,12 +99,11 @@ pub fn from_run(run: &Path) -> crate::Result<(Scenario, RecordOptions, String)> 
             }
         },
     };
-    let excitation =
-        crate::record::load_excitation(&p.excitation_origin, &p.excitation_definition)?;
-    let settings = crate::simulate::Settings {
+    let excitation = wbv::record::load_excitation(&p.excitation_origin, &p.excitation_definition)?;
+    let settings = wbv::simulate::Settings {
         dt: p.dt,
         duration_s: p.duration,
-        method: crate::integrator::Method::parse(integrator_option(&p.integrator))?,
+        method: wbv::integrator::Method::parse(integrator_option(&p.integrator))?,
     };
     let (fs, rate) = (num("simulation_rate_hz")?, num("sample_rate_hz")?);
     let options = RecordOptions {

@@ -1,13 +1,13 @@
-use crate::error::Error;
-use crate::excitation::ExcitationArgs;
-use crate::io::atomic::{Overwrite, write_atomic};
-use crate::report::json::{Files, Written};
-use crate::response::frf;
-use crate::study::iso::IsoRun;
-use crate::study::param::{Param, parse_values};
-use crate::study::shard::{self, Shard};
-use crate::study::sweep::{self, PointFigures, Spec};
 use std::path::{Path, PathBuf};
+use wbv::error::Error;
+use wbv::excitation::ExcitationArgs;
+use wbv::io::atomic::{Overwrite, write_atomic};
+use wbv::report::json::{Files, Written};
+use wbv::response::frf;
+use wbv::study::iso::IsoRun;
+use wbv::study::param::{Param, parse_values};
+use wbv::study::shard::{self, Shard};
+use wbv::study::sweep::{self, PointFigures, Spec};
 
 mod plots;
 
@@ -133,21 +133,21 @@ fn response_unit(response: &str) -> &'static str {
     }
 }
 
-pub fn run(args: Args) -> crate::Result<()> {
+pub fn run(args: Args) -> wbv::Result<()> {
     let ow = overwrite(args.force);
     // Every output is checked before the sweep runs, so a refusal costs nothing.
     let plot_files = match &args.plot {
         Some(dir) => {
-            let (dir, ext) = crate::plot::plot_dir(dir, &args.plot_format)?;
+            let (dir, ext) = wbv::plot::plot_dir(dir, &args.plot_format)?;
             let files = plot_paths(&dir, ext, args.excitation.is_some());
-            crate::plot::check_targets(&files, ow)?;
+            wbv::plot::check_targets(&files, ow)?;
             Some(files)
         }
         None => None,
     };
     if let Some(out) = &args.out {
-        crate::io::atomic::check_overwrite(out, ow)?;
-        crate::io::atomic::check_overwrite(&sibling(out, "-peaks"), ow)?;
+        wbv::io::atomic::check_overwrite(out, ow)?;
+        wbv::io::atomic::check_overwrite(&sibling(out, "-peaks"), ow)?;
     }
     if args.plot.is_some() && args.shard.is_some() {
         return Err(Error::parameter(
@@ -166,12 +166,12 @@ pub fn run(args: Args) -> crate::Result<()> {
         .params
         .iter()
         .map(|p| Param::parse(p, &model))
-        .collect::<crate::Result<Vec<_>>>()?;
+        .collect::<wbv::Result<Vec<_>>>()?;
     let values = args
         .values
         .iter()
         .map(|v| parse_values(v, "--values"))
-        .collect::<crate::Result<Vec<_>>>()?;
+        .collect::<wbv::Result<Vec<_>>>()?;
     let spec = Spec {
         params,
         values,
@@ -188,7 +188,7 @@ pub fn run(args: Args) -> crate::Result<()> {
         (Some(e), time) => {
             let time = time.clone().unwrap_or_default();
             Some(IsoRun {
-                excitation: crate::excitation::resolve(e)?,
+                excitation: wbv::excitation::resolve(e)?,
                 settings: time.settings()?,
                 seed: time.seed,
             })
@@ -233,7 +233,7 @@ pub fn run(args: Args) -> crate::Result<()> {
         written.extend(Written::existing(files)?);
     }
     if args.json {
-        let mut table = crate::report::json::Sweep::of(
+        let mut table = wbv::report::json::Sweep::of(
             &model.name,
             &spec,
             &pts,
@@ -246,9 +246,9 @@ pub fn run(args: Args) -> crate::Result<()> {
     Ok(())
 }
 
-pub fn merge(args: MergeArgs) -> crate::Result<()> {
+pub fn merge(args: MergeArgs) -> wbv::Result<()> {
     // Refuse an overwrite before reading the shards.
-    crate::io::atomic::check_overwrite(&args.out, overwrite(args.force))?;
+    wbv::io::atomic::check_overwrite(&args.out, overwrite(args.force))?;
     let files: Vec<&Path> = args.files.iter().map(|p| p.as_path()).collect();
     let text = shard::merge(&files)?;
     write_atomic(&args.out, overwrite(args.force), |w| {

@@ -2,14 +2,14 @@
 //! parameter.
 
 use super::response_unit;
-use crate::io::atomic::Overwrite;
-use crate::plot::{Axis, Chart, Rule, Series, Style};
-use crate::study::heatmap::{self, HeatMap};
-use crate::study::iso::IsoRun;
-use crate::study::sweep::{Point, Spec};
 use std::path::{Path, PathBuf};
+use wbv::io::atomic::Overwrite;
+use wbv::plot::{Axis, Chart, Rule, Series, Style};
+use wbv::study::heatmap::{self, HeatMap};
+use wbv::study::iso::IsoRun;
+use wbv::study::sweep::{Point, Spec};
 
-/// `spec [unit]` for a swept parameter (units of [`crate::model::params`]; a damping ratio is
+/// `spec [unit]` for a swept parameter (units of [`wbv::model::params`]; a damping ratio is
 /// dimensionless).
 fn param_axis(spec: &str) -> String {
     let unit = if spec.contains(".zeta@") {
@@ -48,7 +48,7 @@ pub(super) fn plots(
     title: &str,
     paths: &[PathBuf],
     ow: Overwrite,
-) -> crate::Result<()> {
+) -> wbv::Result<()> {
     // Parameters with a single value are fixed settings, not axes.
     let axes: Vec<usize> = (0..spec.values.len())
         .filter(|&i| spec.values[i].len() > 1)
@@ -61,7 +61,7 @@ pub(super) fn plots(
         .fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), v| {
             (l.min(*v), h.max(*v))
         });
-    let bar = crate::plot::ColourBar {
+    let bar = wbv::plot::ColourBar {
         label: param_axis(&spec.params[a].spec),
         lo,
         hi,
@@ -94,7 +94,7 @@ pub(super) fn plots(
         colour_bar: Some(bar),
         ..Chart::default()
     };
-    crate::plot::draw(&[chart], &paths[0], ow)?;
+    wbv::plot::draw(&[chart], &paths[0], ow)?;
     let hm = match axes[..] {
         [a, b, ..] => HeatMap {
             title: format!("{title}: peak of |{}|", spec.response),
@@ -139,7 +139,7 @@ pub(super) fn iso_plot(
     iso: &IsoRun,
     path: &Path,
     ow: Overwrite,
-) -> crate::Result<()> {
+) -> wbv::Result<()> {
     let axes: Vec<usize> = (0..spec.values.len())
         .filter(|&i| spec.values[i].len() > 1)
         .collect();
@@ -162,9 +162,9 @@ pub(super) fn iso_plot(
                 series("a_v total value (Annex C)", 1).styled(Style::Dashed),
                 series("", 1)
                     .styled(Style::Markers)
-                    .coloured(crate::plot::colour::pick(1)),
+                    .coloured(wbv::plot::colour::pick(1)),
             ],
-            spans: crate::analysis::plots::comfort_spans(),
+            spans: wbv::analysis::plots::comfort_spans(),
             ..Chart::default()
         },
         Chart {
@@ -181,5 +181,5 @@ pub(super) fn iso_plot(
             ..Chart::default()
         },
     ];
-    crate::plot::draw(&charts, path, ow)
+    wbv::plot::draw(&charts, path, ow)
 }
