@@ -22,8 +22,6 @@ pub(super) struct AllRuns {
     /// Reduced χ² over all runs of the null and of the effect, each fitted on all runs.
     pub(super) null_chi2_red: f64,
     pub(super) chi2_red: f64,
-    /// The floor the all-run gap is measured down to ([`score::gap_floor`]).
-    pub(super) floor: f64,
     /// The effect fitted on all runs.
     pub(super) fitted: Fitted,
 }
@@ -31,7 +29,11 @@ pub(super) struct AllRuns {
 impl AllRuns {
     /// Fraction of the all-run structural gap the effect closes.
     pub(super) fn fraction_closed(&self) -> f64 {
-        score::fraction_closed(self.null_chi2_red, self.chi2_red, self.floor)
+        score::fraction_closed(
+            self.null_chi2_red,
+            self.chi2_red,
+            score::gap_floor(self.null_chi2_red),
+        )
     }
 
     /// Puts the all-run fit into the named candidate's entry of `cands` (parameters, all-run ΔBIC
@@ -90,7 +92,6 @@ pub(super) fn judge(
         .par_iter()
         .map(|&c| Ok((c, fit_candidate(base, &[c], &all, &null.fit.u)?)))
         .collect::<Result<_>>()?;
-    let floor = score::gap_floor(null.fit.cost / n);
     let best = fitted
         .into_iter()
         .map(|(c, f)| {
@@ -104,7 +105,6 @@ pub(super) fn judge(
             delta_bic,
             null_chi2_red: null.fit.cost / n,
             chi2_red: fitted.fit.cost / n,
-            floor,
             fitted,
         };
         (delta_bic <= ACCEPT_DELTA_BIC && found.fraction_closed() >= MIN_CLOSED).then_some(found)

@@ -195,7 +195,11 @@ pub fn diagnose(model: &Model, train: &[Signals], check: &Signals) -> Result<Dia
         delta_bic: 0.0,
         delta_bic_all: 0.0,
         probability: 0.0,
-        fraction_closed: 0.0,
+        fraction_closed: score::fraction_closed(
+            nominal.chi2_red,
+            null_stage.chi2_red,
+            score::gap_floor(nominal.chi2_red),
+        ),
         aw_change_percent: 0.0,
         seat_change_points: 0.0,
         band_gap_change_db: 0.0,
@@ -217,11 +221,6 @@ pub fn diagnose(model: &Model, train: &[Signals], check: &Signals) -> Result<Dia
         })
         .collect::<Result<_>>()?;
     let floor = score::gap_floor(null.check.chi2_red);
-    null.fraction_closed = score::fraction_closed(
-        nominal.chi2_red,
-        null.check.chi2_red,
-        score::gap_floor(nominal.chi2_red),
-    );
     for (c, ft, st) in fitted {
         let p = nb + c.params().len();
         let (aw, seat, db) = sizes(&st, &null.check);

@@ -82,7 +82,12 @@ pub fn fraction_closed(d_null: f64, d_new: f64, floor: f64) -> f64 {
 /// model's reduced χ² falls below 1, and measuring down to 1 would call a residue that a clearly
 /// better model removes (null 0.74 → backrest 0.32) "no gap".
 pub fn gap_floor(d_null: f64) -> f64 {
-    if d_null > 1.0 { 1.0 } else { 0.0 }
+    if within_noise(d_null) { 0.0 } else { 1.0 }
+}
+
+/// Whether a fit with reduced χ² `d` already lies within the noise estimate (χ² ≤ 1).
+pub fn within_noise(d: f64) -> bool {
+    d <= 1.0
 }
 
 #[cfg(test)]

@@ -45,7 +45,7 @@ pub(super) fn held_out_accepted<'a>(null: &Ranked, cands: &'a [Ranked]) -> Optio
     cands.first().filter(|b| {
         b.delta_bic <= ACCEPT_DELTA_BIC
             && b.fraction_closed >= MIN_CLOSED
-            && (null.check.chi2_red > 1.0
+            && (!score::within_noise(null.check.chi2_red)
                 || b.aw_change_percent.abs() >= VISIBLE_SIZE.0
                 || b.seat_change_points.abs() >= VISIBLE_SIZE.1)
     })
@@ -88,9 +88,9 @@ pub(super) fn decide(
     // leave a structural residue the null cannot fit, keeps the check run within the noise (the
     // null's compromise between two magnitudes can fit a middle one that an effect whose form is
     // only close to the truth's interpolates a little less well).
-    // Measured down to 1, not to the best fit's χ²: on the training runs every candidate fits in
-    // sample, and a floor at the best of them would let any candidate close "all" of a residue
-    // at the noise level (null cases named body-mode at ΔBIC −3).
+    // Measured down to 1 even when the null fits within σ (not `score::gap_floor`): on the
+    // training runs every candidate fits in sample, and measuring down to 0 there let candidates
+    // close "all" of a residue at the noise level (null cases named body-mode at ΔBIC −3).
     let train_floor = 1.0;
     let on_all = || {
         cands
