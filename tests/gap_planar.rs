@@ -183,6 +183,17 @@ fn planar_cushion_relaxation_is_named_with_fore_and_aft_paths_judged() {
         "{}",
         d.verdict_text
     );
+    // One Maxwell arm is not a power law: the report must say when the named effect(s) move the
+    // check run's a_w and SEAT away from the measurement although the FRFs fit better.
+    let with = d
+        .second
+        .as_ref()
+        .map_or(&d.candidates[0].check, |s| &s.check);
+    let (n, w) = (&d.null.check.weighted, &with.weighted);
+    let away = w.aw_gap_percent.abs() > n.aw_gap_percent.abs() + 0.5
+        && (w.seat_model - w.seat_meas).abs() > (n.seat_model - n.seat_meas).abs() + 0.5;
+    let warned = d.warnings.iter().any(|m| m.contains("ISO figures away"));
+    assert_eq!(away, warned, "{:?}", d.warnings);
 }
 
 #[test]

@@ -38,7 +38,7 @@ use inputs::{check_inputs, mask_incoherent};
 use measure::{Path, RunSpectra};
 use predict::Variant;
 use rayon::prelude::*;
-use verdict::decide;
+use verdict::{decide, iso_figures_move_away};
 
 /// ΔBIC (held-out) an effect must reach against the null re-fit to be *detected* (gap.md §3.6:
 /// "strong evidence", Kass & Raftery, JASA 90 (1995) 773–795).
@@ -353,6 +353,11 @@ pub fn diagnose(model: &Model, train: &[Signals], check: &Signals) -> Result<Dia
         ),
         None => verdict_text,
     };
+    if let Some(st) = last
+        && let Some(w) = iso_figures_move_away(&null.check, st)
+    {
+        warnings.push(w);
+    }
     Ok(Diagnosis {
         named,
         bands,

@@ -225,3 +225,22 @@ pub(super) fn decide(
         ),
     }
 }
+
+/// A warning when the named effect(s) fit the frequency responses better but move the check
+/// run's ISO figures away from the measurement: the seat a_w gap and the SEAT gap both grow by
+/// more than [`VISIBLE_SIZE`]. The χ² is dominated by the many coherent bins above 10 Hz, a_w and
+/// SEAT by the 4–8 Hz band, so a form only close to the truth's (one Maxwell arm for a foam's
+/// power-law relaxation) can improve the one and worsen the other; the user judges by the ISO
+/// figures, so the report says which model to take them from.
+pub(super) fn iso_figures_move_away(null: &Stage, with: &Stage) -> Option<String> {
+    let (n, w) = (&null.weighted, &with.weighted);
+    let seat_gap = |s: f64| (s - w.seat_meas).abs();
+    let aw_worse = w.aw_gap_percent.abs() - n.aw_gap_percent.abs();
+    let seat_worse = seat_gap(w.seat_model) - seat_gap(n.seat_model);
+    (aw_worse > VISIBLE_SIZE.0 && seat_worse > VISIBLE_SIZE.1).then(|| {
+        format!(
+            "the named effect fits the frequency responses better but moves the check run's ISO figures away from the measurement (seat a_w gap {:+.1} % → {:+.1} %, SEAT {:.1} → {:.1} % against {:.1} %): its form is only close to the truth's; take a_w and SEAT from the re-fitted model",
+            n.aw_gap_percent, w.aw_gap_percent, n.seat_model, w.seat_model, w.seat_meas
+        )
+    })
+}
