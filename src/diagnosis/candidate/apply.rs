@@ -86,6 +86,7 @@ impl Candidate {
             }
             Candidate::SensorMountSeat => v.seat.mount = Some((p[0], p[1])),
             Candidate::SensorMountHead => v.head.mount = Some((p[0], p[1])),
+            Candidate::SensorMountBase => v.base.mount = Some((p[0], p[1])),
             Candidate::SuspensionFriction => {
                 let i = need(role_link(s, Role::Suspension), "suspension")?;
                 s.links[i].law = Some(Law::Friction {

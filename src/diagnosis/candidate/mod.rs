@@ -86,6 +86,10 @@ pub enum Candidate {
     SensorMountSeat,
     /// Mount resonance of the head accelerometer.
     SensorMountHead,
+    /// Dynamics of the base accelerometer (a mount resonance, or with high damping an
+    /// anti-alias low-pass of another acquisition module): the measured base is the input, so it
+    /// divides base→seat and base→head alike and leaves seat→head alone.
+    SensorMountBase,
     /// Coulomb friction on the suspension, F_c tanh(v/v_ref).
     SuspensionFriction,
     /// End-stops on the suspension beyond ±gap.
@@ -105,7 +109,7 @@ pub enum Candidate {
 
 impl Candidate {
     /// Every candidate in report order.
-    pub const ALL: [Candidate; 16] = [
+    pub const ALL: [Candidate; 17] = [
         Candidate::BodySoftening,
         Candidate::BodySofteningMagnitude,
         Candidate::CushionStiffening,
@@ -116,6 +120,7 @@ impl Candidate {
         Candidate::SensorGain,
         Candidate::SensorMountSeat,
         Candidate::SensorMountHead,
+        Candidate::SensorMountBase,
         Candidate::SuspensionFriction,
         Candidate::EndStop,
         Candidate::MissingDof,
@@ -137,6 +142,7 @@ impl Candidate {
             Candidate::SensorGain => "sensor-gain",
             Candidate::SensorMountSeat => "sensor-mount-seat",
             Candidate::SensorMountHead => "sensor-mount-head",
+            Candidate::SensorMountBase => "sensor-mount-base",
             Candidate::SuspensionFriction => "suspension-friction",
             Candidate::EndStop => "end-stop",
             Candidate::MissingDof => "missing-dof",
@@ -157,7 +163,8 @@ impl Candidate {
             | Candidate::SensorLowpass
             | Candidate::SensorGain
             | Candidate::SensorMountSeat
-            | Candidate::SensorMountHead => "sensor",
+            | Candidate::SensorMountHead
+            | Candidate::SensorMountBase => "sensor",
             Candidate::SuspensionFriction | Candidate::EndStop => "suspension",
             Candidate::MissingDof | Candidate::BodyMode => "missing degree of freedom",
             Candidate::Backrest | Candidate::FeetSupport => "second support path",
@@ -201,7 +208,8 @@ impl Candidate {
             Candidate::SensorDelay
             | Candidate::SensorLowpass
             | Candidate::SensorGain
-            | Candidate::SensorMountSeat => true,
+            | Candidate::SensorMountSeat
+            | Candidate::SensorMountBase => true,
             Candidate::SensorMountHead => system.channel_index("a_head_z").is_some(),
             Candidate::MissingDof => cushion_links(system)
                 .iter()
@@ -255,6 +263,12 @@ impl Candidate {
             Candidate::SensorMountSeat | Candidate::SensorMountHead => vec![
                 Param::new("f_mount_hz", 8.0, 300.0, &[15.0, 40.0, 120.0], true),
                 Param::new("zeta_mount", 0.01, 0.7, &[0.08], true),
+            ],
+            // Damping up to 1 and a heavily damped start: a base-channel low-pass (another
+            // module's anti-alias filter) is as likely as a resonant mount on a shaker table.
+            Candidate::SensorMountBase => vec![
+                Param::new("f_mount_hz", 8.0, 300.0, &[15.0, 40.0, 120.0], true),
+                Param::new("zeta_mount", 0.01, 1.0, &[0.08, 0.6], true),
             ],
             Candidate::SuspensionFriction => {
                 vec![Param::new("f_c_n", 0.5, 1000.0, &[5.0, 50.0], true)]

@@ -108,7 +108,7 @@ pub enum Form {
     Bilinear,
     /// Body stiffness scheduled with the run's r.m.s. (linear within a run, softer between runs).
     Scheduled,
-    /// Pure delay on one output channel.
+    /// Pure delay on one channel.
     Delay,
     /// Accelerometer anti-alias low-pass (4-pole Butterworth or Bessel) on one channel.
     LowPass,
@@ -258,10 +258,12 @@ pub fn plant(
             body::plant(form, t, rng, model, lines, rms, &mut planted)?
         }
         Form::Delay | Form::LowPass | Form::Mount | Form::Gain => {
-            let ch = if rng.random::<f64>() < 0.5 {
-                "a_seat_z"
-            } else {
-                "a_head_z"
+            // The base accelerometer too (15 %): the measured base is the input, so its own
+            // dynamics show on base→seat and base→head alike.
+            let ch = match rng.random::<f64>() {
+                r if r < 0.5 => "a_seat_z",
+                r if r < 0.85 => "a_head_z",
+                _ => "a_base_z",
             };
             let s = match form {
                 Form::Delay => Sensor::Delay(0.001 + 0.019 * u),
