@@ -334,12 +334,7 @@ pub fn diagnose(model: &Model, train: &[Signals], check: &Signals) -> Result<Dia
         None => verdict_text,
     };
     // How close a_w and SEAT come on the check run once the named effect(s) are added.
-    let last = second.as_ref().map(|s| &s.check).or_else(|| {
-        cands
-            .iter()
-            .find(|b| named.first() == Some(&b.id))
-            .map(|b| &b.check)
-    });
+    let last = outcome::named_stage(&named, &cands, second.as_ref());
     let verdict_text = match last {
         Some(st) => format!(
             "{verdict_text}. On the check run the seat a_w gap goes {:+.1} % (nominal) → {:+.1} % (re-fitted) → {:+.1} % (with the effect), SEAT {:.1} → {:.1} → {:.1} % against {:.1} % measured",

@@ -114,6 +114,26 @@ pub struct Diagnosis {
     pub separating_measurement: Option<String>,
 }
 
+impl Diagnosis {
+    /// The check-run stage of the model with the named effect(s) (the forward-selected pair when
+    /// there is one); `None` when nothing is named.
+    pub fn named_stage(&self) -> Option<&Stage> {
+        named_stage(&self.named, &self.candidates, self.second.as_ref())
+    }
+}
+
+/// See [`Diagnosis::named_stage`].
+pub(super) fn named_stage<'a>(
+    named: &[String],
+    candidates: &'a [Ranked],
+    second: Option<&'a Ranked>,
+) -> Option<&'a Stage> {
+    let first = named.first()?;
+    second
+        .map(|s| &s.check)
+        .or_else(|| candidates.iter().find(|b| &b.id == first).map(|b| &b.check))
+}
+
 /// Which bands of a path were judged.
 #[derive(Debug, Clone, Serialize)]
 pub struct BandCoverage {

@@ -47,8 +47,34 @@ pub struct CaseScore {
     pub top2_hit: bool,
     /// Fraction of the structural gap closed by the best candidate of a planted family.
     pub fraction_closed: Option<f64>,
+    /// The check run's ISO figures, as the user judges the answer.
+    pub iso: Option<IsoGaps>,
     /// Wall time of the diagnosis, s.
     pub diagnosis_s: f64,
+}
+
+/// The check run's seat a_w and SEAT gaps (model − measured) for the nominal model, the re-fitted
+/// base model and the model with the named effect(s) (the re-fitted one when nothing is named).
+#[derive(Debug, Clone, Copy, Serialize)]
+pub struct IsoGaps {
+    /// Seat a_w gap, % of the measured a_w (Wk-weighted r.m.s., ISO 2631-1 §6.4.2).
+    pub aw_percent: [f64; 3],
+    /// SEAT gap (SEAT = a_w,seat / a_w,base · 100 %), percentage points.
+    pub seat_points: [f64; 3],
+}
+
+impl IsoGaps {
+    fn of(d: &crate::diagnosis::Diagnosis) -> Self {
+        let stages = [
+            &d.nominal,
+            &d.null.check,
+            d.named_stage().unwrap_or(&d.null.check),
+        ];
+        IsoGaps {
+            aw_percent: stages.map(|s| s.weighted.aw_gap_percent),
+            seat_points: stages.map(|s| s.weighted.seat_model - s.weighted.seat_meas),
+        }
+    }
 }
 
 /// Runs case `index` of a bench with master `seed` end to end; a diagnosis error is recorded in
@@ -82,6 +108,7 @@ pub fn run_case(index: usize, seed: u64) -> Result<CaseScore> {
             top1: false,
             top2_hit: false,
             fraction_closed: None,
+            iso: None,
             label,
             diagnosis_s: secs,
         },
@@ -111,6 +138,7 @@ pub fn run_case(index: usize, seed: u64) -> Result<CaseScore> {
                 top1,
                 top2_hit,
                 fraction_closed,
+                iso: Some(IsoGaps::of(&d)),
                 label,
                 diagnosis_s: secs,
             }

@@ -24,6 +24,11 @@ pub struct Row {
     pub median_closed: Option<f64>,
     /// Cases that ended in an error.
     pub errors: usize,
+    /// Median |seat a_w gap| on the check run, %: re-fitted base model, then with the named
+    /// effect(s) — how close the answer brings the ISO figure.
+    pub median_aw_gap: Option<(f64, f64)>,
+    /// The same for the SEAT gap, percentage points.
+    pub median_seat_gap: Option<(f64, f64)>,
 }
 
 /// The bench summary.
@@ -81,7 +86,18 @@ fn row(group: &str, key: String, c: &[&CaseScore]) -> Row {
             .then(|| det.iter().filter(|s| s.top1).count() as f64 / det.len() as f64),
         median_closed: median(c.iter().filter_map(|s| s.fraction_closed).collect()),
         errors: c.iter().filter(|s| s.error.is_some()).count(),
+        median_aw_gap: median_pair(c, |g| g.aw_percent),
+        median_seat_gap: median_pair(c, |g| g.seat_points),
     }
+}
+
+/// Medians of |re-fitted| and |named| of an ISO gap over the cases that have it.
+fn median_pair(c: &[&CaseScore], gap: impl Fn(&IsoGaps) -> [f64; 3]) -> Option<(f64, f64)> {
+    let g: Vec<[f64; 3]> = c.iter().filter_map(|s| s.iso.as_ref()).map(gap).collect();
+    Some((
+        median(g.iter().map(|v| v[1].abs()).collect())?,
+        median(g.iter().map(|v| v[2].abs()).collect())?,
+    ))
 }
 
 /// Summarises case scores.
@@ -275,11 +291,14 @@ impl Summary {
             f(self.none_false_positive_rate),
             self.errors
         );
-        out += "| group | row | cases | top-1 | top-2 | detectable | top-1 detectable | median closed | errors |\n";
-        out += "|---|---|---:|---:|---:|---:|---:|---:|---:|\n";
+        let pair = |x: Option<(f64, f64)>, d: usize| {
+            x.map_or("–".to_string(), |(a, b)| format!("{a:.d$} → {b:.d$}"))
+        };
+        out += "| group | row | cases | top-1 | top-2 | detectable | top-1 detectable | median closed | median \\|a_w gap\\| % re-fitted → named | median \\|SEAT gap\\| points | errors |\n";
+        out += "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
         for r in &self.rows {
             out += &format!(
-                "| {} | {} | {} | {:.2} | {:.2} | {} | {} | {} | {} |\n",
+                "| {} | {} | {} | {:.2} | {:.2} | {} | {} | {} | {} | {} | {} |\n",
                 r.group,
                 r.key,
                 r.cases,
@@ -288,6 +307,8 @@ impl Summary {
                 r.detectable,
                 f(r.top1_detectable),
                 f(r.median_closed),
+                pair(r.median_aw_gap, 1),
+                pair(r.median_seat_gap, 1),
                 r.errors
             );
         }
