@@ -68,10 +68,12 @@ impl AllRuns {
 /// Re-fits the null and the amplitude-dependent `candidates` on the training runs and the check
 /// run together (starting from the training null's parameters `warm`) and returns the best effect
 /// if it is detected (ΔBIC ≤ [`ACCEPT_DELTA_BIC`]) and closes at least [`MIN_CLOSED`] of the
-/// all-run structural gap.
+/// all-run structural gap. A `rival` (the held-out run's linear best) is re-fitted on all runs
+/// too; when it fits them better, nothing is returned and the held-out verdict stands.
 pub(super) fn judge(
     base: &Base,
     candidates: &[Candidate],
+    rival: Option<Candidate>,
     train: &[RunSpectra],
     check: &RunSpectra,
     warm: &[f64],
@@ -87,6 +89,7 @@ pub(super) fn judge(
         .iter()
         .copied()
         .filter(|c| c.amplitude_dependent())
+        .chain(rival)
         .collect();
     let fitted: Vec<(Candidate, Fitted)> = amplitude
         .par_iter()
@@ -99,6 +102,9 @@ pub(super) fn judge(
             (c, f, d)
         })
         .min_by(|a, b| a.2.total_cmp(&b.2));
+    if best.as_ref().is_some_and(|b| Some(b.0) == rival) {
+        return Ok(None);
+    }
     Ok(best.and_then(|(candidate, fitted, delta_bic)| {
         let found = AllRuns {
             candidate,

@@ -252,15 +252,23 @@ pub fn diagnose(model: &Model, train: &[Signals], check: &Signals) -> Result<Dia
     for c in &mut cands {
         c.probability = (-(c.delta_bic - zmin) / 2.0).exp() / wsum;
     }
-    // Training runs with a structural residue that no candidate confirms on the held-out run: the
-    // amplitude-dependent effects are judged on all runs together (`all_runs`); the named one's
-    // entry then carries its all-run fit.
-    let all_runs =
-        if verdict::held_out_accepted(&null, &cands).is_none() && null.train_chi2_red > GAP_CHI2 {
-            all_runs::judge(&base, &applicable, &tr, &ck, &null_fit.fit.u)?
-        } else {
-            None
-        };
+    // Training runs with a structural residue that no candidate confirms on the held-out run, or
+    // that the held-out run's best leaves nearly whole (a check run between the training
+    // magnitudes is fitted by the null's compromise, and a small linear effect then wins there):
+    // the amplitude-dependent effects are judged on all runs together (`all_runs`), against that
+    // best re-fitted on all runs too; the named one's entry then carries its all-run fit.
+    let accepted = verdict::held_out_accepted(&null, &cands);
+    let explains_training = |b: &Ranked| {
+        score::fraction_closed(null.train_chi2_red, b.train_chi2_red, 1.0) >= MIN_CLOSED
+    };
+    let all_runs = if null.train_chi2_red > GAP_CHI2 && !accepted.is_some_and(explains_training) {
+        let rival = accepted
+            .and_then(|b| Candidate::from_id(&b.id))
+            .filter(|c| !c.amplitude_dependent());
+        all_runs::judge(&base, &applicable, rival, &tr, &ck, &null_fit.fit.u)?
+    } else {
+        None
+    };
     if let Some(a) = &all_runs {
         a.adopt(&base, &null, &ck, &mut cands, &mut fits)?;
     }

@@ -62,8 +62,9 @@ pub(super) fn decide(
     let best = cands.first();
     let family = |id: &str| Candidate::from_id(id).map(|c| c.family());
     let accepted = held_out_accepted(null, cands);
-    if accepted.is_none()
-        && let Some(a) = all
+    // Present only when no held-out best explains the training runs' residue and the
+    // amplitude-dependent effect fits all runs better than that best (`all_runs::judge`).
+    if let Some(a) = all
         && let Some(b) = cands.iter().find(|c| c.id == a.candidate.id())
     {
         return (
@@ -78,7 +79,14 @@ pub(super) fn decide(
                 b.aw_change_percent,
                 b.seat_change_points,
                 b.band_gap_change_db
-            ),
+            ) + &accepted.filter(|h| h.id != b.id).map_or(String::new(), |h| {
+                format!(
+                    "; the held-out run's best, {} (ΔBIC {:.1}), closes only {:.0} % of the training runs' gap",
+                    h.id,
+                    h.delta_bic,
+                    100.0 * score::fraction_closed(null.train_chi2_red, h.train_chi2_red, 1.0)
+                )
+            }),
             None,
         );
     }
