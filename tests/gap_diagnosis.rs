@@ -183,3 +183,46 @@ fn check_run_outside_the_training_magnitudes_is_warned() {
         d.warnings
     );
 }
+
+/// `s` with `offset` added to every sample of the channels named in `names`.
+fn with_offset(s: &Signals, names: &[&str], offset: f64) -> Signals {
+    let mut out = Signals::new(s.sample_rate_hz, s.source.clone());
+    for (n, d) in s.names.iter().zip(&s.data) {
+        let add = if names.contains(&n.as_str()) {
+            offset
+        } else {
+            0.0
+        };
+        out.push(n.clone(), d.iter().map(|v| v + add).collect())
+            .unwrap();
+    }
+    out
+}
+
+#[test]
+fn gravity_read_by_dc_coupled_accelerometers_changes_nothing_but_a_warning() {
+    // A DC-coupled accelerometer reads +1 g at rest. The runs' magnitudes (which scale the
+    // amplitude-dependent candidates) and the verdict must be those of the fluctuations alone.
+    let case = null_case();
+    let model = catalog::resolve("reference").unwrap();
+    let g = 9.80665;
+    let lift = |s: &Signals| with_offset(s, &["a_base_z", "a_head_z"], g);
+    let train: Vec<Signals> = case.train.iter().map(lift).collect();
+    let plain = diagnose(&model, &case.train, &case.check).unwrap();
+    let d = diagnose(&model, &train, &lift(&case.check)).unwrap();
+    assert_eq!(d.verdict, plain.verdict, "{}", d.verdict_text);
+    for (a, b) in d.runs.iter().zip(&plain.runs) {
+        assert!(
+            (a.base_rms / b.base_rms - 1.0).abs() < 1e-6,
+            "{} vs {}",
+            a.base_rms,
+            b.base_rms
+        );
+    }
+    let gravity = d
+        .warnings
+        .iter()
+        .filter(|w| w.contains("gravity seems to be included"))
+        .count();
+    assert_eq!(gravity, 2 * 3, "{:?}", d.warnings);
+}

@@ -119,35 +119,46 @@ fn units() -> BTreeMap<String, String> {
     .collect()
 }
 
+/// A note on a channel's mean: 1 g of gravity read by a DC-coupled accelerometer, data in g read
+/// as m/s², or a sensor offset (mean over half the r.m.s. fluctuation); `None` when the mean is
+/// unremarkable. `mean` and `rms` (including the mean) in the channel's unit.
+pub fn offset_note(name: &str, mean: f64, rms: f64) -> Option<String> {
+    let g = crate::io::input::STANDARD_GRAVITY;
+    let ac = (rms * rms - mean * mean).max(0.0).sqrt();
+    let m = mean.abs();
+    if name.starts_with("a_") && (m - g).abs() < 0.1 * g {
+        Some(format!(
+            "{name}: mean {mean:.3} m/s² is close to 1 g: gravity seems to be included"
+        ))
+    } else if name.starts_with("a_") && (m - 1.0).abs() < 0.1 && ac < 0.5 {
+        Some(format!(
+            "{name}: mean {mean:.3} with r.m.s. fluctuation {ac:.3}: the data look like g with \
+             gravity (1 g ≈ 1.0) read as m/s²; give --units g if so"
+        ))
+    } else if m > 0.5 * ac && m > 0.0 {
+        Some(format!(
+            "{name}: mean {mean:.4} m/s² is {:.0} % of the r.m.s. fluctuation: a sensor offset?",
+            100.0 * m / ac.max(f64::MIN_POSITIVE)
+        ))
+    } else {
+        None
+    }
+}
+
 impl ChannelReport {
     fn notes(&self, duration_s: f64) -> Vec<String> {
-        let mut notes = Vec::new();
-        let g = crate::io::input::STANDARD_GRAVITY;
-        let ac = (self.rms * self.rms - self.mean * self.mean)
-            .max(0.0)
-            .sqrt();
-        let m = self.mean.abs();
-        if self.name.starts_with("a_") && (m - g).abs() < 0.1 * g {
-            notes.push(format!(
-                "{}: mean {:.3} m/s² is close to 1 g: gravity seems to be included (removed \
-                 before weighting; the unweighted r.m.s. includes it)",
-                self.name, self.mean
-            ));
-        } else if self.name.starts_with("a_") && (m - 1.0).abs() < 0.1 && ac < 0.5 {
-            notes.push(format!(
-                "{}: mean {:.3} with r.m.s. fluctuation {ac:.3}: the data look like g with \
-                 gravity (1 g ≈ 1.0) read as m/s²; give --units g if so",
-                self.name, self.mean
-            ));
-        } else if m > 0.5 * ac && m > 0.0 {
-            notes.push(format!(
-                "{}: mean {:.4} m/s² is {:.0} % of the r.m.s. fluctuation: a sensor offset? \
-                 (removed before weighting)",
-                self.name,
-                self.mean,
-                100.0 * m / ac.max(f64::MIN_POSITIVE)
-            ));
-        }
+        let mut notes: Vec<String> = offset_note(&self.name, self.mean, self.rms)
+            .map(|n| {
+                if n.contains("gravity seems") {
+                    format!("{n} (removed before weighting; the unweighted r.m.s. includes it)")
+                } else if n.contains("sensor offset") {
+                    format!("{n} (removed before weighting)")
+                } else {
+                    n
+                }
+            })
+            .into_iter()
+            .collect();
         if self.crest_factor > fig::CREST_FACTOR_LIMIT {
             notes.push(format!(
                 "{}: crest factor {:.1} > 9: the basic r.m.s. method may underestimate shocks; \

@@ -106,8 +106,11 @@ pub struct RunSpectra {
     pub seat_psd: Vec<f64>,
     /// Head acceleration PSD on the analysis bins, when measured.
     pub head_psd: Option<Vec<f64>>,
-    /// Unweighted r.m.s. of the base acceleration in m/s².
+    /// Unweighted r.m.s. of the base acceleration's fluctuation (mean removed: a DC-coupled
+    /// accelerometer reads 1 g of gravity), m/s²: the run's magnitude.
     pub base_rms: f64,
+    /// Notes on the channels' means (gravity, offsets, g read as m/s²).
+    pub offset_notes: Vec<String>,
     /// The path estimates available in this run.
     pub paths: Vec<PathEstimate>,
 }
@@ -199,7 +202,20 @@ pub fn estimate(signals: &Signals) -> Result<RunSpectra> {
             coherence: pick(&coh),
         });
     }
-    let base_rms = crate::analysis::figures::rms(base);
+    let mean = |x: &[f64]| x.iter().sum::<f64>() / x.len().max(1) as f64;
+    let rms = crate::analysis::figures::rms;
+    let base_rms = (rms(base).powi(2) - mean(base).powi(2)).max(0.0).sqrt();
+    let offset_notes = ["a_base_z", "a_seat_z", "a_head_z"]
+        .into_iter()
+        .filter_map(|n| signals.get(n).map(|x| (n, x)))
+        .filter_map(|(n, x)| crate::analysis::report::offset_note(n, mean(x), rms(x)))
+        .map(|note| {
+            format!(
+                "{}: {note} (the diagnosis uses fluctuations only)",
+                signals.source
+            )
+        })
+        .collect();
     Ok(RunSpectra {
         source: signals.source.clone(),
         fs,
@@ -211,6 +227,7 @@ pub fn estimate(signals: &Signals) -> Result<RunSpectra> {
         seat_psd: pick(&all.gyy),
         head_psd,
         base_rms,
+        offset_notes,
         paths,
     })
 }

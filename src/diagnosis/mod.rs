@@ -105,6 +105,7 @@ pub fn diagnose(model: &Model, train: &[Signals], check: &Signals) -> Result<Dia
     let mut warnings = Vec::new();
     check_inputs(&tr, &ck, &mut warnings)?;
     for r in tr.iter_mut().chain(std::iter::once(&mut ck)) {
+        warnings.extend(r.offset_notes.iter().cloned());
         if r.df_hz > measure::RESOLUTION_HZ * 1.01 {
             warnings.push(format!(
                 "{}: {:.0} s long, analysed at {:.2} Hz resolution instead of {} Hz (the lowest bands get fewer or no bins)",

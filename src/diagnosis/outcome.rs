@@ -70,7 +70,7 @@ pub struct RunSummary {
     pub source: String,
     /// Role: `train` or `check`.
     pub role: &'static str,
-    /// Unweighted base r.m.s., m/s².
+    /// Unweighted r.m.s. of the base acceleration's fluctuation (mean removed), m/s².
     pub base_rms: f64,
     /// Measured body-mode peak of base→head (or base→seat), Hz.
     pub peak_hz: Option<f64>,
