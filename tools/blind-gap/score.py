@@ -54,9 +54,18 @@ def run_exec(root, wbv):
 
 
 def top_candidates(rep, n=3):
+    """Best n by ΔBIC on the check run, each with its ΔBIC over all runs (`delta_bic_all`)."""
     cs = [c for c in rep.get("candidates", []) if c.get("delta_bic") is not None]
     cs.sort(key=lambda c: c["delta_bic"])
-    return [(c["id"], c["delta_bic"], c.get("fraction_closed")) for c in cs[:n]]
+    return [(c["id"], c["delta_bic"], c.get("fraction_closed"), c.get("delta_bic_all")) for c in cs[:n]]
+
+
+def best_all_runs(rep):
+    cs = [c for c in rep.get("candidates", []) if c.get("delta_bic_all") is not None]
+    if not cs:
+        return None
+    c = min(cs, key=lambda c: c["delta_bic_all"])
+    return (c["id"], c["delta_bic"], c.get("fraction_closed"), c["delta_bic_all"])
 
 
 def tier(det, family="x"):
@@ -109,7 +118,9 @@ def judge(r):
         if f not in top_fams:
             top_fams.append(f)
     out.update(verdict=v, verdict_family=vf, named=named, named_families=[fam(x) for x in named],
-               right=(vf == truth_fam), top=top,
+               right=(vf == truth_fam), top=top, best_all=best_all_runs(rep),
+               null_at_bound=[p["name"] for p in (rep.get("null") or {}).get("params", []) if p.get("at_bound")],
+               base_rms=[r.get("base_rms") for r in rep.get("runs", [])],
                in_named=(truth_fam in [fam(x) for x in named]) or (vf == truth_fam),
                top2=(vf == truth_fam) or (truth_fam != "none" and truth_fam in top_fams[:2]
                                           and vf not in ("none",)),
@@ -229,7 +240,14 @@ def markdown(rows, judged, seed):
             lines.append("  - ERROR (exit %d): `%s`" % (j["rc"], j["error"]))
             continue
         lines.append("  - verdict `%s`: %s" % (j["verdict"], j["verdict_text"]))
-        lines.append("  - top: " + ", ".join("%s ΔBIC %.0f (closes %.0f %%)" % (c, b, 100 * (fc or 0)) for c, b, fc in j["top"]))
+        lines.append("  - top (check-run ΔBIC; all-run ΔBIC): " + ", ".join(
+            "%s %.0f (closes %.0f %%; all %.0f)" % (c, b, 100 * (fc or 0), ba or 0) for c, b, fc, ba in j["top"]))
+        ba = j.get("best_all")
+        if ba and ba[0] not in [c[0] for c in j["top"]]:
+            lines.append("  - best over all runs: %s all-run ΔBIC %.0f (check ΔBIC %.0f)" % (ba[0], ba[3], ba[1]))
+        if j.get("null_at_bound"):
+            lines.append("  - null re-fit at its ±30 %% bound: %s" % ", ".join(j["null_at_bound"]))
+        lines.append("  - base r.m.s. seen by wbv (m/s2): %s" % "/".join("%.3g" % x for x in j["base_rms"]))
         if j.get("separating"):
             lines.append("  - separating measurement: %s" % j["separating"])
         if j["warnings"]:
