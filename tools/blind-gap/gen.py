@@ -290,7 +290,7 @@ def draw_effect(rng, family, form, strength):
             p = {"k_N_per_m": rng.uniform(20e3, 60e3) * strength, "c_Ns_per_m": rng.uniform(300, 1500) * strength}
     elif family == "missing-dof":
         if form == "seat-frame":
-            p = {"m_kg": rng.uniform(3, 10), "f_loaded_hz": rng.uniform(8, 40), "zeta": rng.uniform(0.03, 0.15) / strength}
+            p = {"m_kg": rng.uniform(3, 10), "f_loaded_hz": rng.uniform(20, 45), "zeta": rng.uniform(0.03, 0.15) / strength}
         else:
             p = {"host": str(rng.choice(["upper_torso", "lower_torso"])), "m_kg": min(8.0, rng.uniform(2, 5) * strength),
                  "f_hz": rng.uniform(4, 10), "zeta": rng.uniform(0.15, 0.4)}
@@ -308,6 +308,37 @@ def draw_effect(rng, family, form, strength):
         else:
             p["gain"] = 1 + float(rng.choice([-1, 1])) * min(0.3, rng.uniform(0.05, 0.15) * strength)
     return p
+
+
+def frame_mode(masses, links, kf):
+    """Undamped mode of the plant with frame spring kf whose strain energy is most in the frame spring:
+    (frequency Hz, that share, modal mass seen by the frame spring kg)."""
+    pl = Plant(masses, dict(links, frame=("frame", None, kf, 0.0)))
+    nm = len(pl.names)
+    A, _, _ = pl.matrices()
+    K = -np.diag(pl.m) @ A[nm:2 * nm, :nm]
+    w2, phi = linalg.eigh(K, np.diag(pl.m))
+    fr = pl.idx("frame")
+    share = [kf * phi[fr, q] ** 2 / (phi[:, q] @ K @ phi[:, q]) for q in range(nm)]
+    q = int(np.argmax(share))
+    return math.sqrt(max(w2[q], 0.0)) / (2 * np.pi), float(share[q]), kf / max(w2[q], 1e-9)
+
+
+def frame_stiffness(masses, links, f_target):
+    """Frame spring whose frame-dominated mode (most strain energy in the frame spring, with the
+    occupant on the seat) is nearest f_target Hz, scanned over 1e4..1e9 N/m. The occupant above the
+    cushion is partly decoupled at these frequencies, so the loaded mass comes from the eigenproblem;
+    below ~15 Hz the frame mode mixes with the body's and the nearest reachable one is taken.
+    Returns (k_f N/m, modal mass kg, actual frequency Hz, strain-energy share)."""
+    best = None
+    for kf in np.geomspace(1e4, 1e9, 500):
+        f, share, me = frame_mode(masses, links, kf)
+        if share < 0.4:
+            continue
+        err = abs(math.log(f / f_target))
+        if best is None or err < best[0]:
+            best = (err, float(kf), me, f, share)
+    return best[1:]
 
 
 def build_plant(subject, family, form, p, A_rms, sigma):
@@ -385,9 +416,9 @@ def build_plant(subject, family, form, p, A_rms, sigma):
             masses["frame"] = p["m_kg"]
             i, _, k, c = links["cushion"]
             links["cushion"] = (i, "frame", k, c)
-            mt = sum(masses.values())
-            kf = mt * (2 * np.pi * p["f_loaded_hz"]) ** 2
-            links["frame"] = ("frame", None, kf, 2 * p["zeta"] * math.sqrt(kf * mt))
+            kf, m_eff, f_act, share = frame_stiffness(masses, links, p["f_loaded_hz"])
+            links["frame"] = ("frame", None, kf, 2 * p["zeta"] * math.sqrt(kf * m_eff))
+            p["frame_mode_actual_hz"], p["frame_strain_share"], p["k_frame_N_per_m"] = f_act, share, kf
         else:
             host = p["host"]
             masses[host] = masses[host] - p["m_kg"]
@@ -425,6 +456,15 @@ def draw_spectrum(rng, fs):
         sp.update(n_rev_hz=f1, blades=int(rng.choice([2, 4])), line_share=rng.uniform(0.5, 0.8),
                   harmonics=[h for h in (1, 2, 3) if h * f1 < 0.35 * fs], wander=rng.uniform(0.002, 0.01))
     return sp
+
+
+def _spectrum_of(kind, rng, fs):
+    """A spectrum of the given kind (controlled experiments only)."""
+    for _ in range(200):
+        sp = draw_spectrum(rng, fs)
+        if sp["kind"] == kind:
+            return sp
+    raise SystemExit("no spectrum of kind %s" % kind)
 
 
 def base_signal(rng, sp, n, fs):
@@ -568,9 +608,13 @@ def between_run_detectability(effs, fs, order):
     return d
 
 
-def make_case(case_dir, seed, index):
+def make_case(case_dir, seed, index, override=None):
+    """One case. `override` (controlled experiments): keys fs_hz, spectrum (kind), force_plate, base_dc
+    replace the drawn nuisance after the draws; `params`/`strength` reuse a truth.json's effect."""
+    override = override or {}
     rng = np.random.default_rng([seed, index])
     fs = int(rng.choice(RATES))
+    fs = int(override.get("fs_hz", fs))
     m = max(2, math.ceil(4000 / fs))
     ffs = fs * m
     subject = draw_subject(rng)
@@ -583,13 +627,18 @@ def make_case(case_dir, seed, index):
     T = rng.uniform(60, 180)
     durs = [max(60.0, round(T * rng.uniform(0.97, 1.03), 2)) for _ in mags]
     spectrum = draw_spectrum(rng, fs)
+    if "spectrum" in override and override["spectrum"] != spectrum["kind"]:
+        spectrum = _spectrum_of(override["spectrum"], np.random.default_rng([seed, index, 7]), fs)
     force = bool(rng.uniform() < 0.4)
+    force = bool(override.get("force_plate", force))
     force_static = bool(rng.uniform() < 0.5)
     noise = {ch: float(rng.uniform(0.005, 0.03)) for ch in ("a_base_z", "a_seat_z", "a_head_z", "f_seat_z")}
     offsets = {}
     for ch in ("a_base_z", "a_seat_z", "a_head_z"):
         u = rng.uniform()
         offsets[ch] = G if u < 0.25 else (float(rng.uniform(-0.1, 0.1)) if u < 0.45 else 0.0)
+    if "base_dc" in override:
+        offsets["a_base_z"] = float(override["base_dc"])
     pre = int(2.0 * ffs)
     bases = []
     for (A, T_i) in zip(mags, durs):
@@ -602,6 +651,8 @@ def make_case(case_dir, seed, index):
              "k4": float(np.std(twins_fine[1]["defl_k4"][pre:]))}
     strength = 1.0
     params = draw_effect(rng, family, form, strength) if family != "none" else {}
+    if "params" in override:
+        params, strength = override["params"], override["strength"]
     noise_rng = np.random.default_rng([seed, index, 99])
     for attempt in range(3):
         effs_fine = []
@@ -626,7 +677,7 @@ def make_case(case_dir, seed, index):
             det = between_run_detectability(runs_clean, fs, [0, 2, 1])
         else:
             det = detectability(twins_out, runs_clean, fs)
-        if det["detect_pct"] >= 3.0 or attempt == 2:
+        if det["detect_pct"] >= 3.0 or attempt == 2 or "params" in override:
             break
         strength *= 2.0
         params = draw_effect(rng, family, form, strength)
@@ -731,14 +782,30 @@ def main():
     ap.add_argument("--cases", type=int, default=40)
     ap.add_argument("--first", type=int, default=0)
     ap.add_argument("--force", action="store_true", help="replace existing case directories")
+    ap.add_argument("--like", help="controlled experiment: a case's truth.json whose effect is reused")
+    ap.add_argument("--set", action="append", default=[], metavar="KEY=VALUE",
+                    help="with --like: fs_hz=N, spectrum=KIND, force_plate=0|1, base_dc=M/S2")
     a = ap.parse_args()
+    override = None
+    if a.like:
+        with open(a.like) as fh:
+            like = json.load(fh)
+        override = {"params": like["params"], "strength": like["strength_scale"]}
+        for kv in a.set:
+            k, v = kv.split("=", 1)
+            override[k] = v if k == "spectrum" else (bool(int(v)) if k == "force_plate" else float(v))
+        a.seed, a.first, a.cases = like["seed"], like["case"], 1
     os.makedirs(a.outdir, exist_ok=True)
     for i in range(a.first, a.first + a.cases):
         d = os.path.join(a.outdir, "case-%03d" % i)
         if os.path.exists(os.path.join(d, "truth.json")) and not a.force:
             continue
         os.makedirs(d, exist_ok=True)
-        tr = make_case(d, a.seed, i)
+        tr = make_case(d, a.seed, i, override)
+        if override:
+            tr["override"] = {k: v for k, v in override.items() if k not in ("params", "strength")}
+            with open(os.path.join(d, "truth.json"), "w") as fh:
+                json.dump(tr, fh, indent=1, default=float)
         if tr["nuisances"]["layout"]["time"] == "none":
             with open(os.path.join(d, "cmd.json")) as fh:
                 cmd = json.load(fh)
