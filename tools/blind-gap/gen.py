@@ -1,0 +1,824 @@
+#!/usr/bin/env python3
+"""Blind lab-condition cases for `wbv gap`, simulated without any wbv code.
+
+Usage: gen.py OUTDIR --seed S --cases N        (writes OUTDIR/case-XXX/{run-*.csv, truth.json, cmd.json})
+       gen.py --check-frf                      (plant check against `wbv frf --model reference`)
+
+The plant is the structure of the `reference` setup (shared/specs/measured-runs.md): the
+Boileau–Rakheja 4-DOF body (head, upper torso, lower torso, pelvis) on a Kelvin–Voigt cushion top
+mass, base-excited. Its parameters are *data* copied from that spec; the assembly, integration,
+sensors and DAQ below are written here, independently of wbv.
+
+Integration. Coordinates are displacements relative to the base, z (m, up), so the base acceleration
+a_b (m/s^2) is the only input: M z'' + C z' + K z = -M 1 a_b + (Maxwell arm forces) + (nonlinear
+residual forces). The linear part is solved exactly per mode (diagonalised state space, first-order
+hold on the input between fine samples, scipy.signal.lfilter per mode). A nonlinear law is split into
+its tangent (in the linear part) and a residual force r(e) that is fed back by a fixed-step loop with the
+exact zero-order-hold propagator (superposition). The fine rate is >= 4 kHz and >= 2x the output rate;
+all channels then go through the same causal 6-pole Butterworth anti-alias filter at 0.4 fs and are
+decimated, as a DAQ does.
+"""
+import argparse
+import json
+import math
+import os
+import subprocess
+import sys
+
+import numpy as np
+from scipy import linalg, optimize, signal
+
+G = 9.80665  # m/s^2, standard gravity
+
+# Reference setup (shared/specs/measured-runs.md), SI units.
+REF_MASSES = {"head": 5.31, "upper_torso": 28.49, "lower_torso": 8.62, "pelvis": 12.78, "cushion": 1.0}
+REF_LINKS = {  # name: (node i, node j or None for the base, k N/m, c N s/m)
+    "k1": ("head", "upper_torso", 310000.0, 400.0),
+    "k2": ("upper_torso", "lower_torso", 183000.0, 4750.0),
+    "k3": ("lower_torso", "pelvis", 162800.0, 4585.0),
+    "k4": ("pelvis", "cushion", 90000.0, 2064.0),
+    "cushion": ("cushion", None, 80000.0, 500.0),
+}
+BODY = ["head", "upper_torso", "lower_torso", "pelvis"]
+
+
+# ----------------------------------------------------------------------------------------------
+# Plant assembly
+# ----------------------------------------------------------------------------------------------
+class Plant:
+    """Masses, Kelvin–Voigt links, Maxwell arms (state = arm force) and at most one nonlinear link."""
+
+    def __init__(self, masses, links, arms=(), nonlinear=None):
+        self.names = list(masses)
+        self.m = np.array([masses[n] for n in self.names])
+        self.links = dict(links)
+        self.arms = list(arms)  # (i, j, k_m, tau_s)
+        self.nonlinear = nonlinear  # (i, j, residual function r(e) -> force on i, e = z_i - z_j)
+
+    def idx(self, n):
+        return None if n is None else self.names.index(n)
+
+    def matrices(self):
+        """State x = [z, z', arm forces]; A, B (input a_b), and the output map of absolute accelerations."""
+        nm = len(self.names)
+        na = len(self.arms)
+        K = np.zeros((nm, nm))
+        C = np.zeros((nm, nm))
+        for (i, j, k, c) in self.links.values():
+            for (mat, val) in ((K, k), (C, c)):
+                a, b = self.idx(i), self.idx(j)
+                mat[a, a] += val
+                if b is not None:
+                    mat[b, b] += val
+                    mat[a, b] -= val
+                    mat[b, a] -= val
+        n = 2 * nm + na
+        A = np.zeros((n, n))
+        A[:nm, nm:2 * nm] = np.eye(nm)
+        Minv = np.diag(1.0 / self.m)
+        A[nm:2 * nm, :nm] = -Minv @ K
+        A[nm:2 * nm, nm:2 * nm] = -Minv @ C
+        for q, (i, j, km, tau) in enumerate(self.arms):
+            a, b = self.idx(i), self.idx(j)
+            s = 2 * nm + q
+            # arm force F (tension positive): F' = k_m e' - F / tau, e = z_i - z_j; force on i is -F.
+            A[s, nm + a] += km
+            if b is not None:
+                A[s, nm + b] -= km
+            A[s, s] = -1.0 / tau
+            A[nm + a, s] -= 1.0 / self.m[a]
+            if b is not None:
+                A[nm + b, s] += 1.0 / self.m[b]
+        B = np.zeros(n)
+        B[nm:2 * nm] = -1.0
+        Bf = np.zeros(n)  # residual force on i (and its reaction on j)
+        if self.nonlinear is not None:
+            i, j, _ = self.nonlinear
+            Bf[nm + self.idx(i)] = 1.0 / self.m[self.idx(i)]
+            if self.idx(j) is not None:
+                Bf[nm + self.idx(j)] = -1.0 / self.m[self.idx(j)]
+        return A, B, Bf
+
+    def deflection_row(self, i, j):
+        n = 2 * len(self.names) + len(self.arms)
+        row = np.zeros(n)
+        row[self.idx(i)] = 1.0
+        if self.idx(j) is not None:
+            row[self.idx(j)] -= 1.0
+        return row
+
+    def rate_row(self, i, j):
+        row = np.roll(self.deflection_row(i, j), len(self.names))
+        return row
+
+    def static_weight(self):
+        return G * float(self.m.sum())
+
+
+def simulate(plant, u, h, outputs):
+    """Simulate base acceleration u (fine grid, step h s). outputs: dict name -> ('acc', node) or
+    ('force', list of (row_x, coef), coef_r) linear functionals. Returns dict of arrays."""
+    A, B, Bf = plant.matrices()
+    lam, V = linalg.eig(A)
+    Vinv = linalg.inv(V)
+    E = np.exp(lam * h)
+    I0 = np.where(np.abs(lam) > 1e-12, (E - 1.0) / np.where(lam == 0, 1, lam), h)
+    I1 = np.where(np.abs(lam) > 1e-12, (E - 1.0 - lam * h) / (np.where(lam == 0, 1, lam) ** 2 * h), h / 2)
+    bq = Vinv @ B
+    n = len(u)
+    # Output rows on the state: absolute acceleration of a mass = its z'' + a_b = A-row x (B cancels).
+    nm = len(plant.names)
+    rows = {}
+    rrow = {}
+    for name, spec in outputs.items():
+        if spec[0] == "acc":
+            a = plant.idx(spec[1])
+            rows[name] = A[nm + a].copy()
+            rrow[name] = Bf[nm + a]
+        else:
+            rows[name] = spec[1]
+            rrow[name] = spec[2]
+    out_modal = {name: rows[name] @ V for name in rows}
+    # Linear response per mode (FOH): q[n] = E q[n-1] + b (I1 u[n] + (I0 - I1) u[n-1]).
+    res = {name: np.zeros(n) for name in rows}
+    need_state = plant.nonlinear is not None
+    if need_state:
+        i, j, rfun = plant.nonlinear
+        drow = plant.deflection_row(i, j)
+        e_lin = np.zeros(n)
+    for q in range(len(lam)):
+        if abs(bq[q]) < 1e-300:
+            continue
+        if lam[q].imag < -1e-9:  # conjugate partner handled with its pair (2 x real part)
+            continue
+        fac = 1.0 if abs(lam[q].imag) <= 1e-9 else 2.0
+        qq = signal.lfilter([bq[q] * I1[q], bq[q] * (I0[q] - I1[q])], [1.0, -E[q]], u.astype(complex))
+        for name in rows:
+            res[name] += fac * np.real(out_modal[name][q] * qq)
+        if need_state:
+            e_lin += fac * np.real((drow @ V[:, q]) * qq)
+    if need_state:
+        # Residual feedback with the exact ZOH propagator: x_nl[n+1] = Ad x_nl[n] + Gd r[n].
+        Ad = np.real(V @ np.diag(E) @ Vinv)
+        Gd = np.real(V @ (I0 * (Vinv @ Bf)))
+        x = np.zeros(len(lam))
+        r = np.zeros(n)
+        X = np.empty((n, len(lam)))
+        for k in range(n):
+            X[k] = x
+            rk = rfun(e_lin[k] + drow @ x)
+            r[k] = rk
+            x = Ad @ x + Gd * rk
+        for name in rows:
+            res[name] += X @ rows[name] + rrow[name] * r
+    return res
+
+
+def frf_check():
+    """Plant vs `wbv frf --model reference`: (1) the assembled state space's H(j2πf) against wbv's
+    curves (data-entry/assembly check); (2) the time-domain integrator on sine dwells (steady-state
+    complex amplitude by a single-bin DFT over the last 20 s) against that H (integration check)."""
+    p = Plant(REF_MASSES, REF_LINKS)
+    out = subprocess.run(["/work/bin/wbv", "frf", "--model", "reference", "--from", "0.5", "--to", "40",
+                          "--points", "400"], capture_output=True, text=True, check=True).stdout
+    ref = np.genfromtxt(out.splitlines(), delimiter=",", names=True)
+    A, B, _ = p.matrices()
+    nm = len(p.names)
+    seat, head = nm + p.idx("cushion"), nm + p.idx("head")
+
+    def hexact(fr):
+        x = linalg.solve(2j * np.pi * fr * np.eye(len(A)) - A, B)
+        return A[seat] @ x, (A[head] @ x) / (A[seat] @ x)
+
+    ex = np.array([hexact(fr) for fr in ref["freq_hz"]])
+    print("assembly: max |H_seat - wbv seat_mag| / wbv = %.1e, max |STHT - wbv stht_mag| / wbv = %.1e"
+          % (np.max(np.abs(np.abs(ex[:, 0]) - ref["seat_mag"]) / ref["seat_mag"]),
+             np.max(np.abs(np.abs(ex[:, 1]) - ref["stht_mag"]) / ref["stht_mag"])))
+    h = 1 / 4096.0
+    t = np.arange(int(40 / h)) * h
+    last = t >= 20
+    worst = [0.0, 0.0]
+    for fr in (0.5, 1, 2, 3, 4, 5, 6, 8, 10, 12, 16, 20, 25, 30, 40):
+        u = np.sin(2 * np.pi * fr * t)
+        y = simulate(p, u, h, {"seat": ("acc", "cushion"), "head": ("acc", "head")})
+        ph = np.exp(-2j * np.pi * fr * t[last])
+        au, asb, ahd = (np.mean(v[last] * ph) for v in (u, y["seat"], y["head"]))
+        hs, hh = hexact(fr)
+        worst[0] = max(worst[0], abs(asb / au / hs - 1))
+        worst[1] = max(worst[1], abs(ahd / asb / hh - 1))
+    print("integration (sine dwells 0.5-40 Hz at 4096 Hz): max complex error seat %.4f %%, STHT %.4f %%"
+          % (100 * worst[0], 100 * worst[1]))
+
+
+# ----------------------------------------------------------------------------------------------
+# The subject, the hidden effect
+# ----------------------------------------------------------------------------------------------
+def draw_subject(rng):
+    """Every mass +-10 %, stiffness +-15 %, damping +-25 % (uniform): the occupant is not the model's."""
+    masses = {n: m * rng.uniform(0.9, 1.1) for n, m in REF_MASSES.items()}
+    links = {n: (i, j, k * rng.uniform(0.85, 1.15), c * rng.uniform(0.75, 1.25))
+             for n, (i, j, k, c) in REF_LINKS.items()}
+    return masses, links
+
+
+FAMILIES = {
+    "viscoelastic": ["sls", "maxwell2", "fractional"],
+    "stiffening": ["cubic", "exponential", "bottoming"],
+    "softening": ["tanh", "bilinear", "magnitude-saturating"],
+    "support-path": ["backrest", "thigh-path"],
+    "missing-dof": ["seat-frame", "viscera"],
+    "sensor": ["delay", "mount", "lowpass", "gain"],
+}
+
+
+def prony_fractional(kf, alpha, f0, rng_lo=0.2, rng_hi=100.0, n=8):
+    """Maxwell arms (k_n, tau_n) whose sum approximates k_f (j w / w0)^alpha over rng_lo..rng_hi Hz
+    (non-negative least squares on real and imaginary parts, log-spaced relaxation times)."""
+    taus = 1.0 / (2 * np.pi * np.geomspace(rng_lo / 2, rng_hi * 2, n))
+    f = np.geomspace(rng_lo, rng_hi, 200)
+    w = 2 * np.pi * f
+    target = kf * (1j * w / (2 * np.pi * f0)) ** alpha
+    basis = (1j * w[:, None] * taus[None, :]) / (1 + 1j * w[:, None] * taus[None, :])
+    scale = np.abs(target)[:, None]
+    Aml = np.vstack([(basis.real / scale), (basis.imag / scale)])
+    bml = np.concatenate([target.real / np.abs(target), target.imag / np.abs(target)])
+    kn, _ = optimize.nnls(Aml, bml)
+    fit = basis @ kn
+    err = float(np.max(np.abs(fit - target) / np.abs(target)))
+    return [(float(k), float(t)) for k, t in zip(kn, taus) if k > 0], err
+
+
+def draw_effect(rng, family, form, strength):
+    """Parameters of one hidden effect; `strength` >= 1 scales its departure from the linear model."""
+    p = {}
+    if family == "viscoelastic":
+        if form == "sls":
+            p = {"k_arm_over_k": min(2.0, rng.uniform(0.3, 0.9) * strength), "tau_s": rng.uniform(0.003, 0.03),
+                 "c_parallel_over_c": rng.uniform(0.2, 0.8)}
+        elif form == "maxwell2":
+            p = {"k1_over_k": min(1.5, rng.uniform(0.2, 0.6) * strength), "tau1_s": rng.uniform(0.002, 0.01),
+                 "k2_over_k": min(1.5, rng.uniform(0.2, 0.6) * strength), "tau2_s": rng.uniform(0.03, 0.2),
+                 "c_parallel_over_c": rng.uniform(0.1, 0.6)}
+        else:
+            p = {"kf_over_k": min(1.0, rng.uniform(0.2, 0.5) * strength), "alpha": rng.uniform(0.2, 0.6),
+                 "f0_hz": 5.0, "c_parallel_over_c": rng.uniform(0.1, 0.5)}
+    elif family == "stiffening":
+        if form == "cubic":
+            # F = k1 d + k3 d^3 (total compression d), tangent at the gravity sag = subject's k_c.
+            p = {"sag_over_W_per_k": min(2.9, 1.2 + rng.uniform(0.6, 1.4) * strength)}
+        elif form == "exponential":
+            # F = F0 (exp(d / d_e) - 1), tangent at the sag = k_c; d_e >= W / k_c.
+            p = {"de_over_W_per_k": max(1.02, rng.uniform(1.05, 1.5) / strength)}
+        else:
+            # a second, stiffer layer touches beyond a gap delta past the sag (bottoming/progressive)
+            p = {"gap_over_sigma": max(0.2, rng.uniform(0.6, 1.6) / strength),
+                 "k_stop_over_k": rng.uniform(0.5, 2.0)}
+    elif family == "softening":
+        if form == "tanh":
+            p = {"link": "k4", "ds_over_sigma": max(0.4, rng.uniform(1.0, 2.5) / strength)}
+        elif form == "bilinear":
+            p = {"link": "k4", "eb_over_sigma": max(0.2, rng.uniform(0.4, 1.2) / strength),
+                 "slope_ratio": max(0.1, 1 - rng.uniform(0.3, 0.6) * strength)}
+        else:
+            # k(A) = k (1 - s (1 - exp(-A / A_s))), per link unequal; damping follows with half of s.
+            p = {"s": {lk: min(0.8, rng.uniform(0.2, 0.5) * strength) for lk in ("k2", "k3", "k4")},
+                 "A_s": rng.uniform(0.4, 1.2)}
+    elif family == "support-path":
+        if form == "backrest":
+            p = {"k_N_per_m": rng.uniform(10e3, 40e3) * strength, "c_Ns_per_m": rng.uniform(200, 1000) * strength}
+        else:
+            p = {"k_N_per_m": rng.uniform(20e3, 60e3) * strength, "c_Ns_per_m": rng.uniform(300, 1500) * strength}
+    elif family == "missing-dof":
+        if form == "seat-frame":
+            p = {"m_kg": rng.uniform(3, 10), "f_loaded_hz": rng.uniform(20, 45), "zeta": rng.uniform(0.03, 0.15) / strength}
+        else:
+            p = {"host": str(rng.choice(["upper_torso", "lower_torso"])), "m_kg": min(8.0, rng.uniform(2, 5) * strength),
+                 "f_hz": rng.uniform(4, 10), "zeta": rng.uniform(0.15, 0.4)}
+    elif family == "sensor":
+        ch = str(rng.choice(["a_seat_z", "a_head_z", "a_base_z"], p=[0.45, 0.4, 0.15]))
+        p = {"channel": ch}
+        if form == "delay":
+            p["delay_s"] = min(0.02, rng.uniform(0.002, 0.02) * strength)
+        elif form == "mount":
+            p["f_hz"] = rng.uniform(15, 60) / strength
+            p["zeta"] = rng.uniform(0.05, 0.2)
+        elif form == "lowpass":
+            p["f_hz"] = max(8.0, rng.uniform(15, 50) / strength)
+            p["zeta"] = rng.uniform(0.5, 0.71)
+        else:
+            p["gain"] = 1 + float(rng.choice([-1, 1])) * min(0.3, rng.uniform(0.05, 0.15) * strength)
+    return p
+
+
+def frame_mode(masses, links, kf):
+    """Undamped mode of the plant with frame spring kf whose strain energy is most in the frame spring:
+    (frequency Hz, that share, modal mass seen by the frame spring kg)."""
+    pl = Plant(masses, dict(links, frame=("frame", None, kf, 0.0)))
+    nm = len(pl.names)
+    A, _, _ = pl.matrices()
+    K = -np.diag(pl.m) @ A[nm:2 * nm, :nm]
+    w2, phi = linalg.eigh(K, np.diag(pl.m))
+    fr = pl.idx("frame")
+    share = [kf * phi[fr, q] ** 2 / (phi[:, q] @ K @ phi[:, q]) for q in range(nm)]
+    q = int(np.argmax(share))
+    return math.sqrt(max(w2[q], 0.0)) / (2 * np.pi), float(share[q]), kf / max(w2[q], 1e-9)
+
+
+def frame_stiffness(masses, links, f_target):
+    """Frame spring whose frame-dominated mode (most strain energy in the frame spring, with the
+    occupant on the seat) is nearest f_target Hz, scanned over 1e4..1e9 N/m. The occupant above the
+    cushion is partly decoupled at these frequencies, so the loaded mass comes from the eigenproblem;
+    below ~15 Hz the frame mode mixes with the body's and the nearest reachable one is taken.
+    Returns (k_f N/m, modal mass kg, actual frequency Hz, strain-energy share)."""
+    best = None
+    for kf in np.geomspace(1e4, 1e9, 500):
+        f, share, me = frame_mode(masses, links, kf)
+        if share < 0.4:
+            continue
+        err = abs(math.log(f / f_target))
+        if best is None or err < best[0]:
+            best = (err, float(kf), me, f, share)
+    return best[1:]
+
+
+def build_plant(subject, family, form, p, A_rms, sigma):
+    """The plant of one run. sigma: dict of linear-twin r.m.s. deflections (m) used to place
+    amplitude thresholds ('cushion', 'k4'). Returns (Plant, contact-force functional builder)."""
+    masses, links = dict(subject[0]), dict(subject[1])
+    arms = []
+    nonlinear = None
+    if family == "viscoelastic":
+        i, j, k, c = links["cushion"]
+        if form == "sls":
+            km = p["k_arm_over_k"] * k
+            links["cushion"] = (i, j, k * (1 - 0.3 * p["k_arm_over_k"]), c * p["c_parallel_over_c"])
+            arms.append((i, j, km, p["tau_s"]))
+        elif form == "maxwell2":
+            links["cushion"] = (i, j, k * (1 - 0.2 * (p["k1_over_k"] + p["k2_over_k"])), c * p["c_parallel_over_c"])
+            arms.append((i, j, p["k1_over_k"] * k, p["tau1_s"]))
+            arms.append((i, j, p["k2_over_k"] * k, p["tau2_s"]))
+        else:
+            series, _ = prony_fractional(p["kf_over_k"] * k, p["alpha"], p["f0_hz"])
+            links["cushion"] = (i, j, k * (1 - 0.5 * p["kf_over_k"]), c * p["c_parallel_over_c"])
+            for (kn, tn) in series:
+                arms.append((i, j, kn, tn))
+    elif family == "stiffening":
+        i, j, kc, c = links["cushion"]
+        W = G * sum(masses.values())  # the cushion spring carries the body and its own top mass
+        if form == "cubic":
+            d0 = p["sag_over_W_per_k"] * W / kc
+            k3 = (kc * d0 - W) / (2 * d0 ** 3)
+            k1 = kc - 3 * k3 * d0 ** 2
+            F = lambda d: k1 * d + k3 * d ** 3
+        elif form == "exponential":
+            de = p["de_over_W_per_k"] * W / kc
+            F0 = kc * de - W
+            d0 = de * math.log(1 + W / F0)
+            F = lambda d: F0 * (math.exp(d / de) - 1)
+        else:
+            d0 = W / kc
+            gap = p["gap_over_sigma"] * sigma["cushion"]
+            ks = p["k_stop_over_k"] * kc
+            F = lambda d: kc * d + ks * max(0.0, d - d0 - gap)
+        Fd0 = F(d0)
+
+        # force on the top = +(F(d0 - e) - F(d0)); the linear part already applies -k_c e.
+        nonlinear = ("cushion", None, lambda e, F=F, d0=d0, Fd0=Fd0, kc=kc: (F(d0 - e) - Fd0) + kc * e)
+        p = dict(p, sag_m=d0)
+    elif family == "softening" and form in ("tanh", "bilinear"):
+        i, j, k, c = links["k4"]
+        s4 = sigma["k4"]
+        if form == "tanh":
+            ds = p["ds_over_sigma"] * s4
+            nonlinear = (i, j, lambda e, k=k, ds=ds: -k * ds * math.tanh(e / ds) + k * e)
+        else:
+            eb = p["eb_over_sigma"] * s4
+            rr = p["slope_ratio"]
+
+            def rb(e, k=k, eb=eb, rr=rr):
+                a = abs(e)
+                if a <= eb:
+                    return 0.0
+                spring = k * eb + rr * k * (a - eb)
+                return -math.copysign(spring, e) + k * e
+            nonlinear = (i, j, rb)
+    elif family == "softening":
+        for lk, s in p["s"].items():
+            i, j, k, c = links[lk]
+            fk = 1 - s * (1 - math.exp(-A_rms / p["A_s"]))
+            fc = 1 - 0.5 * s * (1 - math.exp(-A_rms / p["A_s"]))
+            links[lk] = (i, j, k * fk, c * fc)
+    elif family == "support-path":
+        node = "upper_torso" if form == "backrest" else "pelvis"
+        links["extra"] = (node, None, p["k_N_per_m"], p["c_Ns_per_m"])
+    elif family == "missing-dof":
+        if form == "seat-frame":
+            masses["frame"] = p["m_kg"]
+            i, _, k, c = links["cushion"]
+            links["cushion"] = (i, "frame", k, c)
+            kf, m_eff, f_act, share = frame_stiffness(masses, links, p["f_loaded_hz"])
+            links["frame"] = ("frame", None, kf, 2 * p["zeta"] * math.sqrt(kf * m_eff))
+            p["frame_mode_actual_hz"], p["frame_strain_share"], p["k_frame_N_per_m"] = f_act, share, kf
+        else:
+            host = p["host"]
+            masses[host] = masses[host] - p["m_kg"]
+            masses["viscera"] = p["m_kg"]
+            kv = p["m_kg"] * (2 * np.pi * p["f_hz"]) ** 2
+            links["viscera"] = ("viscera", host, kv, 2 * p["zeta"] * math.sqrt(kv * p["m_kg"]))
+    return Plant(masses, links, arms, nonlinear)
+
+
+# ----------------------------------------------------------------------------------------------
+# Base excitation (fine grid), sensors, DAQ
+# ----------------------------------------------------------------------------------------------
+def shaped_noise(rng, n, fs, psd):
+    """Gaussian noise with one-sided PSD shape psd(f) (FFT shaping, random phases)."""
+    f = np.fft.rfftfreq(n, 1 / fs)
+    amp = np.sqrt(np.maximum(psd(f), 0.0))
+    spec = amp * (rng.standard_normal(len(f)) + 1j * rng.standard_normal(len(f)))
+    spec[0] = 0
+    x = np.fft.irfft(spec, n)
+    return x / np.std(x)
+
+
+def draw_spectrum(rng, fs):
+    kind = str(rng.choice(["shaker-0.5-20", "shaker-1-40", "road", "helicopter"]))
+    sp = {"kind": kind}
+    if kind.startswith("shaker"):
+        lo, hi = (0.5, 20.0) if kind == "shaker-0.5-20" else (1.0, 40.0)
+        sp.update(lo=lo, hi=hi, ripple_db=rng.uniform(0.5, 2.0), ripple_hz=rng.uniform(3, 9),
+                  ripple_phase=rng.uniform(0, 2 * np.pi))
+    elif kind == "road":
+        sp.update(f_body=rng.uniform(1.0, 1.8), z_body=rng.uniform(0.25, 0.4), f_wheel=rng.uniform(9, 13),
+                  z_wheel=rng.uniform(0.2, 0.35))
+    else:
+        f1 = rng.uniform(12, 24)
+        sp.update(n_rev_hz=f1, blades=int(rng.choice([2, 4])), line_share=rng.uniform(0.5, 0.8),
+                  harmonics=[h for h in (1, 2, 3) if h * f1 < 0.35 * fs], wander=rng.uniform(0.002, 0.01))
+    return sp
+
+
+def _spectrum_of(kind, rng, fs):
+    """A spectrum of the given kind (controlled experiments only)."""
+    for _ in range(200):
+        sp = draw_spectrum(rng, fs)
+        if sp["kind"] == kind:
+            return sp
+    raise SystemExit("no spectrum of kind %s" % kind)
+
+
+def base_signal(rng, sp, n, fs):
+    if sp["kind"].startswith("shaker"):
+        lo, hi = sp["lo"], sp["hi"]
+
+        def psd(f):
+            band = 1 / (1 + (lo / np.maximum(f, 1e-9)) ** 8) / (1 + (f / hi) ** 8)
+            ripple = 10 ** (sp["ripple_db"] * np.sin(2 * np.pi * f / sp["ripple_hz"] + sp["ripple_phase"]) / 10)
+            return band * ripple
+        return shaped_noise(rng, n, fs, psd)
+    if sp["kind"] == "road":
+        ws, wu = 2 * np.pi * sp["f_body"], 2 * np.pi * sp["f_wheel"]
+        ms, mu = 1.0, 0.12
+        ks, cs = ms * ws ** 2, 2 * sp["z_body"] * ms * ws
+        kt = mu * wu ** 2 - ks
+        cu = 2 * sp["z_wheel"] * mu * wu
+
+        def psd(f):
+            w = 2 * np.pi * np.maximum(f, 1e-6)
+            s = 1j * w
+            # quarter car: sprung floor acceleration per unit road displacement
+            M = np.array([[ms * s ** 2 + cs * s + ks, -(cs * s + ks)],
+                          [-(cs * s + ks), mu * s ** 2 + (cs + cu) * s + ks + kt]])
+            det = M[0, 0] * M[1, 1] - M[0, 1] * M[1, 0]
+            xs = (cs * s + ks) * (kt + cu * s) / det
+            road = 1 / np.maximum(f, 0.3) ** 2  # ISO 8608 displacement PSD ~ n^-2 at constant speed
+            hp = 1 / (1 + (0.3 / np.maximum(f, 1e-9)) ** 4)
+            return np.abs(s ** 2 * xs) ** 2 * road * hp
+        return shaped_noise(rng, n, fs, psd)
+    # helicopter: rotor lines (N/rev and harmonics, with slow speed wander) on broadband
+    t = np.arange(n) / fs
+    broad = shaped_noise(rng, n, fs, lambda f: 1 / (1 + (0.7 / np.maximum(f, 1e-9)) ** 4) / (1 + (f / 80) ** 4))
+    wander = 1 + sp["wander"] * shaped_noise(rng, n, fs, lambda f: 1 / (1 + (f / 0.05) ** 2))
+    phase = 2 * np.pi * np.cumsum(sp["n_rev_hz"] * wander) / fs
+    lines = np.zeros(n)
+    for h in sp["harmonics"]:
+        lines += (1.0 / h) * np.sin(h * phase + rng.uniform(0, 2 * np.pi))
+    lines += 0.3 * np.sin(phase / sp["blades"] + rng.uniform(0, 2 * np.pi))  # 1/rev
+    lines /= np.std(lines)
+    return np.sqrt(sp["line_share"]) * lines + np.sqrt(1 - sp["line_share"]) * broad
+
+
+def sensor_filter(x, fs, p):
+    """One channel's sensor effect on the fine grid."""
+    if "delay_s" in p:
+        n = len(x)
+        f = np.fft.rfftfreq(n, 1 / fs)
+        return np.fft.irfft(np.fft.rfft(x) * np.exp(-2j * np.pi * f * p["delay_s"]), n)
+    if "gain" in p:
+        return x * p["gain"]
+    wn = 2 * np.pi * p["f_hz"]
+    z = p["zeta"]
+    if "mount" == p.get("form"):
+        b, a = [2 * z * wn, wn ** 2], [1, 2 * z * wn, wn ** 2]  # base-excited mount: (2 z wn s + wn^2) / (...)
+    else:
+        b, a = [wn ** 2], [1, 2 * z * wn, wn ** 2]  # 2-pole low-pass
+    bd, ad = signal.bilinear(b, a, fs)
+    return signal.lfilter(bd, ad, x)
+
+
+def pink(rng, n, fs):
+    return shaped_noise(rng, n, fs, lambda f: 1 / np.maximum(f, 0.05))
+
+
+def daq(channels, m, fs):
+    """Same causal 6-pole Butterworth anti-alias filter (0.4 fs) on every channel, then every m-th sample."""
+    sos = signal.butter(6, 0.4 * fs, fs=fs * m, output="sos")
+    return {k: signal.sosfilt(sos, v)[::m] for k, v in channels.items()}
+
+
+def peak(f, H, lo=0.8, hi=30.0):
+    sel = (f >= lo) & (f <= hi)
+    i = np.argmax(np.abs(H[sel]))
+    return float(np.abs(H[sel][i])), float(f[sel][i])
+# ----------------------------------------------------------------------------------------------
+# One case
+# ----------------------------------------------------------------------------------------------
+RATES = (256, 500, 512, 1000, 1024, 2000)
+DAQ_NAMES = {"a_base_z": ["CH1 Floor Z", "Base Acc Z", "Acc Z base", "Plattform Z"],
+             "a_seat_z": ["CH2 Seat pad Z", "SAE pad Az", "Acc Z seat", "Sitz Z"],
+             "a_head_z": ["CH3 Bite bar Z", "Head Az", "Acc Z head", "Kopf Z"],
+             "f_seat_z": ["CH4 Force plate Fz", "Fz plate", "Force Z seat", "Kraft Z"]}
+
+
+def outputs_for(plant, force):
+    out = {"a_seat_z": ("acc", "cushion"), "a_head_z": ("acc", "head"),
+           "defl_cushion": ("lin", plant.deflection_row("cushion", plant.links["cushion"][1]), 0.0),
+           "defl_k4": ("lin", plant.deflection_row("pelvis", "cushion"), 0.0)}
+    if force:
+        _, _, k4, c4 = plant.links["k4"]
+        row = -k4 * plant.deflection_row("pelvis", "cushion") - c4 * plant.rate_row("pelvis", "cushion")
+        on_k4 = plant.nonlinear is not None and plant.nonlinear[0] == "pelvis"
+        out["f_seat_z"] = ("lin", row, 1.0 if on_k4 else 0.0)
+    return out
+
+
+def welch_paths(y, fs):
+    nper = int(8 * fs)
+    f, Pbb = signal.welch(y["a_base_z"], fs, nperseg=nper)
+    _, Pbs = signal.csd(y["a_base_z"], y["a_seat_z"], fs, nperseg=nper)
+    _, Pss = signal.welch(y["a_seat_z"], fs, nperseg=nper)
+    _, Psh = signal.csd(y["a_seat_z"], y["a_head_z"], fs, nperseg=nper)
+    return f, Pbs / Pbb, Psh / Pss, Pbb
+
+
+def detectability(twins, effs, fs):
+    """Own figure: over runs and the two paths (base->seat, seat->head) the largest of the change of the
+    transmissibility peak (% of magnitude, % of frequency) and the 90th percentile over the excited
+    bins in 1-30 Hz of |H_effect - H_twin| / |H_twin|, noise-free; the twin is the same subject and
+    input without the effect."""
+    best = {"peak_mag_pct": 0.0, "peak_freq_pct": 0.0, "p90_complex_pct": 0.0}
+    for tw, ef in zip(twins, effs):
+        f, H0s, H0h, Pbb = welch_paths(tw, fs)
+        _, H1s, H1h, _ = welch_paths(ef, fs)
+        exc = (f >= 1) & (f <= 30) & (Pbb > 1e-3 * Pbb[(f >= 0.5) & (f <= 40)].max())
+        for H0, H1 in ((H0s, H1s), (H0h, H1h)):
+            m0, f0 = peak(f, H0)
+            m1, f1 = peak(f, H1)
+            best["peak_mag_pct"] = max(best["peak_mag_pct"], 100 * abs(m1 / m0 - 1))
+            best["peak_freq_pct"] = max(best["peak_freq_pct"], 100 * abs(f1 / f0 - 1))
+            if exc.any():
+                best["p90_complex_pct"] = max(best["p90_complex_pct"],
+                                              float(100 * np.percentile(np.abs(H1[exc] - H0[exc]) / np.abs(H0[exc]), 90)))
+    best["detect_pct"] = max(best.values())
+    return best
+
+
+def between_run_detectability(effs, fs, order):
+    """Magnitude-scheduled effect: change of the peaks between the lowest and highest run."""
+    lo, hi = order[0], order[-1]
+    f, Hls, Hlh, _ = welch_paths(effs[lo], fs)
+    _, Hhs, Hhh, _ = welch_paths(effs[hi], fs)
+    d = {"peak_mag_pct": 0.0, "peak_freq_pct": 0.0}
+    for Hl, Hh in ((Hls, Hhs), (Hlh, Hhh)):
+        ml, fl = peak(f, Hl)
+        mh, fh = peak(f, Hh)
+        d["peak_mag_pct"] = max(d["peak_mag_pct"], 100 * abs(mh / ml - 1))
+        d["peak_freq_pct"] = max(d["peak_freq_pct"], 100 * abs(fh / fl - 1))
+    d["detect_pct"] = max(d.values())
+    return d
+
+
+def make_case(case_dir, seed, index, override=None):
+    """One case. `override` (controlled experiments): keys fs_hz, spectrum (kind), force_plate, base_dc
+    replace the drawn nuisance after the draws; `params`/`strength` reuse a truth.json's effect."""
+    override = override or {}
+    rng = np.random.default_rng([seed, index])
+    fs = int(rng.choice(RATES))
+    fs = int(override.get("fs_hz", fs))
+    m = max(2, math.ceil(4000 / fs))
+    ffs = fs * m
+    subject = draw_subject(rng)
+    if rng.uniform() < 0.25:
+        family, form = "none", "none"
+    else:
+        family = str(rng.choice(list(FAMILIES)))
+        form = str(rng.choice(FAMILIES[family]))
+    mags = [(0.25, 1.0, 0.5), (0.4, 1.6, 0.8)][int(rng.integers(2))]
+    T = rng.uniform(60, 180)
+    durs = [max(60.0, round(T * rng.uniform(0.97, 1.03), 2)) for _ in mags]
+    spectrum = draw_spectrum(rng, fs)
+    if "spectrum" in override and override["spectrum"] != spectrum["kind"]:
+        spectrum = _spectrum_of(override["spectrum"], np.random.default_rng([seed, index, 7]), fs)
+    force = bool(rng.uniform() < 0.4)
+    force = bool(override.get("force_plate", force))
+    force_static = bool(rng.uniform() < 0.5)
+    noise = {ch: float(rng.uniform(0.005, 0.03)) for ch in ("a_base_z", "a_seat_z", "a_head_z", "f_seat_z")}
+    offsets = {}
+    for ch in ("a_base_z", "a_seat_z", "a_head_z"):
+        u = rng.uniform()
+        offsets[ch] = G if u < 0.25 else (float(rng.uniform(-0.1, 0.1)) if u < 0.45 else 0.0)
+    if "base_dc" in override:
+        offsets["a_base_z"] = float(override["base_dc"])
+    pre = int(2.0 * ffs)
+    bases = []
+    for (A, T_i) in zip(mags, durs):
+        n = int(round(T_i * fs)) * m + pre
+        bases.append(A * base_signal(rng, spectrum, n, ffs))
+    # linear twins: same subject and inputs, no effect (also give the deflection scales)
+    twin_plant = Plant(*subject)
+    twins_fine = [simulate(twin_plant, u, 1 / ffs, outputs_for(twin_plant, force)) for u in bases]
+    sigma = {"cushion": float(np.std(twins_fine[1]["defl_cushion"][pre:])),
+             "k4": float(np.std(twins_fine[1]["defl_k4"][pre:]))}
+    strength = 1.0
+    params = draw_effect(rng, family, form, strength) if family != "none" else {}
+    if "params" in override:
+        params, strength = override["params"], override["strength"]
+    noise_rng = np.random.default_rng([seed, index, 99])
+    for attempt in range(3):
+        effs_fine = []
+        for (A, u) in zip(mags, bases):
+            if family in ("none", "sensor"):
+                effs_fine.append(None)
+                continue
+            plant = build_plant(subject, family, form, params, A, sigma)
+            effs_fine.append(simulate(plant, u, 1 / ffs, outputs_for(plant, force)))
+        runs_clean, twins_out = [], []
+        for (u, tw, ef) in zip(bases, twins_fine, effs_fine):
+            ch = {"a_base_z": u, **{k: v for k, v in (ef or tw).items() if not k.startswith("defl")}}
+            if family == "sensor":
+                ch[params["channel"]] = sensor_filter(ch[params["channel"]], ffs, dict(params, form=form))
+            twin_ch = {"a_base_z": u, **{k: v for k, v in tw.items() if not k.startswith("defl")}}
+            runs_clean.append({k: v[pre // m:] for k, v in daq(ch, m, fs).items()})
+            twins_out.append({k: v[pre // m:] for k, v in daq(twin_ch, m, fs).items()})
+        if family == "none":
+            det = {"detect_pct": 0.0}
+            break
+        if family == "softening" and form == "magnitude-saturating":
+            det = between_run_detectability(runs_clean, fs, [0, 2, 1])
+        else:
+            det = detectability(twins_out, runs_clean, fs)
+        if det["detect_pct"] >= 3.0 or attempt == 2 or "params" in override:
+            break
+        strength *= 2.0
+        params = draw_effect(rng, family, form, strength)
+    # sensors, offsets, force plate static weight, noise
+    body_w = G * sum(v for k, v in subject[0].items() if k != "cushion")
+    layout = draw_layout(rng, force)
+    files = []
+    for r, (y, T_i) in enumerate(zip(runs_clean, durs)):
+        chans = {}
+        for ch, v in y.items():
+            if ch != "a_base_z" and ch not in ("a_seat_z", "a_head_z", "f_seat_z"):
+                continue
+            sd = float(np.std(v))
+            v = v + noise[ch] * sd * noise_rng.standard_normal(len(v)) + noise[ch] / 3 * sd * pink(noise_rng, len(v), fs)
+            if ch in offsets:
+                v = v + offsets[ch]
+            if ch == "f_seat_z" and force_static:
+                v = v + body_w
+            chans[ch] = v
+        name = ["run-low", "run-high", "check-mid"][r] + ".csv"
+        write_csv(os.path.join(case_dir, name), chans, fs, layout)
+        files.append(name)
+    truth = {"case": index, "seed": seed, "family": family, "form": form, "params": params,
+             "strength_scale": strength, "detectability": det,
+             "subject": {"masses_kg": subject[0], "links": {k: {"k": v[2], "c": v[3]} for k, v in subject[1].items()}},
+             "nuisances": {"fs_hz": fs, "fine_rate_hz": ffs, "spectrum": spectrum, "magnitudes_ms2": list(mags),
+                           "durations_s": durs, "force_plate": force,
+                           "force_static_weight": force and force_static, "noise_frac": noise,
+                           "dc_offsets_ms2": offsets, "layout": layout},
+             "runs": files, "run_order": "run-low, run-high are --run; check-mid is --check"}
+    with open(os.path.join(case_dir, "truth.json"), "w") as fh:
+        json.dump(truth, fh, indent=1, default=float)
+    cmd = ["--run", files[0], "--run", files[1], "--check", files[2]] + layout["options"]
+    with open(os.path.join(case_dir, "cmd.json"), "w") as fh:
+        json.dump(cmd, fh)
+    return truth
+
+
+def draw_layout(rng, force):
+    chans = ["a_base_z", "a_seat_z", "a_head_z"] + (["f_seat_z"] if force else [])
+    daq_names = bool(rng.uniform() < 0.5)
+    u = rng.uniform()
+    units = "ms2" if u < 0.6 else ("g-option" if u < 0.85 or not daq_names else "g-header")
+    t = rng.uniform()
+    time = "t_s" if t < 0.6 else ("Time" if t < 0.75 else "none")
+    semicolon = bool(rng.uniform() < 0.15)
+    vari = int(rng.integers(4))
+    headers, options = {}, []
+    for ch in chans:
+        h = DAQ_NAMES[ch][vari] if daq_names else ch
+        if daq_names:
+            options += ["--column", "%s=%s" % (ch, h)]
+        if units == "g-header" and ch.startswith("a_"):
+            h += " [g]"
+        elif units == "g-header":
+            h += " [N]"
+        headers[ch] = h
+        if units == "g-option" and ch.startswith("a_"):
+            options += ["--units", "%s=g" % ch]
+    order = list(chans)
+    rng.shuffle(order)
+    layout = {"daq_names": daq_names, "units": units, "time": time, "semicolon": semicolon,
+              "order": order, "headers": headers, "options": options}
+    return layout
+
+
+def write_csv(path, chans, fs, layout):
+    n = min(len(v) for v in chans.values())
+    cols, heads, fmts = [], [], []
+    if layout["time"] != "none":
+        cols.append(np.arange(n) / fs)
+        heads.append("t_s" if layout["time"] == "t_s" else "Time [s]")
+        fmts.append("%.6f")
+    for ch in layout["order"]:
+        v = chans[ch][:n]
+        if layout["units"] != "ms2" and ch.startswith("a_"):
+            v = v / G
+        cols.append(v)
+        heads.append(layout["headers"][ch])
+        fmts.append("%.7g")
+    delim = ";" if layout["semicolon"] else ","
+    data = np.column_stack(cols)
+    import io
+    buf = io.StringIO()
+    np.savetxt(buf, data, fmt=fmts, delimiter=delim)
+    body = buf.getvalue()
+    if layout["semicolon"]:
+        body = body.replace(".", ",")
+    tmp = path + ".tmp"
+    with open(tmp, "w") as fh:
+        fh.write(delim.join(heads) + "\n")
+        fh.write(body)
+    os.replace(tmp, path)
+    if layout["time"] == "none":
+        pass  # the rate goes on the command line (--fs)
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("outdir")
+    ap.add_argument("--seed", type=int, default=1)
+    ap.add_argument("--cases", type=int, default=40)
+    ap.add_argument("--first", type=int, default=0)
+    ap.add_argument("--force", action="store_true", help="replace existing case directories")
+    ap.add_argument("--like", help="controlled experiment: a case's truth.json whose effect is reused")
+    ap.add_argument("--set", action="append", default=[], metavar="KEY=VALUE",
+                    help="with --like: fs_hz=N, spectrum=KIND, force_plate=0|1, base_dc=M/S2")
+    a = ap.parse_args()
+    override = None
+    if a.like:
+        with open(a.like) as fh:
+            like = json.load(fh)
+        override = {"params": like["params"], "strength": like["strength_scale"]}
+        for kv in a.set:
+            k, v = kv.split("=", 1)
+            override[k] = v if k == "spectrum" else (bool(int(v)) if k == "force_plate" else float(v))
+        a.seed, a.first, a.cases = like["seed"], like["case"], 1
+    os.makedirs(a.outdir, exist_ok=True)
+    for i in range(a.first, a.first + a.cases):
+        d = os.path.join(a.outdir, "case-%03d" % i)
+        if os.path.exists(os.path.join(d, "truth.json")) and not a.force:
+            continue
+        os.makedirs(d, exist_ok=True)
+        tr = make_case(d, a.seed, i, override)
+        if override:
+            tr["override"] = {k: v for k, v in override.items() if k not in ("params", "strength")}
+            with open(os.path.join(d, "truth.json"), "w") as fh:
+                json.dump(tr, fh, indent=1, default=float)
+        if tr["nuisances"]["layout"]["time"] == "none":
+            with open(os.path.join(d, "cmd.json")) as fh:
+                cmd = json.load(fh)
+            with open(os.path.join(d, "cmd.json"), "w") as fh:
+                json.dump(cmd + ["--fs", str(tr["nuisances"]["fs_hz"])], fh)
+        print("case %03d: %-12s %-20s fs %4d Hz %-14s detect %.1f %%" % (
+            i, tr["family"], tr["form"], tr["nuisances"]["fs_hz"], tr["nuisances"]["spectrum"]["kind"],
+            tr["detectability"]["detect_pct"]), flush=True)
+
+
+if __name__ == "__main__" and len(sys.argv) > 1 and sys.argv[1] == "--check-frf":
+    frf_check()
+    sys.exit(0)
+
+if __name__ == "__main__":
+    main()
