@@ -179,7 +179,7 @@ def frf_check():
     curves (data-entry/assembly check); (2) the time-domain integrator on sine dwells (steady-state
     complex amplitude by a single-bin DFT over the last 20 s) against that H (integration check)."""
     p = Plant(REF_MASSES, REF_LINKS)
-    out = subprocess.run(["/work/bin/wbv", "frf", "--model", "reference", "--from", "0.5", "--to", "40",
+    out = subprocess.run([os.environ.get("WBV", os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "target", "release", "wbv")), "frf", "--model", "reference", "--from", "0.5", "--to", "40",
                           "--points", "400"], capture_output=True, text=True, check=True).stdout
     ref = np.genfromtxt(out.splitlines(), delimiter=",", names=True)
     A, B, _ = p.matrices()

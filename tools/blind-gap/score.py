@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Runs `wbv gap` on the blind cases written by gen.py and scores the verdicts against truth.json.
 
-Usage: score.py exec CASEDIR [--wbv /work/bin/wbv]     (per case: gap.json, gap.stderr, gap.rc, gap.wall_s)
+Usage: score.py exec CASEDIR [--wbv PATH]  (default $WBV or target/release/wbv)     (per case: gap.json, gap.stderr, gap.rc, gap.wall_s)
        score.py score CASEDIR --out results.json      (Markdown table on stdout)
 
 truth.json is read only here, after wbv has run; wbv never sees it.
@@ -20,9 +20,9 @@ FAMILY = {
     "cushion-stiffening": "stiffening", "cushion-contact": "stiffening",
     "cushion-viscoelastic": "viscoelastic",
     "sensor-delay": "sensor", "sensor-lowpass": "sensor", "sensor-gain": "sensor",
-    "sensor-mount-seat": "sensor", "sensor-mount-head": "sensor",
+    "sensor-mount-seat": "sensor", "sensor-mount-head": "sensor", "sensor-mount-base": "sensor",
     "missing-dof": "missing-dof", "body-mode": "missing-dof",
-    "backrest": "support-path", "feet-support": "support-path",
+    "backrest": "support-path", "feet-support": "support-path", "thigh-support": "support-path",
     "suspension-friction": "suspension", "end-stop": "suspension",
     "none": "none", "unexplained": "unexplained", "not-identifiable": "not-identifiable",
 }
@@ -260,7 +260,7 @@ def main():
     sub = ap.add_subparsers(dest="cmd", required=True)
     e = sub.add_parser("exec")
     e.add_argument("root")
-    e.add_argument("--wbv", default=os.environ.get("WBV", "/work/bin/wbv"))
+    e.add_argument("--wbv", default=os.environ.get("WBV", os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "target", "release", "wbv")))
     s = sub.add_parser("score")
     s.add_argument("root")
     s.add_argument("--out", required=True)
