@@ -26,6 +26,8 @@ pub fn separating_measurement(a: &str, b: &str) -> String {
         "a sensor calibration: a shaker run against a reference accelerometer gives each channel's gain, group delay and mount response".into()
     } else if a == "backrest" || b == "backrest" {
         "a run without backrest contact, or a backrest force (a backrest drives the torso past the seat pan)".into()
+    } else if a == "thigh-support" || b == "thigh-support" {
+        "the seat-pan force f_seat_z, or a run with the thighs clear of the seat's front edge (a thigh path carries weight past the seat pan; without the force it looks like a stiffer cushion)".into()
     } else if a == "feet-support" || b == "feet-support" {
         "a run with the feet on a fixed floor, or a footrest force (the feet carry part of the thighs past the seat pan)".into()
     } else if pair("missing-dof", "body-mode") {

@@ -22,7 +22,7 @@ FAMILY = {
     "sensor-delay": "sensor", "sensor-lowpass": "sensor", "sensor-gain": "sensor",
     "sensor-mount-seat": "sensor", "sensor-mount-head": "sensor", "sensor-mount-base": "sensor",
     "missing-dof": "missing-dof", "body-mode": "missing-dof",
-    "backrest": "support-path", "feet-support": "support-path", "thigh-support": "support-path",
+    "backrest": "support-path", "feet-support": "support-path", "thigh-support": "support-path", "cushion-fractional": "viscoelastic",
     "suspension-friction": "suspension", "end-stop": "suspension",
     "none": "none", "unexplained": "unexplained", "not-identifiable": "not-identifiable",
 }

@@ -27,6 +27,7 @@ impl Candidate {
                 Candidate::CushionStiffening
                     | Candidate::CushionContact
                     | Candidate::CushionViscoelastic
+                    | Candidate::CushionFractional
             )
         {
             return Err(Error::parameter(self.id(), "the model has no cushion link"));
@@ -69,6 +70,31 @@ impl Candidate {
                         record_deflection: false,
                         ..l
                     });
+                }
+            }
+            // The foam's dashpot becomes a fractional one, c_α·(iω)^α, of loss `p[0]` times the
+            // dashpot's at the reference frequency: α = 1 is the Kelvin–Voigt cushion again.
+            Candidate::CushionFractional => {
+                let arms = fractional_arms(p[1]);
+                for &i in &cushion {
+                    let l = s.links[i].clone();
+                    let Element::KelvinVoigt { k, c } = l.element else {
+                        continue;
+                    };
+                    s.links[i].element = Element::KelvinVoigt { k, c: 0.0 };
+                    let k_f = p[0] * c * 2.0 * PI * FRACTIONAL_REF_HZ;
+                    for (j, &(tau, w)) in arms.iter().enumerate() {
+                        s.links.push(Link {
+                            name: format!("{}-arm{j}", l.name),
+                            element: Element::Maxwell {
+                                k: k_f * w,
+                                c: k_f * w * tau,
+                            },
+                            law: None,
+                            record_deflection: false,
+                            ..l.clone()
+                        });
+                    }
                 }
             }
             Candidate::SensorDelay => {
@@ -117,7 +143,7 @@ impl Candidate {
                     ..link
                 });
             }
-            Candidate::Backrest => {
+            Candidate::Backrest | Candidate::ThighSupport => {
                 let t = support_target(self, s).ok_or_else(|| {
                     Error::parameter(self.id(), "the model has no body point mass to support")
                 })?;
@@ -130,10 +156,11 @@ impl Candidate {
                     p[0],
                     p[1],
                 );
-                s.links.push(Link {
-                    role: Role::Backrest,
-                    ..link
-                });
+                let role = match self {
+                    Candidate::Backrest => Role::Backrest,
+                    _ => Role::Footrest,
+                };
+                s.links.push(Link { role, ..link });
             }
             Candidate::FeetSupport => {
                 let t = support_target(self, s).ok_or_else(|| {
@@ -159,5 +186,77 @@ impl Candidate {
             }
         }
         Ok(())
+    }
+}
+
+/// Reference frequency of the fractional cushion's modulus, Hz: the body-mode region.
+const FRACTIONAL_REF_HZ: f64 = 5.0;
+
+/// Relaxation times (s) and stiffness weights of the fractional cushion's Maxwell arms: two per
+/// decade over 0.01–3000 Hz (the analysed band and about two decades beyond), weights ∝ τ^−α — a
+/// discretised power-law relaxation spectrum, whose sum Σ w_j·iωτ_j/(1 + iωτ_j) follows (iω)^α
+/// inside that range (Bagley & Torvik 1983; Schiessel et al. 1995), the end arms carrying the
+/// truncated tails — scaled to magnitude 1 at [`FRACTIONAL_REF_HZ`], so k_f is the added dynamic
+/// stiffness there.
+pub fn fractional_arms(alpha: f64) -> Vec<(f64, f64)> {
+    let (lo, hi, per_decade) = (0.01f64, 3000.0f64, 2.0);
+    let n = ((hi / lo).log10() * per_decade).round() as usize + 1;
+    let taus: Vec<f64> = (0..n)
+        .map(|j| 1.0 / (2.0 * PI * lo * 10f64.powf(j as f64 / per_decade)))
+        .collect();
+    let w0 = 2.0 * PI * FRACTIONAL_REF_HZ;
+    // The spectrum beyond each end is a geometric series of arms that act as springs (long τ)
+    // or as dashpots (short τ) over the band; each end arm carries its tail's sum.
+    let r = |e: f64| 10f64.powf(-e / per_decade);
+    let mut raw: Vec<f64> = taus.iter().map(|t| t.powf(-alpha)).collect();
+    raw[0] /= 1.0 - r(alpha);
+    raw[n - 1] /= 1.0 - r(1.0 - alpha);
+    let at_ref: num_complex::Complex64 = taus
+        .iter()
+        .zip(&raw)
+        .map(|(&t, &w)| {
+            let iwt = num_complex::Complex64::new(0.0, w0 * t);
+            w * iwt / (1.0 + iwt)
+        })
+        .sum();
+    let scale = 1.0 / at_ref.norm();
+    taus.into_iter()
+        .zip(raw)
+        .map(|(t, w)| (t, w * scale))
+        .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use num_complex::Complex64;
+
+    #[test]
+    fn fractional_arms_follow_the_power_law_in_the_analysed_band() {
+        // (iω/ω₅)^α: magnitude (f/5)^α and phase απ/2, closed form, over 0.5–31.5 Hz.
+        for alpha in [0.2, 0.5, 0.8] {
+            let arms = fractional_arms(alpha);
+            for f in [0.5, 1.0, 2.0, 5.0, 10.0, 20.0, 31.5] {
+                let w = 2.0 * PI * f;
+                let s: Complex64 = arms
+                    .iter()
+                    .map(|&(t, k)| {
+                        let iwt = Complex64::new(0.0, w * t);
+                        k * iwt / (1.0 + iwt)
+                    })
+                    .sum();
+                let want = (f / FRACTIONAL_REF_HZ).powf(alpha);
+                assert!(
+                    (s.norm() / want - 1.0).abs() < 0.03,
+                    "α {alpha} f {f}: |S| {} vs {want}",
+                    s.norm()
+                );
+                let phase = s.arg() - alpha * PI / 2.0;
+                assert!(
+                    phase.abs() < 0.03,
+                    "α {alpha} f {f}: phase off by {phase} rad"
+                );
+            }
+        }
     }
 }

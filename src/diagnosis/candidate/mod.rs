@@ -76,6 +76,12 @@ pub enum Candidate {
     /// Viscoelastic cushion: a Maxwell arm (k_m in series with c_m = k_m·τ) in parallel with the
     /// Kelvin–Voigt cushion, with free stiffness ratio and relaxation time τ.
     CushionViscoelastic,
+    /// Fractional Kelvin–Voigt cushion (gap.md E3): the foam's dashpot is a fractional one,
+    /// F = k·d + c_α·D^α d, whose loss spreads over decades (a broad relaxation spectrum that one
+    /// Maxwell arm cannot follow); c_α from a loss scale at 5 Hz against the viscous dashpot, so
+    /// α = 1, scale 1 is the plain cushion. Realised as a power-law spectrum of Maxwell arms
+    /// (simulable in time).
+    CushionFractional,
     /// Lag on the seat and/or head channel (phase gap linear in frequency).
     SensorDelay,
     /// 4-pole Butterworth anti-alias low-pass on the seat and/or head channel.
@@ -105,16 +111,21 @@ pub enum Candidate {
     /// thighs) by a knee spring–damper and to the base by a heel pad (ζ 0.3 each): a load path
     /// past the seat pan that the seat-pan force does not see.
     FeetSupport,
+    /// A thigh path (gap.md E9 as a spring–damper): the lowest body mass (pelvis and thighs)
+    /// joined to the base directly, past the seat pan — the thighs on the front edge of the
+    /// seat. Without `f_seat_z` it is a stiffer, more damped cushion; the seat-pan force misses it.
+    ThighSupport,
 }
 
 impl Candidate {
     /// Every candidate in report order.
-    pub const ALL: [Candidate; 17] = [
+    pub const ALL: [Candidate; 19] = [
         Candidate::BodySoftening,
         Candidate::BodySofteningMagnitude,
         Candidate::CushionStiffening,
         Candidate::CushionContact,
         Candidate::CushionViscoelastic,
+        Candidate::CushionFractional,
         Candidate::SensorDelay,
         Candidate::SensorLowpass,
         Candidate::SensorGain,
@@ -127,6 +138,7 @@ impl Candidate {
         Candidate::BodyMode,
         Candidate::Backrest,
         Candidate::FeetSupport,
+        Candidate::ThighSupport,
     ];
 
     /// Identifier used in verdicts.
@@ -137,6 +149,7 @@ impl Candidate {
             Candidate::CushionStiffening => "cushion-stiffening",
             Candidate::CushionContact => "cushion-contact",
             Candidate::CushionViscoelastic => "cushion-viscoelastic",
+            Candidate::CushionFractional => "cushion-fractional",
             Candidate::SensorDelay => "sensor-delay",
             Candidate::SensorLowpass => "sensor-lowpass",
             Candidate::SensorGain => "sensor-gain",
@@ -149,6 +162,7 @@ impl Candidate {
             Candidate::BodyMode => "body-mode",
             Candidate::Backrest => "backrest",
             Candidate::FeetSupport => "feet-support",
+            Candidate::ThighSupport => "thigh-support",
         }
     }
 
@@ -158,7 +172,9 @@ impl Candidate {
         match self {
             Candidate::BodySoftening | Candidate::BodySofteningMagnitude => "body softening",
             Candidate::CushionStiffening | Candidate::CushionContact => "cushion stiffening",
-            Candidate::CushionViscoelastic => "cushion viscoelasticity",
+            Candidate::CushionViscoelastic | Candidate::CushionFractional => {
+                "cushion viscoelasticity"
+            }
             Candidate::SensorDelay
             | Candidate::SensorLowpass
             | Candidate::SensorGain
@@ -167,7 +183,9 @@ impl Candidate {
             | Candidate::SensorMountBase => "sensor",
             Candidate::SuspensionFriction | Candidate::EndStop => "suspension",
             Candidate::MissingDof | Candidate::BodyMode => "missing degree of freedom",
-            Candidate::Backrest | Candidate::FeetSupport => "second support path",
+            Candidate::Backrest | Candidate::FeetSupport | Candidate::ThighSupport => {
+                "second support path"
+            }
         }
     }
 
@@ -201,7 +219,8 @@ impl Candidate {
                 .any(|l| l.role == Role::Body && matches!(l.element, Element::KelvinVoigt { .. })),
             Candidate::CushionStiffening
             | Candidate::CushionContact
-            | Candidate::CushionViscoelastic => !cushion_links(system).is_empty(),
+            | Candidate::CushionViscoelastic
+            | Candidate::CushionFractional => !cushion_links(system).is_empty(),
             Candidate::SuspensionFriction | Candidate::EndStop => {
                 role_link(system, Role::Suspension).is_some()
             }
@@ -215,7 +234,9 @@ impl Candidate {
                 .iter()
                 .any(|&i| on_base(&system.links[i])),
             Candidate::BodyMode => heaviest_body_mass(system).is_some(),
-            Candidate::Backrest | Candidate::FeetSupport => support_target(self, system).is_some(),
+            Candidate::Backrest | Candidate::FeetSupport | Candidate::ThighSupport => {
+                support_target(self, system).is_some()
+            }
         }
     }
 
@@ -241,6 +262,10 @@ impl Candidate {
             Candidate::CushionContact => {
                 vec![Param::new("d0_m", 1e-4, 1.0, &[0.002, 0.02, 0.2], true)]
             }
+            Candidate::CushionFractional => vec![
+                Param::new("loss_scale", 0.05, 20.0, &[0.5, 1.0], true),
+                Param::new("alpha", 0.05, 0.95, &[0.3, 0.7], false),
+            ],
             Candidate::CushionViscoelastic => vec![
                 Param::new("k_m_over_k", 0.01, 30.0, &[0.3, 2.0], true),
                 Param::new("tau_s", 5e-4, 0.5, &[0.005, 0.05], true),
@@ -284,7 +309,7 @@ impl Candidate {
                 Param::new("f_mode_hz", 2.0, 30.0, &[5.0, 10.0], true),
                 Param::new("zeta_mode", 0.03, 0.8, &[0.25], true),
             ],
-            Candidate::Backrest => vec![
+            Candidate::Backrest | Candidate::ThighSupport => vec![
                 Param::new("f_support_hz", 0.5, 25.0, &[2.0, 6.0], true),
                 Param::new("zeta_support", 0.05, 3.0, &[0.4], true),
             ],

@@ -41,7 +41,7 @@ pub fn support_target(c: Candidate, system: &System) -> Option<usize> {
     };
     let target = match c {
         Candidate::Backrest => heaviest_body_mass(system),
-        Candidate::FeetSupport => system
+        Candidate::FeetSupport | Candidate::ThighSupport => system
             .links
             .iter()
             .filter(|l| l.role == Role::Body && !is_body(&l.nodes.1))

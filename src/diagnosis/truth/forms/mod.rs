@@ -68,7 +68,7 @@ impl Family {
         let id = id.trim();
         if id.starts_with("sensor-") {
             Some(Family::Sensor)
-        } else if id.starts_with("cushion-viscoelastic") {
+        } else if id.starts_with("cushion-viscoelastic") || id.starts_with("cushion-fractional") {
             Some(Family::Viscoelastic)
         } else if id.starts_with("cushion-stiffening") || id.starts_with("cushion-contact") {
             Some(Family::Stiffening)
@@ -77,7 +77,7 @@ impl Family {
         } else if id == "missing-dof" || id.starts_with("body-mode") || id.starts_with("seat-frame")
         {
             Some(Family::MissingDof)
-        } else if id == "backrest" || id == "feet-support" {
+        } else if id == "backrest" || id == "feet-support" || id == "thigh-support" {
             Some(Family::SupportPath)
         } else {
             None
@@ -325,6 +325,18 @@ mod tests {
     #[test]
     fn verdict_families() {
         assert_eq!(Family::of_verdict("sensor-gain"), Some(Family::Sensor));
+        assert_eq!(
+            Family::of_verdict("sensor-mount-base"),
+            Some(Family::Sensor)
+        );
+        assert_eq!(
+            Family::of_verdict("cushion-fractional"),
+            Some(Family::Viscoelastic)
+        );
+        assert_eq!(
+            Family::of_verdict("thigh-support"),
+            Some(Family::SupportPath)
+        );
         assert_eq!(Family::of_verdict("body-mode"), Some(Family::MissingDof));
         assert_eq!(Family::of_verdict("none"), None);
     }
