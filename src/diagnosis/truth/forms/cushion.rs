@@ -15,7 +15,7 @@ pub(super) fn plant(
     let w5 = 2.0 * PI * 5.0;
     Ok(match form {
         Form::Sls => {
-            let i = cushion(model);
+            let i = cushion(model)?;
             let (k, c) = kv(model, i);
             let tau = log_uniform(rng, 0.002, 0.06);
             let share = 0.06 + 0.6 * u;
@@ -29,7 +29,7 @@ pub(super) fn plant(
             )
         }
         Form::Maxwell2 => {
-            let i = cushion(model);
+            let i = cushion(model)?;
             let (k, c) = kv(model, i);
             let (t1, t2) = (log_uniform(rng, 0.002, 0.01), log_uniform(rng, 0.03, 0.2));
             let share = 0.06 + 0.6 * u;
@@ -47,7 +47,7 @@ pub(super) fn plant(
             )
         }
         Form::Fractional => {
-            let i = cushion(model);
+            let i = cushion(model)?;
             let (k, c) = kv(model, i);
             let alpha = uniform(rng, 0.2, 0.6);
             let share = 0.06 + 0.6 * u;
@@ -77,7 +77,7 @@ pub(super) fn plant(
             )
         }
         Form::Cubic | Form::Contact | Form::Exponential => {
-            let i = cushion(model);
+            let i = cushion(model)?;
             let (s, _) = link_sigma(model, i, lines)?;
             let law = match form {
                 // E[k + 3 k3 d²] = k (1 + t).

@@ -77,12 +77,14 @@ pub(super) fn kv(model: &Chain, i: usize) -> (f64, f64) {
 }
 
 /// Indices of the cushion link, the body–seat interface link and the heaviest body mass.
-pub(super) fn cushion(model: &Chain) -> usize {
+pub(super) fn cushion(model: &Chain) -> Result<usize> {
     model
         .links
         .iter()
         .position(|l| l.role == Role::Cushion)
-        .expect("the bench's base model has a cushion")
+        .ok_or_else(|| {
+            crate::error::Error::parameter("model", "the bench's truth forms need a cushion link")
+        })
 }
 
 pub(super) fn interface(model: &Chain) -> usize {

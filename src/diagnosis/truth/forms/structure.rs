@@ -6,7 +6,7 @@ use super::*;
 pub(super) fn plant(form: Form, u: f64, rng: &mut ChaCha8Rng, model: &mut Chain) -> Result<String> {
     Ok(match form {
         Form::Frame => {
-            let i = cushion(model);
+            let i = cushion(model)?;
             let mf = uniform(rng, 3.0, 15.0);
             let f = 40.0 - 32.0 * u;
             let z = uniform(rng, 0.03, 0.15);
