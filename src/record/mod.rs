@@ -38,6 +38,8 @@ pub mod demo;
 mod file;
 mod interrupt;
 mod json;
+#[cfg(feature = "live")]
+pub mod live;
 mod lowpass;
 mod meta;
 mod pipeline;
