@@ -1,5 +1,7 @@
 //! `wbv simulate --serve`: a WebSocket client (tungstenite, independent of the Foxglove SDK's
-//! server) speaks the Foxglove WebSocket protocol (`foxglove.websocket.v1`) to the running binary:
+//! server) speaks the Foxglove WebSocket protocol to the running binary. The SDK's server (0.30)
+//! negotiates only the subprotocols `foxglove.sdk.v1` (inline schemas, the `foxglove.websocket.v1`
+//! protocol under a new name) and `foxglove.sdk.v1.1`; the client offers `foxglove.sdk.v1` and
 //! it reads `serverInfo` and `advertise`, subscribes to `/wbv/measured` and decodes the binary
 //! message-data frames (opcode 0x01, subscription id u32 LE, log time u64 LE, payload) with
 //! `prost-reflect` and the descriptor compiled from `proto/wbv.proto`, not with the encoder that
@@ -62,14 +64,13 @@ fn start(extra: &[&str]) -> (Killed, String, mpsc::Receiver<String>) {
 
 fn connect(url: &str) -> WebSocket<MaybeTlsStream<TcpStream>> {
     let mut request = url.into_client_request().unwrap();
-    request.headers_mut().insert(
-        "Sec-WebSocket-Protocol",
-        "foxglove.websocket.v1".parse().unwrap(),
-    );
+    request
+        .headers_mut()
+        .insert("sec-websocket-protocol", "foxglove.sdk.v1".parse().unwrap());
     let (mut ws, response) = tungstenite::connect(request).unwrap();
     assert_eq!(
-        response.headers()["Sec-WebSocket-Protocol"],
-        "foxglove.websocket.v1"
+        response.headers()["sec-websocket-protocol"],
+        "foxglove.sdk.v1"
     );
     if let MaybeTlsStream::Plain(s) = ws.get_mut() {
         s.set_read_timeout(Some(Duration::from_secs(30))).unwrap();
@@ -108,7 +109,13 @@ fn a_client_subscribes_and_decodes_the_measured_channel() {
         .iter()
         .map(|c| c["topic"].as_str().unwrap())
         .collect();
-    for t in ["/wbv/measured", "/wbv/state", "/wbv/links", "/wbv/scene", "/tf"] {
+    for t in [
+        "/wbv/measured",
+        "/wbv/state",
+        "/wbv/links",
+        "/wbv/scene",
+        "/tf",
+    ] {
         assert!(topics.contains(&t), "{t} not in {topics:?}");
     }
     let measured = channels
@@ -126,8 +133,8 @@ fn a_client_subscribes_and_decodes_the_measured_channel() {
     assert!(advertised.get_message_by_name("wbv.Measured").is_some());
 
     // Decode with the descriptor compiled from proto/wbv.proto.
-    let pool = DescriptorPool::from_file_descriptor_set(wbv::record::proto::base_descriptor())
-        .unwrap();
+    let pool =
+        DescriptorPool::from_file_descriptor_set(wbv::record::proto::base_descriptor()).unwrap();
     let message = pool.get_message_by_name("wbv.Measured").unwrap();
 
     let sub_id = 7u32;
@@ -156,7 +163,11 @@ fn a_client_subscribes_and_decodes_the_measured_channel() {
         let (t, a_seat) = (get("t"), get("a_seat_z"));
         assert!(a_seat.is_finite());
         assert!(t > last_t, "time increases: {t} after {last_t}");
-        assert_eq!(log_time, (t * 1e9).round() as u64, "log time is simulation time");
+        assert_eq!(
+            log_time,
+            (t * 1e9).round() as u64,
+            "log time is simulation time"
+        );
         if let Some(l) = last_log {
             assert!(log_time > l);
         }
@@ -195,7 +206,10 @@ fn a_bad_address_is_one_clear_error() {
         .unwrap();
     assert!(!out.status.success());
     let err = String::from_utf8_lossy(&out.stderr);
-    assert!(err.contains("--serve") && err.contains("not-an-address"), "{err}");
+    assert!(
+        err.contains("--serve") && err.contains("not-an-address"),
+        "{err}"
+    );
 }
 
 #[test]
@@ -203,10 +217,20 @@ fn a_busy_port_is_one_clear_error() {
     let busy = std::net::TcpListener::bind("127.0.0.1:0").unwrap();
     let addr = busy.local_addr().unwrap().to_string();
     let out = Command::new(env!("CARGO_BIN_EXE_wbv"))
-        .args(["simulate", "--serve", &addr, "--no-record", "--duration", "1"])
+        .args([
+            "simulate",
+            "--serve",
+            &addr,
+            "--no-record",
+            "--duration",
+            "1",
+        ])
         .output()
         .unwrap();
     assert!(!out.status.success());
     let err = String::from_utf8_lossy(&out.stderr);
-    assert!(err.contains("--serve") && err.contains("cannot listen"), "{err}");
+    assert!(
+        err.contains("--serve") && err.contains("cannot listen"),
+        "{err}"
+    );
 }

@@ -129,9 +129,7 @@ impl LiveView {
             .bind(addr.ip().to_string(), addr.port())
             .context(&context)
             .start_blocking()
-            .map_err(|e| {
-                Error::parameter("--serve", format!("cannot listen on {addr}: {e}"))
-            })?;
+            .map_err(|e| Error::parameter("--serve", format!("cannot listen on {addr}: {e}")))?;
         let port = server.port();
         Ok(LiveView {
             options,
@@ -242,8 +240,7 @@ impl Observer for LiveView {
                 offset += n;
             }
         }
-        if scene::frame_due(&mut self.next_scene_frame, self.options.scene_rate_hz, s.t).is_some()
-        {
+        if scene::frame_due(&mut self.next_scene_frame, self.options.scene_rate_hz, s.t).is_some() {
             let (scene, scene_id, tf_id) = self.scene.as_ref().expect("begin() called");
             let (scene_id, tf_id) = (*scene_id, *tf_id);
             let mut buf = std::mem::take(&mut self.buf);

@@ -198,7 +198,10 @@ pub fn print_table(outcome: &Outcome) {
 
 /// The live view `--serve` asks for, started (so a bad address fails before any work).
 #[cfg(feature = "live")]
-fn live_view(args: &Args, options: &RecordOptions) -> wbv::Result<Option<wbv::record::live::LiveView>> {
+fn live_view(
+    args: &Args,
+    options: &RecordOptions,
+) -> wbv::Result<Option<wbv::record::live::LiveView>> {
     use wbv::record::live::{LiveOptions, LiveView};
     let Some(addr) = &args.serve else {
         return Ok(None);
@@ -219,7 +222,11 @@ fn live_view(args: &Args, options: &RecordOptions) -> wbv::Result<Option<wbv::re
     eprintln!(
         "live view on {} (Foxglove or Lichtblick: Open connection → Foxglove WebSocket){}",
         live.url(),
-        if args.realtime { ", paced to wall-clock time" } else { "" }
+        if args.realtime {
+            ", paced to wall-clock time"
+        } else {
+            ""
+        }
     );
     Ok(Some(live))
 }
@@ -279,7 +286,14 @@ pub fn run(args: Args) -> wbv::Result<()> {
         let dir = args.out.clone().ok_or_else(|| {
             wbv::Error::parameter("--out", "required with --from (a new run directory)")
         })?;
-        let outcome = execute_as(&scenario, Some(&dir), options, args.csv.clone(), line, &mut [])?;
+        let outcome = execute_as(
+            &scenario,
+            Some(&dir),
+            options,
+            args.csv.clone(),
+            line,
+            &mut [],
+        )?;
         return print_result(
             &scenario,
             &outcome,
