@@ -32,8 +32,15 @@ impl Drop for Killed {
 /// Starts `wbv simulate --serve 127.0.0.1:0 …` and returns it with the URL it printed on stderr
 /// and the rest of its stderr lines (as they come).
 fn start(extra: &[&str]) -> (Killed, String, mpsc::Receiver<String>) {
+    start_with(
+        &["simulate", "--serve", "127.0.0.1:0", "--no-record"],
+        extra,
+    )
+}
+
+fn start_with(args: &[&str], extra: &[&str]) -> (Killed, String, mpsc::Receiver<String>) {
     let mut child = Command::new(env!("CARGO_BIN_EXE_wbv"))
-        .args(["simulate", "--serve", "127.0.0.1:0", "--no-record"])
+        .args(args)
         .args(extra)
         .stdout(Stdio::null())
         .stderr(Stdio::piped())
@@ -192,12 +199,71 @@ fn a_client_subscribes_and_decodes_the_measured_channel() {
 }
 
 #[test]
-fn a_bad_address_is_one_clear_error() {
+fn live_messages_are_the_recorded_messages() {
+    // Record the same run per-sample beside the live view: every /wbv/state message received
+    // must be byte for byte the recorded message of the same log time.
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("run");
+    let (mut child, url, _stderr) = start_with(
+        &["simulate", "--serve", "127.0.0.1:0"],
+        &[
+            "--duration",
+            "1",
+            "--realtime",
+            "--layout",
+            "per-sample",
+            "--out",
+            out.to_str().unwrap(),
+        ],
+    );
+    let mut ws = connect(&url);
+    let mut state = None;
+    while state.is_none() {
+        let m = text(&mut ws);
+        if m["op"] == "advertise" {
+            state = (m["channels"].as_array().unwrap().iter())
+                .find(|c| c["topic"] == "/wbv/state")
+                .cloned();
+        }
+    }
+    let subscribe = json!({"op": "subscribe", "subscriptions": [
+        {"id": 1, "channelId": state.unwrap()["id"]}
+    ]});
+    ws.send(Message::text(subscribe.to_string())).unwrap();
+    let mut live = std::collections::BTreeMap::new();
+    while let Ok(m) = ws.read() {
+        match m {
+            Message::Binary(b) => {
+                let log_time = u64::from_le_bytes(b[5..13].try_into().unwrap());
+                live.insert(log_time, b[13..].to_vec());
+            }
+            Message::Close(_) => break,
+            _ => {}
+        }
+    }
+    assert!(child.0.wait().unwrap().success());
+    assert!(live.len() > 100, "{} messages received", live.len());
+    let bytes = std::fs::read(out.join("run.mcap")).unwrap();
+    let mut recorded = std::collections::BTreeMap::new();
+    for m in mcap::MessageStream::new(&bytes).unwrap() {
+        let m = m.unwrap();
+        if m.channel.topic == "/wbv/state" {
+            assert_eq!(m.channel.schema.as_ref().unwrap().name, "wbv.State");
+            recorded.insert(m.log_time, m.data.into_owned());
+        }
+    }
+    for (t, payload) in &live {
+        assert_eq!(Some(payload), recorded.get(t), "message at {t} ns");
+    }
+}
+
+/// Runs `wbv simulate --serve ADDR` and checks it fails with an error naming `--serve` and `what`.
+fn refused(addr: &str, what: &str) {
     let out = Command::new(env!("CARGO_BIN_EXE_wbv"))
         .args([
             "simulate",
             "--serve",
-            "not-an-address",
+            addr,
             "--no-record",
             "--duration",
             "1",
@@ -206,31 +272,17 @@ fn a_bad_address_is_one_clear_error() {
         .unwrap();
     assert!(!out.status.success());
     let err = String::from_utf8_lossy(&out.stderr);
-    assert!(
-        err.contains("--serve") && err.contains("not-an-address"),
-        "{err}"
-    );
+    assert!(err.contains("--serve") && err.contains(what), "{err}");
+}
+
+#[test]
+fn a_bad_address_is_one_clear_error() {
+    refused("not-an-address", "not-an-address");
+    refused("127.0.0.1:99999", "expected an address host:port");
 }
 
 #[test]
 fn a_busy_port_is_one_clear_error() {
     let busy = std::net::TcpListener::bind("127.0.0.1:0").unwrap();
-    let addr = busy.local_addr().unwrap().to_string();
-    let out = Command::new(env!("CARGO_BIN_EXE_wbv"))
-        .args([
-            "simulate",
-            "--serve",
-            &addr,
-            "--no-record",
-            "--duration",
-            "1",
-        ])
-        .output()
-        .unwrap();
-    assert!(!out.status.success());
-    let err = String::from_utf8_lossy(&out.stderr);
-    assert!(
-        err.contains("--serve") && err.contains("cannot listen"),
-        "{err}"
-    );
+    refused(&busy.local_addr().unwrap().to_string(), "cannot listen");
 }

@@ -325,6 +325,10 @@ pub fn run(args: Args) -> wbv::Result<()> {
         args.csv.as_deref(),
         args.force,
     )?;
+    #[cfg(feature = "live")]
+    if let Some(addr) = &args.serve {
+        wbv::record::live::parse_addr(addr)?;
+    }
     let scenario = args.scenario()?;
     let core = if args.timing {
         Some(time_core(&scenario)?)
