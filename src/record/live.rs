@@ -1,5 +1,6 @@
 //! [`LiveView`]: an [`Observer`] that streams a run to the Foxglove app or Lichtblick over the
-//! Foxglove WebSocket protocol (`foxglove.websocket.v1`) while it is simulated
+//! Foxglove WebSocket protocol (subprotocol `foxglove.sdk.v1`, the SDK 0.30 name of
+//! `foxglove.websocket.v1`) while it is simulated
 //! (`wbv simulate --serve`).
 //!
 //! The channels are the recording's, built by the same code (`channels::add`): topics
