@@ -114,6 +114,17 @@ impl Scenario {
     /// Simulates, records (MCAP and/or CSV, each written atomically) and analyses the run; the
     /// analysis results are stored in the recording before it is completed.
     pub fn execute(&self, outputs: &Outputs, progress: Option<&dyn Fn(u64)>) -> Result<Outcome> {
+        self.execute_with(outputs, &mut [], progress)
+    }
+
+    /// [`Scenario::execute`] with `extra` observers (e.g. the live view) after the recorders;
+    /// their `end` is left to the caller.
+    pub fn execute_with(
+        &self,
+        outputs: &Outputs,
+        extra: &mut [&mut dyn Observer],
+        progress: Option<&dyn Fn(u64)>,
+    ) -> Result<Outcome> {
         let start = std::time::Instant::now();
         let mut recorder = match &outputs.mcap {
             Some((path, options)) => Some(crate::record::McapRecorder::create(
@@ -138,6 +149,9 @@ impl Scenario {
             }
             if let Some(c) = csv.as_mut() {
                 observers.push(c);
+            }
+            for o in extra.iter_mut() {
+                observers.push(&mut **o);
             }
             self.simulate(&mut observers, progress)?;
         }

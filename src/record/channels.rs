@@ -21,39 +21,72 @@ pub struct Channels {
     pub transforms: u16,
 }
 
+/// Where a run's channels are created: the MCAP writer, or the live view's WebSocket server.
+pub trait ChannelSink {
+    /// Adds a channel on `topic` whose messages are in `encoding` (`json` with a `jsonschema`
+    /// schema, or `protobuf` whose schema is the message `schema_name` of the serialized
+    /// `FileDescriptorSet` `schema`); returns its id.
+    fn add_channel(
+        &mut self,
+        topic: &str,
+        encoding: Encoding,
+        schema_name: &str,
+        schema: &[u8],
+    ) -> Result<u16>;
+}
+
+/// The MCAP writer as a [`ChannelSink`]; a failed write becomes `err(e)`.
+pub struct McapSink<'a, F> {
+    pub writer: &'a mut McapWriter,
+    pub err: &'a F,
+}
+
+impl<F: Fn(mcap::McapError) -> Error> ChannelSink for McapSink<'_, F> {
+    fn add_channel(
+        &mut self,
+        topic: &str,
+        encoding: Encoding,
+        schema_name: &str,
+        schema: &[u8],
+    ) -> Result<u16> {
+        match encoding {
+            Encoding::Json => json_channel(self.writer, topic, schema_name, schema),
+            Encoding::Protobuf => protobuf_channel(self.writer, topic, schema_name, schema),
+        }
+        .map_err(self.err)
+    }
+}
+
 /// Adds to `w` the channels of `topics` (those of `layout`, made `timed()` when `batched`) and
-/// of the scene, in `encoding`; a failed MCAP write becomes `err(e)`.
+/// of the scene, in `encoding`.
 pub fn add(
-    w: &mut McapWriter,
+    w: &mut impl ChannelSink,
     layout: &Layout,
     topics: Vec<Topic>,
     encoding: Encoding,
     batched: bool,
-    err: &impl Fn(mcap::McapError) -> Error,
 ) -> Result<Channels> {
     let (mut channels, mut encoders) = (Vec::new(), Vec::new());
     let (scene, transforms) = match encoding {
         Encoding::Json => {
             for t in topics {
                 let schema = serde_json::to_vec(&t.schema).expect("schema serialises");
-                let cid = json_channel(w, t.topic, t.schema_name, &schema).map_err(err)?;
+                let cid = w.add_channel(t.topic, encoding, t.schema_name, &schema)?;
                 encoders.push(Encoder::Json(t.template.clone()));
                 channels.push((t, cid));
             }
-            let scene_id = json_channel(
-                w,
+            let scene_id = w.add_channel(
                 "/wbv/scene",
+                encoding,
                 "foxglove.SceneUpdate",
                 SCENE_UPDATE_SCHEMA.as_bytes(),
-            )
-            .map_err(err)?;
-            let tf_id = json_channel(
-                w,
+            )?;
+            let tf_id = w.add_channel(
                 "/tf",
+                encoding,
                 "foxglove.FrameTransforms",
                 FRAME_TRANSFORMS_SCHEMA.as_bytes(),
-            )
-            .map_err(err)?;
+            )?;
             (scene_id, tf_id)
         }
         Encoding::Protobuf => {
@@ -69,7 +102,7 @@ pub fn add(
                     let template = ProtoTemplate::new(&fds, t.schema_name, &t.leaves)?;
                     (t.schema_name.to_string(), Encoder::Protobuf(template))
                 };
-                let cid = protobuf_channel(w, t.topic, &name, &bytes).map_err(err)?;
+                let cid = w.add_channel(t.topic, encoding, &name, &bytes)?;
                 encoders.push(encoder);
                 channels.push((t, cid));
             }
@@ -78,7 +111,7 @@ pub fn add(
                 ("/wbv/scene", scene::pb::scene_update_schema()),
                 ("/tf", scene::pb::frame_transforms_schema()),
             ]) {
-                *id = protobuf_channel(w, topic, &schema.name, &schema.data).map_err(err)?;
+                *id = w.add_channel(topic, encoding, &schema.name, &schema.data)?;
             }
             (ids[0], ids[1])
         }

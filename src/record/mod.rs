@@ -31,6 +31,8 @@
 //! TOML as an attachment; `wbv simulate --from RUN` re-runs it byte for byte. Analysis results given
 //! to [`McapRecorder::attach_results`] go to `wbv.results` metadata and `<name>.json` attachments.
 //! SIGINT/SIGTERM close what was simulated as `run.interrupted.mcap` (metadata `wbv.interrupted`).
+//! With the feature `live`, [`live::LiveView`] streams the same channels to Foxglove or Lichtblick
+//! over the Foxglove WebSocket protocol while a run is simulated (`wbv simulate --serve`).
 
 mod channels;
 pub mod csv;
@@ -38,6 +40,8 @@ pub mod demo;
 mod file;
 mod interrupt;
 mod json;
+#[cfg(feature = "live")]
+pub mod live;
 mod lowpass;
 mod meta;
 mod pipeline;

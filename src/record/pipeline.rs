@@ -39,7 +39,7 @@ impl Encoder {
     }
 
     /// Appends the message of finite `values`.
-    fn render(&self, values: &[f64], out: &mut Vec<u8>) {
+    pub(super) fn render(&self, values: &[f64], out: &mut Vec<u8>) {
         match self {
             Encoder::Json(t) => t.render_finite(values, out),
             Encoder::Protobuf(t) => t.render(values, out),

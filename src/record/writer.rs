@@ -202,7 +202,11 @@ impl McapRecorder {
         .map_err(&err)?;
 
         let scene = Scene::new(layout, self.options.magnification);
-        let c = channels::add(w, layout, topics, self.options.encoding, batched, &err)?;
+        let mut sink = channels::McapSink {
+            writer: w,
+            err: &err,
+        };
+        let c = channels::add(&mut sink, layout, topics, self.options.encoding, batched)?;
         (self.topics, self.encoders) = (c.topics, c.encoders);
         self.scene = Some((scene, c.scene, c.transforms));
         let writer = self.writer.take().expect("checked above");
@@ -288,12 +292,11 @@ impl McapRecorder {
     }
 
     fn record_scene(&mut self, s: &Step<'_>) -> Result<()> {
-        let rate = self.options.scene_rate_hz;
-        if (self.next_scene_frame as f64) / rate > s.t + 1e-9 {
+        let Some(sequence) =
+            super::scene::frame_due(&mut self.next_scene_frame, self.options.scene_rate_hz, s.t)
+        else {
             return Ok(());
-        }
-        self.next_scene_frame = (s.t * rate + 1e-9).floor() as u64 + 1;
-        let sequence = u32::try_from(self.next_scene_frame - 1).unwrap_or(u32::MAX);
+        };
         let time_ns = (s.t * 1e9).round() as u64;
         let (scene, scene_id, tf_id) = self.scene.as_ref().expect("recording");
         let b = &mut self.block;

@@ -55,6 +55,21 @@ pub struct Args {
     /// an extra run before the real one, and print both times on stderr.
     #[arg(long)]
     pub timing: bool,
+    /// Live view: stream the run to the Foxglove app or Lichtblick over the Foxglove WebSocket
+    /// protocol while simulating, on ADDR (host:port, default 127.0.0.1:8765; port 0 picks a free
+    /// one, printed on stderr). The run starts once a viewer subscribes to a topic (see
+    /// --serve-wait); with or without recording.
+    #[cfg(feature = "live")]
+    #[arg(long, value_name = "ADDR", num_args = 0..=1, default_missing_value = wbv::record::live::DEFAULT_ADDR)]
+    pub serve: Option<String>,
+    /// With --serve: pace the simulation to wall-clock time (1 s simulated per s).
+    #[cfg(feature = "live")]
+    #[arg(long, requires = "serve")]
+    pub realtime: bool,
+    /// With --serve: seconds to wait for a viewer to subscribe before simulating (0: start at once).
+    #[cfg(feature = "live")]
+    #[arg(long, requires = "serve", default_value_t = 30.0)]
+    pub serve_wait: f64,
     /// Print the result as JSON on stdout (`analysis`, `written`, `elapsed_s`, …); status lines
     /// stay on stderr.
     #[arg(long)]
@@ -102,7 +117,7 @@ pub fn execute(
     options: RecordOptions,
     csv: Option<PathBuf>,
 ) -> wbv::Result<Outcome> {
-    execute_as(scenario, dir, options, csv, command_line())
+    execute_as(scenario, dir, options, csv, command_line(), &mut [])
 }
 
 /// [`execute`] with the command line stored in the provenance given.
@@ -112,6 +127,7 @@ fn execute_as(
     options: RecordOptions,
     csv: Option<PathBuf>,
     command_line: String,
+    extra: &mut [&mut dyn wbv::simulate::observer::Observer],
 ) -> wbv::Result<Outcome> {
     let outputs = Outputs {
         overwrite: options.overwrite,
@@ -120,7 +136,7 @@ fn execute_as(
         command_line,
     };
     let bar = progress(scenario.settings.steps());
-    let outcome = scenario.execute(&outputs, Some(&|n| bar.set_position(n)))?;
+    let outcome = scenario.execute_with(&outputs, extra, Some(&|n| bar.set_position(n)))?;
     bar.finish_and_clear();
     let memory = wbv::io::memory::peak_resident_bytes().map_or(String::new(), |b| {
         format!(", peak memory {:.0} MB", b as f64 / 1e6)
@@ -180,6 +196,41 @@ pub fn print_table(outcome: &Outcome) {
     }
 }
 
+/// The live view `--serve` asks for, started (so a bad address fails before any work).
+#[cfg(feature = "live")]
+fn live_view(
+    args: &Args,
+    options: &RecordOptions,
+) -> wbv::Result<Option<wbv::record::live::LiveView>> {
+    use wbv::record::live::{LiveOptions, LiveView};
+    let Some(addr) = &args.serve else {
+        return Ok(None);
+    };
+    if !(args.serve_wait.is_finite() && args.serve_wait >= 0.0) {
+        return Err(wbv::Error::parameter(
+            "--serve-wait",
+            format!("{}: expected a duration in s ≥ 0", args.serve_wait),
+        ));
+    }
+    let live = LiveView::start(LiveOptions {
+        addr: addr.clone(),
+        realtime: args.realtime,
+        wait: std::time::Duration::from_secs_f64(args.serve_wait),
+        scene_rate_hz: options.scene_rate_hz,
+        magnification: options.magnification,
+    })?;
+    eprintln!(
+        "live view on {} (Foxglove or Lichtblick: Open connection → Foxglove WebSocket){}",
+        live.url(),
+        if args.realtime {
+            ", paced to wall-clock time"
+        } else {
+            ""
+        }
+    );
+    Ok(Some(live))
+}
+
 /// Times, in extra runs, generating the excitation alone and the simulation core (excitation +
 /// integration, no observers), in s: what `scipy.signal.lsim` does, for `tools/bench-peers`.
 fn time_core(scenario: &Scenario) -> wbv::Result<(f64, f64)> {
@@ -235,7 +286,14 @@ pub fn run(args: Args) -> wbv::Result<()> {
         let dir = args.out.clone().ok_or_else(|| {
             wbv::Error::parameter("--out", "required with --from (a new run directory)")
         })?;
-        let outcome = execute_as(&scenario, Some(&dir), options, args.csv.clone(), line)?;
+        let outcome = execute_as(
+            &scenario,
+            Some(&dir),
+            options,
+            args.csv.clone(),
+            line,
+            &mut [],
+        )?;
         return print_result(
             &scenario,
             &outcome,
@@ -267,6 +325,10 @@ pub fn run(args: Args) -> wbv::Result<()> {
         args.csv.as_deref(),
         args.force,
     )?;
+    #[cfg(feature = "live")]
+    if let Some(addr) = &args.serve {
+        wbv::record::live::parse_addr(addr)?;
+    }
     let scenario = args.scenario()?;
     let core = if args.timing {
         Some(time_core(&scenario)?)
@@ -285,12 +347,30 @@ pub fn run(args: Args) -> wbv::Result<()> {
         overwrite: Overwrite::from_force(args.force),
         ..RecordOptions::default()
     };
-    let outcome = execute(
+    #[cfg(feature = "live")]
+    let mut live = live_view(&args, &options)?;
+    #[cfg(not(feature = "live"))]
+    let live: Option<std::convert::Infallible> = None;
+    let mut extra: Vec<&mut dyn wbv::simulate::observer::Observer> = Vec::new();
+    #[cfg(feature = "live")]
+    if let Some(l) = live.as_mut() {
+        extra.push(l);
+    }
+    let outcome = execute_as(
         &scenario,
         (!args.no_record).then_some(dir.as_path()),
         options,
         args.csv.clone(),
+        command_line(),
+        &mut extra,
     )?;
+    drop(extra);
+    #[cfg(feature = "live")]
+    if let Some(mut l) = live {
+        wbv::simulate::observer::Observer::end(&mut l)?;
+    }
+    #[cfg(not(feature = "live"))]
+    let _ = live;
     if let Some((excitation, core)) = core {
         let ns = 1e9 / scenario.settings.steps() as f64;
         eprintln!(

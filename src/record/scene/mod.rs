@@ -20,6 +20,17 @@ pub const SCENE_UPDATE_SCHEMA: &str = include_str!("../schemas/foxglove.SceneUpd
 /// `foxglove.FrameTransforms` JSON schema, verbatim from npm `@foxglove/schemas` 2.1.0.
 pub const FRAME_TRANSFORMS_SCHEMA: &str = include_str!("../schemas/foxglove.FrameTransforms.json");
 
+/// Whether a scene frame is due at time `t` (s) at `rate_hz` frames per second, given the
+/// number of the next frame `next` (updated): the frame's number if so. Frame `k` belongs to
+/// the first step at or after `k / rate_hz` (1 ns tolerance for the rounding of `t`).
+pub fn frame_due(next: &mut u64, rate_hz: f64, t: f64) -> Option<u32> {
+    if (*next as f64) / rate_hz > t + 1e-9 {
+        return None;
+    }
+    *next = (t * rate_hz + 1e-9).floor() as u64 + 1;
+    Some(u32::try_from(*next - 1).unwrap_or(u32::MAX))
+}
+
 /// Builds the scene messages of a layout.
 pub struct Scene {
     scene: crate::system::Scene,
