@@ -95,6 +95,20 @@ fn text(ws: &mut WebSocket<MaybeTlsStream<TcpStream>>) -> serde_json::Value {
     }
 }
 
+/// Handles a text frame read after subscribing: the SDK 0.30 server sends `advertise` before it
+/// enters the channel in the client's table (`ConnectedClient::advertise_channels`), so a client
+/// that subscribes at once may get the status "Unknown channel ID" and no data; it then asks again,
+/// as a viewer would. Any other error status fails the test.
+fn on_text(ws: &mut WebSocket<MaybeTlsStream<TcpStream>>, t: &str, subscribe: &serde_json::Value) {
+    let m: serde_json::Value = serde_json::from_str(t).unwrap();
+    if m["op"] == "status" && m["level"] == 2 {
+        let message = m["message"].as_str().unwrap_or_default();
+        assert!(message.starts_with("Unknown channel ID"), "{m}");
+        std::thread::sleep(Duration::from_millis(20));
+        ws.send(Message::text(subscribe.to_string())).unwrap();
+    }
+}
+
 #[test]
 fn a_client_subscribes_and_decodes_the_measured_channel() {
     let (mut child, url, _stderr) = start(&["--duration", "2", "--realtime"]);
@@ -157,6 +171,10 @@ fn a_client_subscribes_and_decodes_the_measured_channel() {
         let frame = match ws.read().unwrap() {
             Message::Binary(b) => b,
             Message::Close(_) => break,
+            Message::Text(t) => {
+                on_text(&mut ws, &t, &subscribe);
+                continue;
+            }
             _ => continue,
         };
         assert_eq!(frame[0], 0x01, "message data opcode");
@@ -238,6 +256,7 @@ fn live_messages_are_the_recorded_messages() {
                 live.insert(log_time, b[13..].to_vec());
             }
             Message::Close(_) => break,
+            Message::Text(t) => on_text(&mut ws, &t, &subscribe),
             _ => {}
         }
     }
