@@ -258,10 +258,11 @@ pub fn diagnose(model: &Model, train: &[Signals], check: &Signals) -> Result<Dia
     // magnitudes is fitted by the null's compromise, and a small linear effect then wins there):
     // the amplitude-dependent effects are judged on all runs together (`all_runs`), against that
     // best re-fitted on all runs too; the named one's entry then carries its all-run fit.
-    let accepted = verdict::held_out_accepted(&null, &cands);
-    let explains_training = |b: &Ranked| {
-        score::fraction_closed(null.train_chi2_red, b.train_chi2_red, 1.0) >= MIN_CLOSED
-    };
+    // Taken before `adopt` rewrites the all-run winner's entry (never the accepted one the verdict
+    // then reads: `decide` mentions the accepted best only when it is not that winner).
+    let accepted = verdict::held_out_accepted(&null, &cands).cloned();
+    let accepted = accepted.as_ref();
+    let explains_training = |b: &Ranked| verdict::training_closed(&null, b) >= MIN_CLOSED;
     let all_runs = if null.train_chi2_red > GAP_CHI2 && !accepted.is_some_and(explains_training) {
         let rival = accepted
             .and_then(|b| Candidate::from_id(&b.id))
@@ -273,7 +274,7 @@ pub fn diagnose(model: &Model, train: &[Signals], check: &Signals) -> Result<Dia
     if let Some(a) = &all_runs {
         a.adopt(&base, &null, &ck, &mut cands, &mut fits)?;
     }
-    let (verdict, verdict_text, separating) = decide(&null, &cands, all_runs.as_ref());
+    let (verdict, verdict_text, separating) = decide(&null, &cands, accepted, all_runs.as_ref());
 
     // Forward selection: a second effect from another family when the named one leaves a
     // structural residual; tried for the four best others, accepted by the same rule against the

@@ -38,6 +38,14 @@ pub fn separating_measurement(a: &str, b: &str) -> String {
     }
 }
 
+/// Fraction of the training runs' structural gap that `c` closes against the null re-fit,
+/// measured down to 1 even when the null fits within σ (not [`score::gap_floor`]): on the training
+/// runs every candidate fits in sample, and measuring down to 0 there let candidates close "all" of
+/// a residue at the noise level (null cases named body-mode at ΔBIC −3).
+pub(super) fn training_closed(null: &Ranked, c: &Ranked) -> f64 {
+    score::fraction_closed(null.train_chi2_red, c.train_chi2_red, 1.0)
+}
+
 /// The best candidate if the held-out run accepts it: detected and closing at least
 /// [`MIN_CLOSED`] of the structural gap; when the null already fits within the noise estimate
 /// (reduced χ² ≤ 1, where the fraction is the relative fall of χ²) the effect must also show in
@@ -54,16 +62,17 @@ pub(super) fn held_out_accepted<'a>(null: &Ranked, cands: &'a [Ranked]) -> Optio
 }
 
 /// The verdict, its text and the measurement that would separate a not-identifiable pair, from the
-/// null re-fit, the ranked candidates and the all-run judgement of amplitude-dependent effects.
+/// null re-fit, the ranked candidates, the best one if the held-out run accepts it
+/// ([`held_out_accepted`]) and the all-run judgement of amplitude-dependent effects.
 pub(super) fn decide(
     null: &Ranked,
     cands: &[Ranked],
+    accepted: Option<&Ranked>,
     all: Option<&AllRuns>,
 ) -> (String, String, Option<String>) {
     let d0 = null.check.chi2_red;
     let best = cands.first();
     let family = |id: &str| Candidate::from_id(id).map(|c| c.family());
-    let accepted = held_out_accepted(null, cands);
     // Present only when no held-out best explains the training runs' residue and the
     // amplitude-dependent effect fits all runs better than that best (`all_runs::judge`).
     if let Some(a) = all
@@ -86,7 +95,7 @@ pub(super) fn decide(
                     "; the held-out run's best, {} (ΔBIC {:.1}), closes only {:.0} % of the training runs' gap",
                     h.id,
                     h.delta_bic,
-                    100.0 * score::fraction_closed(null.train_chi2_red, h.train_chi2_red, 1.0)
+                    100.0 * training_closed(null, h)
                 )
             }),
             None,
@@ -98,10 +107,6 @@ pub(super) fn decide(
     // leave a structural residue the null cannot fit, keeps the check run within the noise (the
     // null's compromise between two magnitudes can fit a middle one that an effect whose form is
     // only close to the truth's interpolates a little less well).
-    // Measured down to 1 even when the null fits within σ (not `score::gap_floor`): on the
-    // training runs every candidate fits in sample, and measuring down to 0 there let candidates
-    // close "all" of a residue at the noise level (null cases named body-mode at ΔBIC −3).
-    let train_floor = 1.0;
     let on_all = || {
         cands
             .iter()
@@ -110,8 +115,7 @@ pub(super) fn decide(
                     || (null.train_chi2_red > GAP_CHI2 && c.check.chi2_red <= 1.0);
                 c.delta_bic_all <= ACCEPT_DELTA_BIC
                     && check_ok
-                    && score::fraction_closed(null.train_chi2_red, c.train_chi2_red, train_floor)
-                        >= MIN_CLOSED
+                    && training_closed(null, c) >= MIN_CLOSED
             })
             .min_by(|a, b| a.delta_bic_all.total_cmp(&b.delta_bic_all))
     };
@@ -125,7 +129,7 @@ pub(super) fn decide(
                 b.id,
                 b.delta_bic_all,
                 b.delta_bic,
-                100.0 * score::fraction_closed(null.train_chi2_red, b.train_chi2_red, train_floor),
+                100.0 * training_closed(null, b),
                 b.aw_change_percent,
                 b.seat_change_points,
                 b.band_gap_change_db
