@@ -226,3 +226,67 @@ fn gravity_read_by_dc_coupled_accelerometers_changes_nothing_but_a_warning() {
         .count();
     assert_eq!(gravity, 2 * 3, "{:?}", d.warnings);
 }
+
+/// `s` with its seat-pan force passed through `edit` (the force plate's own response).
+fn with_force(s: &Signals, edit: impl Fn(&mut Vec<f64>, &[f64])) -> Signals {
+    let a_seat = s.require("a_seat_z").unwrap().to_vec();
+    let mut out = Signals::new(s.sample_rate_hz, s.source.clone());
+    for (n, d) in s.names.iter().zip(&s.data) {
+        let mut x = d.clone();
+        if n == "f_seat_z" {
+            edit(&mut x, &a_seat);
+        }
+        out.push(n.clone(), x).unwrap();
+    }
+    out
+}
+
+#[test]
+fn the_force_plates_own_response_is_named_a_force_sensor_effect() {
+    // One channel's dynamics on the seat-pan force alone: a 4-pole Bessel anti-alias filter at
+    // 25 Hz (not the candidate's Butterworth), and an uncancelled 4 kg top plate on load cells
+    // resonating at 200 Hz. Only the apparent mass changes; the transmissibilities do not, so
+    // naming a body or cushion effect (which would move them) is wrong.
+    use wbv::diagnosis::truth::forms::Sensor;
+    use wbv::diagnosis::truth::sensor::apply;
+    let case = null_case();
+    let model = catalog::resolve("reference").unwrap();
+    let fs = case.check.sample_rate_hz;
+    let lowpass = |x: &mut Vec<f64>, _: &[f64]| {
+        let s = Sensor::LowPass {
+            fc_hz: 25.0,
+            bessel: true,
+        };
+        apply(&s, x, fs);
+    };
+    let plate = |x: &mut Vec<f64>, a: &[f64]| {
+        x.iter_mut().zip(a).for_each(|(f, a)| *f += 4.0 * a);
+        let s = Sensor::Plate {
+            m_kg: 4.0,
+            f_hz: 200.0,
+            zeta: 0.05,
+        };
+        apply(&s, x, fs);
+    };
+    for (what, edit) in [
+        ("low-pass", &lowpass as &dyn Fn(&mut Vec<f64>, &[f64])),
+        ("plate", &plate),
+    ] {
+        let train: Vec<Signals> = case.train.iter().map(|s| with_force(s, edit)).collect();
+        let d = diagnose(&model, &train, &with_force(&case.check, edit)).unwrap();
+        assert!(
+            d.verdict.starts_with("sensor-") && d.verdict.contains("force"),
+            "{what}: {} — {}",
+            d.verdict,
+            d.verdict_text
+        );
+        if what == "plate" {
+            let m = d.candidates[0]
+                .params
+                .iter()
+                .find(|p| p.name == "m_plate_kg")
+                .expect("sensor-force names the plate mass");
+            assert!((m.value - 4.0).abs() < 0.8, "m_plate {} kg", m.value);
+        }
+    }
+}

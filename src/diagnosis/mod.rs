@@ -209,9 +209,10 @@ pub fn diagnose(model: &Model, train: &[Signals], check: &Signals) -> Result<Dia
     let mut cands = Vec::new();
     let mut fits: Vec<(Candidate, Vec<f64>)> = Vec::new();
     // The candidates' fits are independent: fitted in parallel, ranked in a fixed order after.
+    let force_measured = ck.paths.iter().any(|p| p.path == Path::ApparentMass);
     let applicable: Vec<Candidate> = Candidate::ALL
         .into_iter()
-        .filter(|c| c.applies_to(system))
+        .filter(|c| c.applies_to(system) && (force_measured || !c.reads_force_only()))
         .collect();
     let fitted: Vec<(Candidate, Fitted, Stage)> = applicable
         .par_iter()

@@ -121,6 +121,13 @@ pub struct Variant {
     pub seat: Channel,
     /// The head accelerometer.
     pub head: Channel,
+    /// The seat-pan force plate's load cells (their gain is not separable from the body's masses,
+    /// so only delay, low-pass and mount act).
+    pub force: Channel,
+    /// Uncancelled top-plate mass of the force plate in kg (negative: over-cancelled): the load
+    /// cells also carry the plate moving with the seat surface, F_meas = F + m·a_seat, so the
+    /// apparent mass reads m too much at every frequency (ISO 5982 practice subtracts it).
+    pub force_mass_kg: f64,
 }
 
 impl Variant {
@@ -133,6 +140,8 @@ impl Variant {
             base: Channel::default(),
             seat: Channel::default(),
             head: Channel::default(),
+            force: Channel::default(),
+            force_mass_kg: 0.0,
         }
     }
 }
@@ -288,8 +297,10 @@ fn path_values(
             Path::BaseSeat => seat * ls / lb,
             Path::SeatHead => tap(taps.head_z)? / seat * lh / ls,
             Path::BaseHead => tap(taps.head_z)? * lh / lb,
+            // F_meas / a_seat,meas = l_f·(F + m_plate·a_seat) / (a_seat·l_s).
             Path::ApparentMass => {
-                taps.force.map_or(Complex64::new(0.0, 0.0), |c| ch[c]) / seat / ls
+                let force = taps.force.map_or(Complex64::new(0.0, 0.0), |c| ch[c]);
+                v.force.response(f) * (force / seat + v.force_mass_kg) / ls
             }
             Path::BaseSeatX => tap(taps.seat_x)? * ls / lb,
             Path::BaseHeadX => tap(taps.head_x)? * lh / lb,

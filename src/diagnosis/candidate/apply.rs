@@ -113,6 +113,12 @@ impl Candidate {
             Candidate::SensorMountSeat => v.seat.mount = Some((p[0], p[1])),
             Candidate::SensorMountHead => v.head.mount = Some((p[0], p[1])),
             Candidate::SensorMountBase => v.base.mount = Some((p[0], p[1])),
+            Candidate::SensorForce => {
+                v.force.delay_s += p[0];
+                v.force.lowpass_hz = p[1];
+                v.force_mass_kg += p[2];
+            }
+            Candidate::SensorMountForce => v.force.mount = Some((p[0], p[1])),
             Candidate::SuspensionFriction => {
                 let i = need(role_link(s, Role::Suspension), "suspension")?;
                 s.links[i].law = Some(Law::Friction {

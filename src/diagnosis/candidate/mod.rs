@@ -96,6 +96,13 @@ pub enum Candidate {
     /// anti-alias low-pass of another acquisition module): the measured base is the input, so it
     /// divides base→seat and base→head alike and leaves seat→head alone.
     SensorMountBase,
+    /// The seat-pan force plate's own response (one channel, gap.md E11/E13 and the ISO 5982 mass
+    /// cancellation): a delay and a 4-pole low-pass of the load cells, and the top plate's
+    /// uncancelled mass, AM_meas = l_f(f)·(AM + m_plate). Its gain is not a parameter: a force
+    /// gain is the same as scaling every body mass, which the null re-fit already does.
+    SensorForce,
+    /// Mount (load-cell) resonance of the seat-pan force plate.
+    SensorMountForce,
     /// Coulomb friction on the suspension, F_c tanh(v/v_ref).
     SuspensionFriction,
     /// End-stops on the suspension beyond ±gap.
@@ -119,7 +126,7 @@ pub enum Candidate {
 
 impl Candidate {
     /// Every candidate in report order.
-    pub const ALL: [Candidate; 19] = [
+    pub const ALL: [Candidate; 21] = [
         Candidate::BodySoftening,
         Candidate::BodySofteningMagnitude,
         Candidate::CushionStiffening,
@@ -132,6 +139,8 @@ impl Candidate {
         Candidate::SensorMountSeat,
         Candidate::SensorMountHead,
         Candidate::SensorMountBase,
+        Candidate::SensorForce,
+        Candidate::SensorMountForce,
         Candidate::SuspensionFriction,
         Candidate::EndStop,
         Candidate::MissingDof,
@@ -156,6 +165,8 @@ impl Candidate {
             Candidate::SensorMountSeat => "sensor-mount-seat",
             Candidate::SensorMountHead => "sensor-mount-head",
             Candidate::SensorMountBase => "sensor-mount-base",
+            Candidate::SensorForce => "sensor-force",
+            Candidate::SensorMountForce => "sensor-mount-force",
             Candidate::SuspensionFriction => "suspension-friction",
             Candidate::EndStop => "end-stop",
             Candidate::MissingDof => "missing-dof",
@@ -180,7 +191,9 @@ impl Candidate {
             | Candidate::SensorGain
             | Candidate::SensorMountSeat
             | Candidate::SensorMountHead
-            | Candidate::SensorMountBase => "sensor",
+            | Candidate::SensorMountBase
+            | Candidate::SensorForce
+            | Candidate::SensorMountForce => "sensor",
             Candidate::SuspensionFriction | Candidate::EndStop => "suspension",
             Candidate::MissingDof | Candidate::BodyMode => "missing degree of freedom",
             Candidate::Backrest | Candidate::FeetSupport | Candidate::ThighSupport => {
@@ -202,6 +215,12 @@ impl Candidate {
                 | Candidate::SuspensionFriction
                 | Candidate::EndStop
         )
+    }
+
+    /// Whether the candidate acts only on the seat-pan force (the apparent-mass path): without a
+    /// measured `f_seat_z` it cannot change anything and is not fitted.
+    pub fn reads_force_only(self) -> bool {
+        matches!(self, Candidate::SensorForce | Candidate::SensorMountForce)
     }
 
     /// The candidate called `id`.
@@ -230,6 +249,9 @@ impl Candidate {
             | Candidate::SensorMountSeat
             | Candidate::SensorMountBase => true,
             Candidate::SensorMountHead => system.channel_index("a_head_z").is_some(),
+            Candidate::SensorForce | Candidate::SensorMountForce => {
+                system.channel_index("f_seat_z").is_some()
+            }
             Candidate::MissingDof => cushion_links(system)
                 .iter()
                 .any(|&i| on_base(&system.links[i])),
@@ -294,6 +316,15 @@ impl Candidate {
             Candidate::SensorMountBase => vec![
                 Param::new("f_mount_hz", 8.0, 300.0, &[15.0, 40.0, 120.0], true),
                 Param::new("zeta_mount", 0.01, 1.0, &[0.08, 0.6], true),
+            ],
+            Candidate::SensorForce => vec![
+                Param::new("delay_force_s", -0.05, 0.05, &[0.0], false),
+                Param::new("lowpass_force_hz", 10.0, 5000.0, &[150.0], true),
+                Param::new("m_plate_kg", -10.0, 40.0, &[0.0, 5.0], false),
+            ],
+            Candidate::SensorMountForce => vec![
+                Param::new("f_mount_hz", 8.0, 300.0, &[15.0, 40.0, 120.0], true),
+                Param::new("zeta_mount", 0.01, 0.7, &[0.08], true),
             ],
             Candidate::SuspensionFriction => {
                 vec![Param::new("f_c_n", 0.5, 1000.0, &[5.0, 50.0], true)]

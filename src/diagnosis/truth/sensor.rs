@@ -111,7 +111,8 @@ pub fn apply(sensor: &Sensor, x: &mut Vec<f64>, fs: f64) {
                 Biquad::bilinear([d0, 0.0, 0.0], [d0, -2.0 * p.re], k).run(x);
             }
         }
-        Sensor::Mount { f_hz, zeta } => {
+        // The top plate's mass is added by the caller (it needs a_seat_z); the load cells here.
+        Sensor::Mount { f_hz, zeta } | Sensor::Plate { f_hz, zeta, .. } => {
             // Absolute transmissibility of a base-excited oscillator: (ω₀² + 2ζω₀ s)/(s² + 2ζω₀ s + ω₀²).
             let w0 = warp(f_hz);
             Biquad::bilinear(

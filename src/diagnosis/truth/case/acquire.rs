@@ -30,6 +30,10 @@ pub(super) fn simulate(
     for (name, data) in full.names.iter().zip(&full.data) {
         let mut x = data.clone();
         for (ch, s) in sensors {
+            if let (true, Sensor::Plate { m_kg, .. }) = (ch == name, s) {
+                let a_seat = full.require("a_seat_z")?;
+                x.iter_mut().zip(a_seat).for_each(|(f, a)| *f += m_kg * a);
+            }
             if ch == name {
                 crate::diagnosis::truth::sensor::apply(s, &mut x, fs_sim);
             }

@@ -277,7 +277,15 @@ pub fn make_case_with(index: usize, seed: u64, o: &CaseOptions) -> Result<Case> 
     let mut planted = Planted::default();
     let mut labels = Vec::new();
     for &(form, u) in &effects {
-        let (p, detail) = forms::plant(form, u, &mut rng, &mut truth, &top, fs, rms)?;
+        let (p, detail) = forms::plant(
+            form,
+            u,
+            &mut rng,
+            &mut truth,
+            &top,
+            forms::Acquisition { fs, force },
+            rms,
+        )?;
         planted.schedule = planted.schedule.or(p.schedule);
         planted.sensors.extend(p.sensors);
         labels.push(PlantedLabel {

@@ -202,6 +202,10 @@ pub enum Sensor {
     Mount { f_hz: f64, zeta: f64 },
     /// Gain factor (1 = calibrated).
     Gain(f64),
+    /// A force plate (on `f_seat_z` only): its top plate of `m_kg` (uncancelled; negative:
+    /// over-cancelled) moves with the seat surface, and the load cells under it resonate at `f_hz`
+    /// with damping ratio `zeta`: F_meas = T_mount·(F + m·a_seat).
+    Plate { m_kg: f64, f_hz: f64, zeta: f64 },
 }
 
 /// Body stiffness and damping that change with the run's r.m.s. — linear within a run, softer
@@ -232,18 +236,28 @@ pub struct Planted {
     pub sensors: Vec<(String, Sensor)>,
 }
 
+/// How a case is acquired, as far as a planted sensor effect depends on it.
+#[derive(Debug, Clone, Copy)]
+pub struct Acquisition {
+    /// Sampling rate, Hz.
+    pub fs: f64,
+    /// Whether the seat-pan force `f_seat_z` is measured.
+    pub force: bool,
+}
+
 /// Plants `form` with strength `u` into `model`; `lines` is the highest-magnitude run's base
-/// spectrum as (Hz, mean square) lines, `fs` the acquisition rate (Hz), `rms` the three runs'
-/// base r.m.s. (train, train, check). Returns what was planted and a description.
+/// spectrum as (Hz, mean square) lines, `rms` the three runs' base r.m.s. (train, train, check).
+/// Returns what was planted and a description.
 pub fn plant(
     form: Form,
     u: f64,
     rng: &mut ChaCha8Rng,
     model: &mut Chain,
     lines: &[(f64, f64)],
-    fs: f64,
+    acq: Acquisition,
     rms: [f64; 3],
 ) -> Result<(Planted, String)> {
+    let Acquisition { fs, force } = acq;
     let mut planted = Planted::default();
     // Tangent-stiffness change at the highest magnitude for the amplitude-dependent forms.
     let t = 0.04 + 0.36 * u;
@@ -260,10 +274,16 @@ pub fn plant(
         Form::Delay | Form::LowPass | Form::Mount | Form::Gain => {
             // The base accelerometer too (15 %): the measured base is the input, so its own
             // dynamics show on base→seat and base→head alike.
-            let ch = match rng.random::<f64>() {
-                r if r < 0.5 => "a_seat_z",
-                r if r < 0.85 => "a_head_z",
-                _ => "a_base_z",
+            // With a force plate, its channel too (15 %): a load cell's own dynamics or an
+            // uncancelled top plate show on the apparent mass alone.
+            let ch = match (rng.random::<f64>(), force) {
+                (r, false) if r < 0.5 => "a_seat_z",
+                (r, false) if r < 0.85 => "a_head_z",
+                (_, false) => "a_base_z",
+                (r, true) if r < 0.4 => "a_seat_z",
+                (r, true) if r < 0.7 => "a_head_z",
+                (r, true) if r < 0.85 => "a_base_z",
+                (_, true) => "f_seat_z",
             };
             let s = match form {
                 Form::Delay => Sensor::Delay(0.001 + 0.019 * u),
@@ -275,6 +295,16 @@ pub fn plant(
                     f_hz: 100.0 * 0.2f64.powf(u),
                     zeta: uniform(rng, 0.03, 0.1),
                 },
+                // A force gain is the same as heavier body masses (no data can tell them apart):
+                // the plate's top mass and load-cell resonance instead.
+                _ if ch == "f_seat_z" => {
+                    let sign = if rng.random::<f64>() < 0.5 { -1.0 } else { 1.0 };
+                    Sensor::Plate {
+                        m_kg: sign * (1.0 + 7.0 * u),
+                        f_hz: 150.0 + 250.0 * u,
+                        zeta: 0.05,
+                    }
+                }
                 _ => {
                     let sign = if rng.random::<f64>() < 0.5 { -1.0 } else { 1.0 };
                     Sensor::Gain(1.0 + sign * (0.03 + 0.07 * u))
