@@ -290,3 +290,29 @@ fn the_force_plates_own_response_is_named_a_force_sensor_effect() {
         }
     }
 }
+
+#[test]
+fn fore_aft_channels_under_a_vertical_model_are_left_out_with_a_warning() {
+    // A triaxial seat pad and bite bar also give x; the vertical `reference` model has no x
+    // outputs, so those paths are not judged and the vertical ones are (was: an error).
+    let case = null_case();
+    let model = catalog::resolve("reference").unwrap();
+    let add_x = |s: &Signals| {
+        let mut out = s.clone();
+        for (x, z) in [("a_seat_x", "a_seat_z"), ("a_head_x", "a_head_z")] {
+            let v: Vec<f64> = s.require(z).unwrap().iter().map(|a| 0.2 * a).collect();
+            out.push(x.to_string(), v).unwrap();
+        }
+        out
+    };
+    let train: Vec<Signals> = case.train.iter().map(add_x).collect();
+    let d = diagnose(&model, &train, &add_x(&case.check)).unwrap();
+    assert_eq!(d.verdict, "none", "{}", d.verdict_text);
+    assert!(
+        d.warnings.iter().any(|w| w.contains("a_seat_x, a_head_x")
+            && w.contains("not an output of model `reference`")),
+        "{:?}",
+        d.warnings
+    );
+    assert!(d.bands.iter().all(|b| b.path != "base-seat-x"));
+}

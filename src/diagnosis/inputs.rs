@@ -9,6 +9,41 @@ pub(super) fn paths_of(r: &RunSpectra) -> Vec<Path> {
     r.paths.iter().map(|p| p.path).collect()
 }
 
+/// Leaves out of every run the paths whose channels `system` does not yield (a triaxial
+/// accelerometer's fore-aft axis under a vertical model), with one warning naming them: the
+/// model cannot be judged there, and the rest of the run still can.
+pub(super) fn keep_modelled<'a>(
+    runs: impl IntoIterator<Item = &'a mut RunSpectra>,
+    system: &crate::system::System,
+    warnings: &mut Vec<String>,
+) {
+    let modelled = |p: Path| {
+        let (x, y) = p.channels();
+        [x, y]
+            .iter()
+            .all(|c| *c == "a_base_z" || system.channel_index(c).is_some())
+    };
+    let mut dropped: Vec<Path> = Vec::new();
+    for r in runs {
+        for p in &r.paths {
+            if !modelled(p.path) && !dropped.contains(&p.path) {
+                dropped.push(p.path);
+            }
+        }
+        r.paths.retain(|p| modelled(p.path));
+    }
+    if !dropped.is_empty() {
+        let channels: Vec<&str> = dropped.iter().map(|p| p.channels().1).collect();
+        let paths: Vec<&str> = dropped.iter().map(|p| p.name()).collect();
+        warnings.push(format!(
+            "{} measured but not an output of model `{}`: path {} not judged",
+            channels.join(", "),
+            system.name,
+            paths.join(", ")
+        ));
+    }
+}
+
 pub(super) fn check_inputs(
     train: &[RunSpectra],
     check: &RunSpectra,

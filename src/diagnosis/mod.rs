@@ -103,6 +103,11 @@ pub fn diagnose(model: &Model, train: &[Signals], check: &Signals) -> Result<Dia
     let mut tr: Vec<RunSpectra> = train.iter().map(measure::estimate).collect::<Result<_>>()?;
     let mut ck = measure::estimate(check)?;
     let mut warnings = Vec::new();
+    inputs::keep_modelled(
+        tr.iter_mut().chain(std::iter::once(&mut ck)),
+        system,
+        &mut warnings,
+    );
     check_inputs(&tr, &ck, &mut warnings)?;
     for r in tr.iter_mut().chain(std::iter::once(&mut ck)) {
         warnings.extend(r.offset_notes.iter().cloned());
