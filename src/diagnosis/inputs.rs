@@ -44,6 +44,37 @@ pub(super) fn keep_modelled<'a>(
     }
 }
 
+/// Keeps in every run only the paths all runs measured (a force plate fitted for some runs only,
+/// a head accelerometer that failed in one), with a warning naming what each run loses; the
+/// diagnosis compares runs path by path, so a path judged in one run only cannot be used.
+pub(super) fn keep_common(
+    train: &mut [RunSpectra],
+    check: &mut RunSpectra,
+    warnings: &mut Vec<String>,
+) {
+    let all = || train.iter().chain(std::iter::once(&*check));
+    let common: Vec<Path> = paths_of(check)
+        .into_iter()
+        .filter(|p| all().all(|r| r.path(*p).is_some()))
+        .collect();
+    for r in train.iter_mut().chain(std::iter::once(check)) {
+        let lost: Vec<&str> = r
+            .paths
+            .iter()
+            .filter(|p| !common.contains(&p.path))
+            .map(|p| p.path.name())
+            .collect();
+        if !lost.is_empty() {
+            warnings.push(format!(
+                "{}: path {} left out: not measured in every run (all runs are compared path by path)",
+                r.source,
+                lost.join(", ")
+            ));
+        }
+        r.paths.retain(|p| common.contains(&p.path));
+    }
+}
+
 pub(super) fn check_inputs(
     train: &[RunSpectra],
     check: &RunSpectra,
@@ -55,22 +86,9 @@ pub(super) fn check_inputs(
             "at least one training run is needed",
         ));
     }
+    // Every run has the same paths here (`keep_common`).
     let want = paths_of(check);
-    for r in train {
-        if paths_of(r) != want {
-            let names = |p: &[Path]| p.iter().map(|p| p.name()).collect::<Vec<_>>().join(", ");
-            return Err(Error::data(
-                &r.source,
-                None,
-                format!(
-                    "has paths [{}] but the check run {} has [{}]; all runs need the same channels",
-                    names(&paths_of(r)),
-                    check.source,
-                    names(&want)
-                ),
-            ));
-        }
-    }
+    debug_assert!(train.iter().all(|r| paths_of(r) == want));
     if !want.contains(&Path::BaseSeat) {
         return Err(Error::data(
             &check.source,

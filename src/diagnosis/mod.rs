@@ -108,6 +108,7 @@ pub fn diagnose(model: &Model, train: &[Signals], check: &Signals) -> Result<Dia
         system,
         &mut warnings,
     );
+    inputs::keep_common(&mut tr, &mut ck, &mut warnings);
     check_inputs(&tr, &ck, &mut warnings)?;
     for r in tr.iter_mut().chain(std::iter::once(&mut ck)) {
         warnings.extend(r.offset_notes.iter().cloned());
