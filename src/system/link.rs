@@ -233,7 +233,7 @@ mod tests {
     fn preload_exponential_is_the_foam_law_about_its_sag() {
         // F(D) = F0 (e^(D/d_e) − 1) with tangent k at the sag D0: F(D0 + x) − F(D0) = k d_e (e^(x/d_e) − 1)
         // for a compression x = −d; checked against F evaluated directly.
-        let (k, d_e, w) = (5e4, 0.004, 700.0);
+        let (k, d_e, w): (f64, f64, f64) = (5e4, 0.02, 700.0);
         let f0 = k * d_e - w; // tangent k at the sag and F(D0) = w
         let d0 = d_e * (1.0 + w / f0).ln();
         let foam = |dd: f64| f0 * ((dd / d_e).exp() - 1.0);
