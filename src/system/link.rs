@@ -179,6 +179,27 @@ impl Law {
         }
     }
 
+    /// Exact Gaussian mean of the stiffness `E[∂f/∂d]` (N/m) for a zero-mean Gaussian deflection of
+    /// r.m.s. `sigma` (m), for the laws whose tangent steps where a stop touches: `EndStop`
+    /// `k + k_stop·P(|d| > gap) = k + k_stop·erfc(gap/(σ√2))`, `Bottoming`
+    /// `k + k_stop·P(d < −gap) = k + k_stop·erfc(gap/(σ√2))/2`. A quadrature on a fixed grid is
+    /// piecewise constant in `gap` for these, so a fit could not move the gap; `None` for the
+    /// smooth laws (their quadrature is accurate and smooth).
+    pub fn gaussian_stiffness(&self, k: f64, sigma: f64) -> Option<f64> {
+        let exceed = |gap: f64| {
+            if sigma > 0.0 {
+                libm::erfc(gap / (sigma * std::f64::consts::SQRT_2))
+            } else {
+                0.0
+            }
+        };
+        match *self {
+            Law::EndStop { gap, k_stop } => Some(k + k_stop * exceed(gap)),
+            Law::Bottoming { gap, k_stop } => Some(k + 0.5 * k_stop * exceed(gap)),
+            _ => None,
+        }
+    }
+
     /// Small-amplitude tangent `(∂f/∂d, ∂f/∂v)` at rest, used by the frequency-domain responses.
     pub fn tangent_at_rest(&self, k: f64, c: f64) -> (f64, f64) {
         let (_, kd, cv) = self.force(k, c, 0.0, 0.0);
@@ -227,6 +248,19 @@ mod tests {
         let (f, kd, _) = law.force(k, c, -0.003, 0.0);
         assert!((f + 250.0).abs() < 1e-9, "{f}");
         assert_eq!(kd, k + 1e5);
+    }
+
+    #[test]
+    fn stop_laws_gaussian_stiffness_is_the_exceedance_probability() {
+        // With gap = σ: P(|z| > 1) = 0.317310507862914 (two-sided), half of it one-sided.
+        let (k, gap, k_stop) = (1e4, 0.002, 1e6);
+        let two = Law::EndStop { gap, k_stop }.gaussian_stiffness(k, gap).unwrap();
+        let one = Law::Bottoming { gap, k_stop }.gaussian_stiffness(k, gap).unwrap();
+        assert!((two - (k + k_stop * 0.317310507862914)).abs() < 1e-9 * two);
+        assert!((one - (k + k_stop * 0.158655253931457)).abs() < 1e-9 * one);
+        // At rest the stop does not touch; smooth laws defer to quadrature.
+        assert_eq!(Law::Bottoming { gap, k_stop }.gaussian_stiffness(k, 0.0), Some(k));
+        assert_eq!(Law::Cubic { k3: 1e9 }.gaussian_stiffness(k, gap), None);
     }
 
     #[test]
