@@ -367,6 +367,26 @@ mod tests {
     }
 
     #[test]
+    fn bottoming_puts_a_compression_stop_on_every_cushion_link() {
+        let s = system("reference");
+        let v = Candidate::CushionBottoming.apply(&s, &[0.002, 1.5]).unwrap();
+        let cushion = cushion_links(&s);
+        assert!(!cushion.is_empty());
+        for &i in &cushion {
+            let k = s.links[i].element.static_stiffness();
+            assert_eq!(
+                v.system.links[i].law,
+                Some(Law::Bottoming {
+                    gap: 0.002,
+                    k_stop: 1.5 * k
+                })
+            );
+        }
+        assert_eq!(Candidate::CushionBottoming.family(), "cushion stiffening");
+        assert!(Candidate::CushionBottoming.amplitude_dependent());
+    }
+
+    #[test]
     fn feet_support_adds_a_legs_mass_tuned_to_its_knee_and_heel() {
         let s = system("reference");
         let v = Candidate::FeetSupport.apply(&s, &[6.0, 3.0, 12.0]).unwrap();
