@@ -254,12 +254,19 @@ mod tests {
     fn stop_laws_gaussian_stiffness_is_the_exceedance_probability() {
         // With gap = σ: P(|z| > 1) = 0.317310507862914 (two-sided), half of it one-sided.
         let (k, gap, k_stop) = (1e4, 0.002, 1e6);
-        let two = Law::EndStop { gap, k_stop }.gaussian_stiffness(k, gap).unwrap();
-        let one = Law::Bottoming { gap, k_stop }.gaussian_stiffness(k, gap).unwrap();
+        let two = Law::EndStop { gap, k_stop }
+            .gaussian_stiffness(k, gap)
+            .unwrap();
+        let one = Law::Bottoming { gap, k_stop }
+            .gaussian_stiffness(k, gap)
+            .unwrap();
         assert!((two - (k + k_stop * 0.317310507862914)).abs() < 1e-9 * two);
         assert!((one - (k + k_stop * 0.158655253931457)).abs() < 1e-9 * one);
         // At rest the stop does not touch; smooth laws defer to quadrature.
-        assert_eq!(Law::Bottoming { gap, k_stop }.gaussian_stiffness(k, 0.0), Some(k));
+        assert_eq!(
+            Law::Bottoming { gap, k_stop }.gaussian_stiffness(k, 0.0),
+            Some(k)
+        );
         assert_eq!(Law::Cubic { k3: 1e9 }.gaussian_stiffness(k, gap), None);
     }
 

@@ -369,7 +369,9 @@ mod tests {
     #[test]
     fn bottoming_puts_a_compression_stop_on_every_cushion_link() {
         let s = system("reference");
-        let v = Candidate::CushionBottoming.apply(&s, &[0.002, 1.5]).unwrap();
+        let v = Candidate::CushionBottoming
+            .apply(&s, &[0.002, 1.5])
+            .unwrap();
         let cushion = cushion_links(&s);
         assert!(!cushion.is_empty());
         for &i in &cushion {
