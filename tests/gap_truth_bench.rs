@@ -11,7 +11,10 @@
 use rayon::prelude::*;
 
 /// Families whose top-1 does not yet reach 90 % on this subset (issue 15 stays open for them).
-const OPEN: [&str; 0] = [];
+/// Stiffening: since the bench plants a one-sided preloaded exponential foam (no candidate's law;
+/// case 23 of this subset, formerly the cubic the `cushion-stiffening` candidate fits by
+/// construction) it is 3 of 4 — that case (detectability 4.9 %) is named cushion-viscoelastic.
+const OPEN: [&str; 1] = ["stiffening"];
 use wbv::diagnosis::truth::{run_case, summary};
 
 #[test]
