@@ -3,7 +3,7 @@
 //! above the bench's detectability threshold, `none` false positives ≤ 10 %, no case ends in an
 //! error. The truth forms are not the candidates' families, so this cannot pass by construction.
 //!
-//! The rule is asserted in full for every family (the families in [`OPEN`] excepted, none today:
+//! The rule is asserted in full for every family (the families in [`OPEN`] excepted: stiffening; before it,
 //! sensor was 3 of 4 until the gap was measured down to 0 under a conservative σ — a 650 Hz Bessel
 //! anti-alias filter on the head channel of a 2000 Hz run, 5° at 30 Hz, closed 81 % of a residue
 //! that the old floor of 1 called no gap); any failing family, a false `none` or an error fails.
@@ -11,7 +11,10 @@
 use rayon::prelude::*;
 
 /// Families whose top-1 does not yet reach 90 % on this subset (issue 15 stays open for them).
-const OPEN: [&str; 0] = [];
+/// Stiffening: since the bench plants a one-sided preloaded exponential foam (no candidate's law;
+/// case 23 of this subset, formerly the cubic the `cushion-stiffening` candidate fits by
+/// construction) it is 3 of 4 — that case (detectability 4.9 %) is named cushion-viscoelastic.
+const OPEN: [&str; 1] = ["stiffening"];
 use wbv::diagnosis::truth::{run_case, summary};
 
 #[test]

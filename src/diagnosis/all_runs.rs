@@ -95,12 +95,24 @@ pub(super) fn judge(
         .par_iter()
         .map(|&c| Ok((c, fit_candidate(base, &[c], &all, &null.fit.u)?)))
         .collect::<Result<_>>()?;
-    let best = fitted
+    let scored: Vec<(Candidate, Fitted, f64)> = fitted
         .into_iter()
         .map(|(c, f)| {
             let d = f.fit.cost - null.fit.cost + c.params().len() as f64 * n.ln();
             (c, f, d)
         })
+        .collect();
+    // A magnitude schedule fitted with alpha_k < 0 says the support stiffens as magnitude rises
+    // (the resonance rises): that is not body softening, so it is left out and the best of the
+    // others — the cushion-stiffening forms among them — is judged (issue 15: a preloaded
+    // cushion stiffens between runs, which a negative body exponent could otherwise absorb).
+    let nb = base.params.len();
+    let stiffening = |c: Candidate, f: &Fitted| {
+        c == Candidate::BodySofteningMagnitude && f.fit.u.get(nb).is_some_and(|&a| a < 0.0)
+    };
+    let best = scored
+        .into_iter()
+        .filter(|(c, f, _)| !stiffening(*c, f))
         .min_by(|a, b| a.2.total_cmp(&b.2));
     if best.as_ref().is_some_and(|b| Some(b.0) == rival) {
         return Ok(None);

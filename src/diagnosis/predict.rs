@@ -172,7 +172,10 @@ fn gauss_mean(sigma: f64, g: impl Fn(f64) -> f64) -> f64 {
 
 /// Equivalent stiffness and damping of a law for Gaussian deflection σ_d (m) and velocity σ_v (m/s).
 pub fn equivalent(law: &Law, k: f64, c: f64, sigma_d: f64, sigma_v: f64) -> (f64, f64) {
-    let k_eq = gauss_mean(sigma_d, |d| law.force(k, c, d, 0.0).1);
+    // Closed form where the tangent steps (stops), so the fitted gap moves the prediction smoothly.
+    let k_eq = law
+        .gaussian_stiffness(k, sigma_d)
+        .unwrap_or_else(|| gauss_mean(sigma_d, |d| law.force(k, c, d, 0.0).1));
     let c_eq = gauss_mean(sigma_v, |v| law.force(k, c, 0.0, v).2);
     (k_eq, c_eq)
 }

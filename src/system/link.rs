@@ -107,6 +107,16 @@ pub enum Law {
     /// Bilinear softening: stiffness `k` for `|d| ≤ d_knee` (m), `ratio·k` beyond. Used by the gap
     /// bench's truth forms.
     Bilinear { d_knee: f64, ratio: f64 },
+    /// Bottoming (compression-only stop): past a free travel `gap` (m) of compression beyond the
+    /// static equilibrium a second, stiffer layer `k_stop` (N/m) touches: extra force
+    /// `k_stop·(d + gap)` for `d < −gap`, none in extension. A seat foam that bottoms out on its
+    /// pan or a denser layer under the occupant's preload stiffens on one side only (gap.md E3).
+    Bottoming { gap: f64, k_stop: f64 },
+    /// Preloaded exponential foam about its static sag: the spring force `k·d` becomes
+    /// `k·d_e·(1 − e^(−d/d_e))`, `d_e` in m (tangent `k·e^(−d/d_e)`): the deviation about the sag of
+    /// a foam force `F₀(e^(D/d_e) − 1)` in the total compression D (Deng, Davies & Bajaj 2003
+    /// [W13]), stiffer in compression, softer in extension. Used by the gap bench's truth forms.
+    PreloadExp { d_e: f64 },
 }
 
 impl Law {
@@ -145,6 +155,19 @@ impl Law {
                 let x = (d / d0).clamp(-60.0, 60.0);
                 (k * d0 * x.sinh() + c * v, k * x.cosh(), c)
             }
+            Law::Bottoming { gap, k_stop } => {
+                let over = d + gap;
+                if over < 0.0 {
+                    (k * d + c * v + k_stop * over, k + k_stop, c)
+                } else {
+                    (k * d + c * v, k, c)
+                }
+            }
+            Law::PreloadExp { d_e } => {
+                // Capped argument as for `Exponential` (compression is d < 0).
+                let e = (-d / d_e).clamp(-60.0, 60.0).exp();
+                (k * d_e * (1.0 - e) + c * v, k * e, c)
+            }
             Law::Bilinear { d_knee, ratio } => {
                 if d.abs() <= d_knee {
                     (k * d + c * v, k, c)
@@ -153,6 +176,27 @@ impl Law {
                     (f + c * v, ratio * k, c)
                 }
             }
+        }
+    }
+
+    /// Exact Gaussian mean of the stiffness `E[∂f/∂d]` (N/m) for a zero-mean Gaussian deflection of
+    /// r.m.s. `sigma` (m), for the laws whose tangent steps where a stop touches: `EndStop`
+    /// `k + k_stop·P(|d| > gap) = k + k_stop·erfc(gap/(σ√2))`, `Bottoming`
+    /// `k + k_stop·P(d < −gap) = k + k_stop·erfc(gap/(σ√2))/2`. A quadrature on a fixed grid is
+    /// piecewise constant in `gap` for these, so a fit could not move the gap; `None` for the
+    /// smooth laws (their quadrature is accurate and smooth).
+    pub fn gaussian_stiffness(&self, k: f64, sigma: f64) -> Option<f64> {
+        let exceed = |gap: f64| {
+            if sigma > 0.0 {
+                libm::erfc(gap / (sigma * std::f64::consts::SQRT_2))
+            } else {
+                0.0
+            }
+        };
+        match *self {
+            Law::EndStop { gap, k_stop } => Some(k + k_stop * exceed(gap)),
+            Law::Bottoming { gap, k_stop } => Some(k + 0.5 * k_stop * exceed(gap)),
+            _ => None,
         }
     }
 
@@ -189,6 +233,61 @@ mod tests {
     }
 
     #[test]
+    fn bottoming_acts_in_compression_past_its_gap_only() {
+        // Closed form: f = k d + c v + k_stop·min(0, d + gap); tangent k (+ k_stop when touching).
+        let law = Law::Bottoming {
+            gap: 0.002,
+            k_stop: 1e5,
+        };
+        let (k, c) = (5e4, 300.0);
+        assert_eq!(law.tangent_at_rest(k, c), (k, c));
+        // Extension and compression inside the gap: the linear element alone.
+        assert_eq!(law.force(k, c, 0.01, 0.0).0, k * 0.01);
+        assert_eq!(law.force(k, c, -0.0019, 0.0).0, -k * 0.0019);
+        // 1 mm past the gap in compression: −k·3 mm − k_stop·1 mm = −150 N − 100 N.
+        let (f, kd, _) = law.force(k, c, -0.003, 0.0);
+        assert!((f + 250.0).abs() < 1e-9, "{f}");
+        assert_eq!(kd, k + 1e5);
+    }
+
+    #[test]
+    fn stop_laws_gaussian_stiffness_is_the_exceedance_probability() {
+        // With gap = σ: P(|z| > 1) = 0.317310507862914 (two-sided), half of it one-sided.
+        let (k, gap, k_stop) = (1e4, 0.002, 1e6);
+        let two = Law::EndStop { gap, k_stop }
+            .gaussian_stiffness(k, gap)
+            .unwrap();
+        let one = Law::Bottoming { gap, k_stop }
+            .gaussian_stiffness(k, gap)
+            .unwrap();
+        assert!((two - (k + k_stop * 0.317310507862914)).abs() < 1e-9 * two);
+        assert!((one - (k + k_stop * 0.158655253931457)).abs() < 1e-9 * one);
+        // At rest the stop does not touch; smooth laws defer to quadrature.
+        assert_eq!(
+            Law::Bottoming { gap, k_stop }.gaussian_stiffness(k, 0.0),
+            Some(k)
+        );
+        assert_eq!(Law::Cubic { k3: 1e9 }.gaussian_stiffness(k, gap), None);
+    }
+
+    #[test]
+    fn preload_exponential_is_the_foam_law_about_its_sag() {
+        // F(D) = F0 (e^(D/d_e) − 1) with tangent k at the sag D0: F(D0 + x) − F(D0) = k d_e (e^(x/d_e) − 1)
+        // for a compression x = −d; checked against F evaluated directly.
+        let (k, d_e, w): (f64, f64, f64) = (5e4, 0.02, 700.0);
+        let f0 = k * d_e - w; // tangent k at the sag and F(D0) = w
+        let d0 = d_e * (1.0 + w / f0).ln();
+        let foam = |dd: f64| f0 * ((dd / d_e).exp() - 1.0);
+        let law = Law::PreloadExp { d_e };
+        for d in [-0.006, -0.001, 0.0, 0.002, 0.008] {
+            let want = -(foam(d0 - d) - foam(d0));
+            let got = law.force(k, 0.0, d, 0.0).0;
+            assert!((got - want).abs() < 1e-9 * w, "d {d}: {got} vs {want}");
+        }
+        assert_eq!(law.tangent_at_rest(k, 0.0), (k, 0.0));
+    }
+
+    #[test]
     fn law_tangents_match_finite_differences() {
         let laws = [
             Law::Cubic { k3: 1e9 },
@@ -207,6 +306,11 @@ mod tests {
                 d_knee: 0.002,
                 ratio: 0.5,
             },
+            Law::Bottoming {
+                gap: 0.002,
+                k_stop: 1e5,
+            },
+            Law::PreloadExp { d_e: 0.004 },
         ];
         for law in laws {
             for &(d, v) in &[(0.0011, 0.02), (-0.0031, -0.005), (0.005, 0.0)] {

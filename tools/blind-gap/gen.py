@@ -623,6 +623,11 @@ def make_case(case_dir, seed, index, override=None):
     else:
         family = str(rng.choice(list(FAMILIES)))
         form = str(rng.choice(FAMILIES[family]))
+    if "family" in override:
+        # study sets (--family/--form): the same draws as a random case, then the effect is forced,
+        # so every nuisance of case i is the one a random case i would have had
+        family = override["family"]
+        form = override.get("form") or str(np.random.default_rng([seed, index, 5]).choice(FAMILIES[family]))
     mags = [(0.25, 1.0, 0.5), (0.4, 1.6, 0.8)][int(rng.integers(2))]
     T = rng.uniform(60, 180)
     durs = [max(60.0, round(T * rng.uniform(0.97, 1.03), 2)) for _ in mags]
@@ -785,8 +790,17 @@ def main():
     ap.add_argument("--like", help="controlled experiment: a case's truth.json whose effect is reused")
     ap.add_argument("--set", action="append", default=[], metavar="KEY=VALUE",
                     help="with --like: fs_hz=N, spectrum=KIND, force_plate=0|1, base_dc=M/S2")
+    ap.add_argument("--family", choices=sorted(FAMILIES), help="study set: every case gets this effect family")
+    ap.add_argument("--form", help="study set: every case gets this form (implies its family)")
     a = ap.parse_args()
     override = None
+    if a.form:
+        fam = [f for f, forms in FAMILIES.items() if a.form in forms]
+        if not fam or (a.family and a.family != fam[0]):
+            ap.error("--form %s is not a form of %s" % (a.form, a.family or "any family"))
+        a.family = fam[0]
+    if a.family:
+        override = {"family": a.family, "form": a.form}
     if a.like:
         with open(a.like) as fh:
             like = json.load(fh)
@@ -802,7 +816,7 @@ def main():
             continue
         os.makedirs(d, exist_ok=True)
         tr = make_case(d, a.seed, i, override)
-        if override:
+        if override and a.like:
             tr["override"] = {k: v for k, v in override.items() if k not in ("params", "strength")}
             with open(os.path.join(d, "truth.json"), "w") as fh:
                 json.dump(tr, fh, indent=1, default=float)

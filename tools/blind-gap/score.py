@@ -18,6 +18,7 @@ import time
 FAMILY = {
     "body-softening": "softening", "body-softening-magnitude": "softening",
     "cushion-stiffening": "stiffening", "cushion-contact": "stiffening",
+    "cushion-bottoming": "stiffening",
     "cushion-viscoelastic": "viscoelastic",
     "sensor-delay": "sensor", "sensor-lowpass": "sensor", "sensor-gain": "sensor",
     "sensor-mount-seat": "sensor", "sensor-mount-head": "sensor", "sensor-mount-base": "sensor",

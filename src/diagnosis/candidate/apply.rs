@@ -26,6 +26,7 @@ impl Candidate {
                 self,
                 Candidate::CushionStiffening
                     | Candidate::CushionContact
+                    | Candidate::CushionBottoming
                     | Candidate::CushionViscoelastic
                     | Candidate::CushionFractional
             )
@@ -54,6 +55,14 @@ impl Candidate {
             Candidate::CushionContact => {
                 for &i in &cushion {
                     s.links[i].law = Some(Law::Contact { d0: p[0] });
+                }
+            }
+            // One gap for every cushion link (they share the seat's deflection); each link's stop
+            // in proportion to its own stiffness.
+            Candidate::CushionBottoming => {
+                for &i in &cushion {
+                    let k_stop = p[1] * s.links[i].element.static_stiffness();
+                    s.links[i].law = Some(Law::Bottoming { gap: p[0], k_stop });
                 }
             }
             Candidate::CushionViscoelastic => {

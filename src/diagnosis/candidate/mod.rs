@@ -73,6 +73,12 @@ pub enum Candidate {
     /// Quadratic contact stiffening of the cushion, F = k d (1 + |d|/d0): the second stiffening
     /// form, so that the report names the form that fits better.
     CushionContact,
+    /// Bottoming of the cushion under the occupant's preload: a compression-only stop, a second
+    /// layer of stiffness k_stop = ratio·k that touches `gap` (m) past the static sag (gap.md E3,
+    /// `Law::Bottoming`). Unlike the symmetric laws it stiffens on one side only, so its
+    /// equivalent stiffness k + k_stop·P(compression > gap) grows with the run's r.m.s. and the
+    /// pad motion turns asymmetric — the signature of foam loaded by the body's weight.
+    CushionBottoming,
     /// Viscoelastic cushion: a Maxwell arm (k_m in series with c_m = k_m·τ) in parallel with the
     /// Kelvin–Voigt cushion, with free stiffness ratio and relaxation time τ.
     CushionViscoelastic,
@@ -126,11 +132,12 @@ pub enum Candidate {
 
 impl Candidate {
     /// Every candidate in report order.
-    pub const ALL: [Candidate; 21] = [
+    pub const ALL: [Candidate; 22] = [
         Candidate::BodySoftening,
         Candidate::BodySofteningMagnitude,
         Candidate::CushionStiffening,
         Candidate::CushionContact,
+        Candidate::CushionBottoming,
         Candidate::CushionViscoelastic,
         Candidate::CushionFractional,
         Candidate::SensorDelay,
@@ -157,6 +164,7 @@ impl Candidate {
             Candidate::BodySofteningMagnitude => "body-softening-magnitude",
             Candidate::CushionStiffening => "cushion-stiffening",
             Candidate::CushionContact => "cushion-contact",
+            Candidate::CushionBottoming => "cushion-bottoming",
             Candidate::CushionViscoelastic => "cushion-viscoelastic",
             Candidate::CushionFractional => "cushion-fractional",
             Candidate::SensorDelay => "sensor-delay",
@@ -182,7 +190,9 @@ impl Candidate {
     pub fn family(self) -> &'static str {
         match self {
             Candidate::BodySoftening | Candidate::BodySofteningMagnitude => "body softening",
-            Candidate::CushionStiffening | Candidate::CushionContact => "cushion stiffening",
+            Candidate::CushionStiffening
+            | Candidate::CushionContact
+            | Candidate::CushionBottoming => "cushion stiffening",
             Candidate::CushionViscoelastic | Candidate::CushionFractional => {
                 "cushion viscoelasticity"
             }
@@ -212,6 +222,7 @@ impl Candidate {
                 | Candidate::BodySofteningMagnitude
                 | Candidate::CushionStiffening
                 | Candidate::CushionContact
+                | Candidate::CushionBottoming
                 | Candidate::SuspensionFriction
                 | Candidate::EndStop
         )
@@ -238,6 +249,7 @@ impl Candidate {
                 .any(|l| l.role == Role::Body && matches!(l.element, Element::KelvinVoigt { .. })),
             Candidate::CushionStiffening
             | Candidate::CushionContact
+            | Candidate::CushionBottoming
             | Candidate::CushionViscoelastic
             | Candidate::CushionFractional => !cushion_links(system).is_empty(),
             Candidate::SuspensionFriction | Candidate::EndStop => {
@@ -284,6 +296,13 @@ impl Candidate {
             Candidate::CushionContact => {
                 vec![Param::new("d0_m", 1e-4, 1.0, &[0.002, 0.02, 0.2], true)]
             }
+            // Gap from 0.1 mm (a layer touching at the sag) to 5 cm; the stop from a tenth of the
+            // cushion's stiffness to thirty times it. The starts bracket the cushion's r.m.s.
+            // deflection at 0.25–2 m/s² (about 1–5 mm on the reference seat).
+            Candidate::CushionBottoming => vec![
+                Param::new("gap_m", 1e-4, 0.05, &[0.001, 0.004], true),
+                Param::new("k_stop_over_k", 0.1, 30.0, &[1.0], true),
+            ],
             Candidate::CushionFractional => vec![
                 Param::new("loss_scale", 0.05, 20.0, &[0.5, 1.0], true),
                 Param::new("alpha", 0.05, 0.95, &[0.3, 0.7], false),
@@ -376,6 +395,28 @@ mod tests {
         let segments = system(catalog::PAPER_000);
         assert!(!Candidate::Backrest.applies_to(&segments));
         assert!(!Candidate::FeetSupport.applies_to(&segments));
+    }
+
+    #[test]
+    fn bottoming_puts_a_compression_stop_on_every_cushion_link() {
+        let s = system("reference");
+        let v = Candidate::CushionBottoming
+            .apply(&s, &[0.002, 1.5])
+            .unwrap();
+        let cushion = cushion_links(&s);
+        assert!(!cushion.is_empty());
+        for &i in &cushion {
+            let k = s.links[i].element.static_stiffness();
+            assert_eq!(
+                v.system.links[i].law,
+                Some(Law::Bottoming {
+                    gap: 0.002,
+                    k_stop: 1.5 * k
+                })
+            );
+        }
+        assert_eq!(Candidate::CushionBottoming.family(), "cushion stiffening");
+        assert!(Candidate::CushionBottoming.amplitude_dependent());
     }
 
     #[test]

@@ -22,7 +22,8 @@ pub fn list(model: &Chain) -> Vec<String> {
             Some(Law::Cubic { .. }) => &["k3"],
             Some(Law::Softening { .. }) => &["d_ref"],
             Some(Law::Friction { .. }) => &["f_c", "v_ref"],
-            Some(Law::EndStop { .. }) => &["gap", "k_stop"],
+            Some(Law::EndStop { .. } | Law::Bottoming { .. }) => &["gap", "k_stop"],
+            Some(Law::PreloadExp { .. }) => &["d_e"],
             Some(Law::Contact { .. } | Law::Exponential { .. }) => &["d0"],
             Some(Law::Bilinear { .. }) => &["d_knee", "ratio"],
         };
@@ -68,8 +69,11 @@ fn slot<'a>(model: &'a mut Chain, path: &str) -> Result<&'a mut f64> {
                 (Some(Law::Softening { d_ref }), "d_ref") => Ok(d_ref),
                 (Some(Law::Friction { f_c, .. }), "f_c") => Ok(f_c),
                 (Some(Law::Friction { v_ref, .. }), "v_ref") => Ok(v_ref),
-                (Some(Law::EndStop { gap, .. }), "gap") => Ok(gap),
-                (Some(Law::EndStop { k_stop, .. }), "k_stop") => Ok(k_stop),
+                (Some(Law::EndStop { gap, .. } | Law::Bottoming { gap, .. }), "gap") => Ok(gap),
+                (Some(Law::EndStop { k_stop, .. } | Law::Bottoming { k_stop, .. }), "k_stop") => {
+                    Ok(k_stop)
+                }
+                (Some(Law::PreloadExp { d_e }), "d_e") => Ok(d_e),
                 (Some(Law::Contact { d0 } | Law::Exponential { d0 }), "d0") => Ok(d0),
                 (Some(Law::Bilinear { d_knee, .. }), "d_knee") => Ok(d_knee),
                 (Some(Law::Bilinear { ratio, .. }), "ratio") => Ok(ratio),

@@ -1,5 +1,5 @@
 //! Cushion truth forms: viscoelastic (standard linear solid, two Maxwell arms, fractional foam as a
-//! Prony series) and stiffening (cubic, quadratic contact, exponential).
+//! Prony series) and stiffening (cubic, quadratic contact, exponential, preloaded exponential).
 
 use super::*;
 
@@ -76,7 +76,7 @@ pub(super) fn plant(
                 gs.iter().filter(|&&g| g > 0.0).count()
             )
         }
-        Form::Cubic | Form::Contact | Form::Exponential => {
+        Form::Cubic | Form::Contact | Form::Exponential | Form::PreloadExp => {
             let i = cushion(model)?;
             let (s, _) = link_sigma(model, i, lines)?;
             let law = match form {
@@ -89,8 +89,12 @@ pub(super) fn plant(
                     d0: 2.0 * s * (2.0 / PI).sqrt() / t,
                 },
                 // E[k cosh(d/d0)] = k exp(σ²/(2 d0²)).
-                _ => Law::Exponential {
+                Form::Exponential => Law::Exponential {
                     d0: s / (2.0 * (1.0 + t).ln()).sqrt(),
+                },
+                // E[k e^(−d/d_e)] = k exp(σ²/(2 d_e²)), the same Gaussian mean one-sided.
+                _ => Law::PreloadExp {
+                    d_e: s / (2.0 * (1.0 + t).ln()).sqrt(),
                 },
             };
             model.links[i].law = Some(law);

@@ -70,7 +70,10 @@ impl Family {
             Some(Family::Sensor)
         } else if id.starts_with("cushion-viscoelastic") || id.starts_with("cushion-fractional") {
             Some(Family::Viscoelastic)
-        } else if id.starts_with("cushion-stiffening") || id.starts_with("cushion-contact") {
+        } else if id.starts_with("cushion-stiffening")
+            || id.starts_with("cushion-contact")
+            || id.starts_with("cushion-bottoming")
+        {
             Some(Family::Stiffening)
         } else if id.starts_with("body-softening") {
             Some(Family::Softening)
@@ -102,6 +105,9 @@ pub enum Form {
     Contact,
     /// Exponential stiffening `k·d0·sinh(d/d0)`.
     Exponential,
+    /// Preloaded exponential foam `F₀(e^(D/d_e) − 1)` about its static sag (stiffer in compression,
+    /// softer in extension: one-sided, unlike the candidates' symmetric laws and their stop).
+    PreloadExp,
     /// Saturating body interface `k·d_ref·tanh(d/d_ref)`.
     Tanh,
     /// Bilinear body interface (stiffness drops to `ratio·k` beyond a knee).
@@ -130,13 +136,14 @@ pub enum Form {
 
 impl Form {
     /// Every form, in report order.
-    pub const ALL: [Form; 17] = [
+    pub const ALL: [Form; 18] = [
         Form::Sls,
         Form::Maxwell2,
         Form::Fractional,
         Form::Cubic,
         Form::Contact,
         Form::Exponential,
+        Form::PreloadExp,
         Form::Tanh,
         Form::Bilinear,
         Form::Scheduled,
@@ -153,7 +160,9 @@ impl Form {
     pub fn family(self) -> Family {
         match self {
             Form::Sls | Form::Maxwell2 | Form::Fractional => Family::Viscoelastic,
-            Form::Cubic | Form::Contact | Form::Exponential => Family::Stiffening,
+            Form::Cubic | Form::Contact | Form::Exponential | Form::PreloadExp => {
+                Family::Stiffening
+            }
             Form::Tanh | Form::Bilinear | Form::Scheduled => Family::Softening,
             Form::Delay | Form::LowPass | Form::Mount | Form::Gain => Family::Sensor,
             Form::Frame | Form::Viscera => Family::MissingDof,
@@ -176,6 +185,7 @@ impl Form {
             Form::Cubic => "cubic",
             Form::Contact => "contact",
             Form::Exponential => "exponential",
+            Form::PreloadExp => "preload-exponential",
             Form::Tanh => "tanh",
             Form::Bilinear => "bilinear",
             Form::Scheduled => "scheduled",
@@ -267,7 +277,8 @@ pub fn plant(
         | Form::Fractional
         | Form::Cubic
         | Form::Contact
-        | Form::Exponential => cushion::plant(form, u, t, rng, model, lines)?,
+        | Form::Exponential
+        | Form::PreloadExp => cushion::plant(form, u, t, rng, model, lines)?,
         Form::Tanh | Form::Bilinear | Form::Scheduled => {
             body::plant(form, t, rng, model, lines, rms, &mut planted)?
         }
