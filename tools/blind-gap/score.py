@@ -36,13 +36,13 @@ def cases(root):
     return sorted(d for d in glob.glob(os.path.join(root, "case-*")) if os.path.isdir(d))
 
 
-def run_exec(root, wbv):
+def run_exec(root, wbv, model="reference"):
     for d in cases(root):
         if os.path.exists(os.path.join(d, "gap.rc")):
             continue
         with open(os.path.join(d, "cmd.json")) as fh:
             cmd = json.load(fh)
-        argv = ["nice", "-n", "10", wbv, "gap", "--model", "reference"] + cmd + ["--json"]
+        argv = ["nice", "-n", "10", wbv, "gap", "--model", model] + cmd + ["--json"]
         t0 = time.monotonic()
         p = subprocess.run(argv, cwd=d, capture_output=True, text=True)
         wall = time.monotonic() - t0
@@ -260,6 +260,7 @@ def main():
     sub = ap.add_subparsers(dest="cmd", required=True)
     e = sub.add_parser("exec")
     e.add_argument("root")
+    e.add_argument("--model", default="reference", help="the model the cases were generated for (gen.py --model)")
     e.add_argument("--wbv", default=os.environ.get("WBV", os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "target", "release", "wbv")))
     s = sub.add_parser("score")
     s.add_argument("root")
@@ -267,7 +268,7 @@ def main():
     s.add_argument("--seed", default="?")
     a = ap.parse_args()
     if a.cmd == "exec":
-        run_exec(a.root, a.wbv)
+        run_exec(a.root, a.wbv, a.model)
         return
     rows = load(a.root)
     judged = [judge(r) for r in rows]
