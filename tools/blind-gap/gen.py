@@ -185,13 +185,13 @@ def simulate(plant, u, h, outputs):
         X = np.empty((n, len(lam)))
         if stateful:
             ge, gv = float(drow @ Gd), float(vrow @ Gd)
-            de, dv = drow @ Ad, vrow @ Ad
+            rows4 = np.vstack([drow, vrow, drow @ Ad, vrow @ Ad])
+            lin4 = np.column_stack([e_lin, v_lin, np.append(e_lin[1:], e_lin[-1]), np.append(v_lin[1:], v_lin[-1])])
         for k in range(n):
             X[k] = x
             if stateful:  # the law sees e, v now and their values at k+1 without its force
-                k1 = min(k + 1, n - 1)
-                rk = rfun.step(e_lin[k] + drow @ x, v_lin[k] + vrow @ x,
-                               e_lin[k1] + de @ x, v_lin[k1] + dv @ x, ge, gv)
+                w = lin4[k] + rows4 @ x
+                rk = rfun.step(w[0], w[1], w[2], w[3], ge, gv)
             else:
                 rk = rfun(e_lin[k] + drow @ x)
             r[k] = rk

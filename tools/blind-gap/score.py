@@ -252,6 +252,16 @@ def markdown(rows, judged, seed):
             lines.append("  - separating measurement: %s" % j["separating"])
         if j["warnings"]:
             lines.append("  - warnings: " + " | ".join(str(w) for w in j["warnings"]))
+    lines.append("")
+    lines.append("Per case (top 3 by check-run ΔBIC):")
+    lines.append("")
+    lines.append("| case | truth | detect % | spectrum | verdict | top 3 (ΔBIC) |")
+    lines.append("| --- | --- | --- | --- | --- | --- |")
+    for r, j in zip(rows, judged):
+        lines.append("| %s | %s/%s | %.0f | %s | %s%s | %s |" % (
+            j["case"][5:], j["truth_family"], j["form"], j["detect_pct"], r["truth"]["nuisances"]["spectrum"]["kind"],
+            j["verdict"], "" if j["right"] else " ✗",
+            ", ".join("%s %.0f" % (c, b) for c, b, _, _ in j.get("top", []))))
     return "\n".join(lines)
 
 
