@@ -40,6 +40,21 @@ REF_LINKS = {  # name: (node i, node j or None for the base, k N/m, c N s/m)
     "cushion": ("cushion", None, 80000.0, 500.0),
 }
 BODY = ["head", "upper_torso", "lower_torso", "pelvis"]
+# Paper 001 (shared/seeds/001), configuration 4 (its Fig. 10, 6 DOF): the Table 1 body (a plain chain;
+# the k5/c5 of eqs. (3), (5) are not in Table 1, ERRATA), the Table 3 Kelvin–Voigt cushion (0.7 kg,
+# 20 kN/m, 200 N s/m) on the Table 2 suspension (suspended seat mass m_s 45 kg, 250 kN/m, 150 N s/m)
+# on the base. Data copied from the paper's tables; the chain order is the paper's Fig. 10.
+S1_MASSES = {"head": 6.5, "upper_torso": 30.5, "lower_torso": 9.5, "pelvis": 13.5, "cushion": 0.7,
+             "seat_frame": 45.0}
+S1_LINKS = {
+    "k1": ("head", "upper_torso", 310000.0, 400.0),
+    "k2": ("upper_torso", "lower_torso", 183000.0, 4750.0),
+    "k3": ("lower_torso", "pelvis", 162000.0, 4600.0),
+    "k4": ("pelvis", "cushion", 90000.0, 2100.0),
+    "cushion": ("cushion", "seat_frame", 20000.0, 200.0),
+    "suspension": ("seat_frame", None, 250000.0, 150.0),
+}
+MODELS = {"reference": (REF_MASSES, REF_LINKS), "seed001-full": (S1_MASSES, S1_LINKS)}
 
 
 # ----------------------------------------------------------------------------------------------
@@ -146,6 +161,9 @@ def simulate(plant, u, h, outputs):
         i, j, rfun = plant.nonlinear
         drow = plant.deflection_row(i, j)
         e_lin = np.zeros(n)
+        stateful = hasattr(rfun, "step")  # a law with memory/velocity (suspension, see SuspLaw)
+        vrow = plant.rate_row(i, j)
+        v_lin = np.zeros(n)
     for q in range(len(lam)):
         if abs(bq[q]) < 1e-300:
             continue
@@ -157,6 +175,7 @@ def simulate(plant, u, h, outputs):
             res[name] += fac * np.real(out_modal[name][q] * qq)
         if need_state:
             e_lin += fac * np.real((drow @ V[:, q]) * qq)
+            v_lin += fac * np.real((vrow @ V[:, q]) * qq)
     if need_state:
         # Residual feedback with the exact ZOH propagator: x_nl[n+1] = Ad x_nl[n] + Gd r[n].
         Ad = np.real(V @ np.diag(E) @ Vinv)
@@ -164,9 +183,17 @@ def simulate(plant, u, h, outputs):
         x = np.zeros(len(lam))
         r = np.zeros(n)
         X = np.empty((n, len(lam)))
+        if stateful:
+            ge, gv = float(drow @ Gd), float(vrow @ Gd)
+            rows4 = np.vstack([drow, vrow, drow @ Ad, vrow @ Ad])
+            lin4 = np.column_stack([e_lin, v_lin, np.append(e_lin[1:], e_lin[-1]), np.append(v_lin[1:], v_lin[-1])])
         for k in range(n):
             X[k] = x
-            rk = rfun(e_lin[k] + drow @ x)
+            if stateful:  # the law sees e, v now and their values at k+1 without its force
+                w = lin4[k] + rows4 @ x
+                rk = rfun.step(w[0], w[1], w[2], w[3], ge, gv)
+            else:
+                rk = rfun(e_lin[k] + drow @ x)
             r[k] = rk
             x = Ad @ x + Gd * rk
         for name in rows:
@@ -174,12 +201,12 @@ def simulate(plant, u, h, outputs):
     return res
 
 
-def frf_check():
+def frf_check(model="reference"):
     """Plant vs `wbv frf --model reference`: (1) the assembled state space's H(j2πf) against wbv's
     curves (data-entry/assembly check); (2) the time-domain integrator on sine dwells (steady-state
     complex amplitude by a single-bin DFT over the last 20 s) against that H (integration check)."""
-    p = Plant(REF_MASSES, REF_LINKS)
-    out = subprocess.run([os.environ.get("WBV", os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "target", "release", "wbv")), "frf", "--model", "reference", "--from", "0.5", "--to", "40",
+    p = Plant(*MODELS[model])
+    out = subprocess.run([os.environ.get("WBV", os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "target", "release", "wbv")), "frf", "--model", model, "--from", "0.5", "--to", "40",
                           "--points", "400"], capture_output=True, text=True, check=True).stdout
     ref = np.genfromtxt(out.splitlines(), delimiter=",", names=True)
     A, B, _ = p.matrices()
@@ -194,6 +221,13 @@ def frf_check():
     print("assembly: max |H_seat - wbv seat_mag| / wbv = %.1e, max |STHT - wbv stht_mag| / wbv = %.1e"
           % (np.max(np.abs(np.abs(ex[:, 0]) - ref["seat_mag"]) / ref["seat_mag"]),
              np.max(np.abs(np.abs(ex[:, 1]) - ref["stht_mag"]) / ref["stht_mag"])))
+    if "seat_frame" in p.names:  # suspended seat mass (seed001-full): complex, magnitude and phase
+        fr_i = nm + p.idx("seat_frame")
+        hf = np.array([A[fr_i] @ linalg.solve(2j * np.pi * fr * np.eye(len(A)) - A, B) for fr in ref["freq_hz"]])
+        cplx = lambda name: ref[name + "_mag"] * np.exp(1j * np.deg2rad(ref[name + "_phase_deg"]))
+        print("assembly (complex): max |H - wbv| / |wbv|: seat %.1e, STHT %.1e, seat frame %.1e"
+              % tuple(np.max(np.abs(h_ - cplx(nme)) / np.abs(cplx(nme)))
+                      for h_, nme in ((ex[:, 0], "seat"), (ex[:, 1], "stht"), (hf, "t_seat_frame"))))
     h = 1 / 4096.0
     t = np.arange(int(40 / h)) * h
     last = t >= 20
@@ -213,11 +247,13 @@ def frf_check():
 # ----------------------------------------------------------------------------------------------
 # The subject, the hidden effect
 # ----------------------------------------------------------------------------------------------
-def draw_subject(rng):
-    """Every mass +-10 %, stiffness +-15 %, damping +-25 % (uniform): the occupant is not the model's."""
-    masses = {n: m * rng.uniform(0.9, 1.1) for n, m in REF_MASSES.items()}
+def draw_subject(rng, model="reference"):
+    """Every mass +-10 %, stiffness +-15 %, damping +-25 % (uniform): the occupant is not the model's
+    (on seed001-full the seat's cushion and suspension too: a seat is not its data sheet)."""
+    ref_masses, ref_links = MODELS[model]
+    masses = {n: m * rng.uniform(0.9, 1.1) for n, m in ref_masses.items()}
     links = {n: (i, j, k * rng.uniform(0.85, 1.15), c * rng.uniform(0.75, 1.25))
-             for n, (i, j, k, c) in REF_LINKS.items()}
+             for n, (i, j, k, c) in ref_links.items()}
     return masses, links
 
 
@@ -251,6 +287,8 @@ def prony_fractional(kf, alpha, f0, rng_lo=0.2, rng_hi=100.0, n=8):
 def draw_effect(rng, family, form, strength):
     """Parameters of one hidden effect; `strength` >= 1 scales its departure from the linear model."""
     p = {}
+    if family == "suspension":
+        return draw_suspension(rng, form, strength)
     if family == "viscoelastic":
         if form == "sls":
             p = {"k_arm_over_k": min(2.0, rng.uniform(0.3, 0.9) * strength), "tau_s": rng.uniform(0.003, 0.03),
@@ -344,6 +382,8 @@ def frame_stiffness(masses, links, f_target):
 def build_plant(subject, family, form, p, A_rms, sigma):
     """The plant of one run. sigma: dict of linear-twin r.m.s. deflections (m) used to place
     amplitude thresholds ('cushion', 'k4'). Returns (Plant, contact-force functional builder)."""
+    if family == "suspension":
+        return build_suspension(subject, form, p, sigma)
     masses, links = dict(subject[0]), dict(subject[1])
     arms = []
     nonlinear = None
@@ -364,7 +404,7 @@ def build_plant(subject, family, form, p, A_rms, sigma):
                 arms.append((i, j, kn, tn))
     elif family == "stiffening":
         i, j, kc, c = links["cushion"]
-        W = G * sum(masses.values())  # the cushion spring carries the body and its own top mass
+        W = G * sum(v for n, v in masses.items() if n != "seat_frame")  # the body and the cushion top
         if form == "cubic":
             d0 = p["sag_over_W_per_k"] * W / kc
             k3 = (kc * d0 - W) / (2 * d0 ** 3)
@@ -383,7 +423,7 @@ def build_plant(subject, family, form, p, A_rms, sigma):
         Fd0 = F(d0)
 
         # force on the top = +(F(d0 - e) - F(d0)); the linear part already applies -k_c e.
-        nonlinear = ("cushion", None, lambda e, F=F, d0=d0, Fd0=Fd0, kc=kc: (F(d0 - e) - Fd0) + kc * e)
+        nonlinear = ("cushion", j, lambda e, F=F, d0=d0, Fd0=Fd0, kc=kc: (F(d0 - e) - Fd0) + kc * e)
         p = dict(p, sag_m=d0)
     elif family == "softening" and form in ("tanh", "bilinear"):
         i, j, k, c = links["k4"]
@@ -468,6 +508,8 @@ def _spectrum_of(kind, rng, fs):
 
 
 def base_signal(rng, sp, n, fs):
+    if sp["kind"] == "em":
+        return em_signal(rng, sp, n, fs)
     if sp["kind"].startswith("shaker"):
         lo, hi = sp["lo"], sp["hi"]
 
@@ -541,6 +583,188 @@ def peak(f, H, lo=0.8, hi=30.0):
     i = np.argmax(np.abs(H[sel]))
     return float(np.abs(H[sel][i])), float(f[sel][i])
 # ----------------------------------------------------------------------------------------------
+# The suspension seat (--model seed001-full): suspension friction and end-stops in forms that are
+# not wbv's candidates (wbv: F_c·tanh(v/0.01 m/s) statistically linearised; a linear stop 10·k_s
+# beyond ±gap), plus the other families on that seat.
+# ----------------------------------------------------------------------------------------------
+S1_FAMILIES = {
+    "suspension": ["stick-slip", "dahl", "bump-cubic", "bump-exp"],
+    "viscoelastic": ["sls", "maxwell2", "fractional"],
+    "stiffening": ["cubic", "exponential"],
+    "softening": ["tanh", "bilinear", "magnitude-saturating"],
+    "support-path": ["backrest", "thigh-path"],
+    "missing-dof": ["viscera"],  # wbv's seat-frame candidate needs a cushion on the base
+    "sensor": ["delay", "mount", "lowpass", "gain"],
+}
+
+
+def draw_family_s1(rng):
+    """Half of the cases a suspension effect, ~20 % none, the rest the other families."""
+    u = rng.uniform()
+    if u < 0.2:
+        return "none", "none"
+    if u < 0.7:
+        return "suspension", str(rng.choice(S1_FAMILIES["suspension"]))
+    family = str(rng.choice([f for f in S1_FAMILIES if f != "suspension"]))
+    return family, str(rng.choice(S1_FAMILIES[family]))
+
+
+def draw_suspension(rng, form, strength):
+    """Suspension effect parameters. Friction: a seat suspension's 20-150 N (scissor and guide
+    friction), with a viscous part added to the damper. Stops: the paper's suspension is 250 kN/m with
+    a 12 Hz, ζ≈0.02 frame mode, so its stroke at 1-2 m/s² is ~1 mm r.m.s., not the ±30-60 mm of a soft
+    1.5 Hz ISO 7096 suspension; the free travel is placed at 1.3-2.3 stroke r.m.s. of the highest run
+    (linear twin), so the stops are hit in the high run, seldom in the check run, never in the low run."""
+    if form in ("stick-slip", "dahl"):
+        p = {"f_c_n": min(300.0, rng.uniform(20, 150) * strength), "c_viscous_ns_m": rng.uniform(0, 300)}
+        if form == "stick-slip":
+            p["f_s_over_f_c"] = rng.uniform(1.1, 1.5)  # breakaway (static) over kinetic friction
+        else:
+            p["presliding_m"] = rng.uniform(2e-5, 1e-4)  # Dahl: F_c / sigma_0, the bristle's elastic range
+        return p
+    return {"gap_over_sigma_high": max(0.6, rng.uniform(1.3, 2.3) / strength),
+            "k_b_over_k_s": rng.uniform(1.0, 4.0),
+            "p0_over_gap": rng.uniform(0.3, 1.0),  # progression length of the rubber
+            "restitution": rng.uniform(0.4, 0.8),
+            "sides": str(rng.choice(["both", "bottom"]))}
+
+
+class StickSlip:
+    """Coulomb friction with stiction on the suspension, exact switching at the sample instants
+    (implicit time stepping, Moreau/Stewart): with the force r held over the step, v(k+1) = v_free +
+    g_v·r. Stuck: the force that makes v(k+1) = 0 if it is within ±F_s (±F_c when sliding), else the
+    bound; so the seat locks exactly while the spring and inertia forces stay below breakaway."""
+
+    def __init__(self, f_c, f_s):
+        self.f_c, self.f_s, self.stuck = f_c, f_s, True
+
+    def step(self, e, v, e_next, v_next, ge, gv):
+        lim = self.f_s if self.stuck else self.f_c
+        r = -v_next / gv
+        self.stuck = abs(r) <= lim
+        return float(np.clip(r, -lim, lim))
+
+
+class Dahl:
+    """Dahl bristle friction: dF/de = σ0 (1 − F/F_c·sgn ė), integrated exactly over each step's
+    deflection increment, F(k+1) = s F_c + (F(k) − s F_c)·exp(−σ0|Δe|/F_c); presliding is elastic
+    (σ0), so the seat is not locked but stiffened at low magnitude, and slides as F → ±F_c."""
+
+    def __init__(self, f_c, sigma0):
+        self.f_c, self.s0, self.F = f_c, sigma0, 0.0
+
+    def step(self, e, v, e_next, v_next, ge, gv):
+        r = -self.F
+        de = e_next + ge * r - e
+        if de != 0.0:
+            sg = math.copysign(1.0, de)
+            self.F = sg * self.f_c + (self.F - sg * self.f_c) * math.exp(-self.s0 * abs(de) / self.f_c)
+        return r
+
+
+class BumpStop:
+    """Progressive rubber bump stop beyond the free travel ±gap (or the bottom one only), with
+    Hunt–Crossley contact damping: F = F_el(p)·(1 + α ṗ) ≥ 0, p the penetration; cubic
+    F_el = k_b p (1 + (p/p0)²) or exponential F_el = k_b p0 (e^(p/p0) − 1). α = 3(1 − e)/(2 v_c)
+    from a restitution e at the contact speed v_c."""
+
+    def __init__(self, gap, k_b, p0, alpha, sides, law):
+        self.gap, self.k_b, self.p0, self.alpha, self.sides, self.law = gap, k_b, p0, alpha, sides, law
+        self.max_tangent = 0.0
+
+    def force(self, p, pd):
+        if self.law == "cubic":
+            fe, kt = self.k_b * p * (1 + (p / self.p0) ** 2), self.k_b * (1 + 3 * (p / self.p0) ** 2)
+        else:
+            x = min(p / self.p0, 30.0)
+            fe, kt = self.k_b * self.p0 * math.expm1(x), self.k_b * math.exp(x)
+        self.max_tangent = max(self.max_tangent, kt)
+        return max(0.0, fe * (1 + self.alpha * pd))
+
+    def at(self, e, v):
+        if e < -self.gap:  # bottom (compression of the suspension): pushes the seat up
+            return self.force(-e - self.gap, -v)
+        if e > self.gap and self.sides == "both":
+            return -self.force(e - self.gap, v)
+        return 0.0
+
+    def step(self, e, v, e_next, v_next, ge, gv):
+        # the force held over the step is taken at the step's midpoint (predicted with the force at
+        # its start): an explicit force held from the start pumps energy into every impact
+        r0 = self.at(e, v)
+        return self.at(e + 0.5 * (e_next + ge * r0 - e), v + 0.5 * (v_next + gv * r0 - v))
+
+
+def build_suspension(subject, form, p, sigma):
+    masses, links = dict(subject[0]), dict(subject[1])
+    i, j, k, c = links["suspension"]
+    if form in ("stick-slip", "dahl"):
+        links["suspension"] = (i, j, k, c + p["c_viscous_ns_m"])
+        law = StickSlip(p["f_c_n"], p["f_c_n"] * p["f_s_over_f_c"]) if form == "stick-slip" else \
+            Dahl(p["f_c_n"], p["f_c_n"] / p["presliding_m"])
+    else:
+        gap = p["gap_over_sigma_high"] * sigma["susp_high"]
+        alpha = 3 * (1 - p["restitution"]) / (2 * max(sigma["susp_rate_high"], 1e-6))
+        law = BumpStop(gap, p["k_b_over_k_s"] * k, p["p0_over_gap"] * gap, alpha, p["sides"], form[5:])
+        p.update(gap_m=gap, k_b_n_m=p["k_b_over_k_s"] * k, alpha_s_m=alpha)
+    return Plant(masses, links, (), (i, j, law))
+
+
+def draw_spectrum_s1(rng, fs):
+    """The reference spectra or (35 %) an ISO 7096-like earth-moving-machinery input: a resonant
+    band peaking at 2-4 Hz (not the standard's tabulated EM classes)."""
+    if rng.uniform() < 0.35:
+        return {"kind": "em", "f_peak": rng.uniform(2.0, 4.0), "zeta": rng.uniform(0.2, 0.4),
+                "f_hp": rng.uniform(0.5, 1.0)}
+    return draw_spectrum(rng, fs)
+
+
+def em_signal(rng, sp, n, fs):
+    def psd(f):
+        r = np.maximum(f, 1e-9) / sp["f_peak"]
+        res = 1 / np.abs(1 - r ** 2 + 2j * sp["zeta"] * r) ** 2
+        return res / (1 + (sp["f_hp"] / np.maximum(f, 1e-9)) ** 8) / (1 + (f / (4 * sp["f_peak"])) ** 4)
+    return shaped_noise(rng, n, fs, psd)
+
+
+def susp_law_check():
+    """Closed forms for the suspension laws through simulate() on one mass on a spring (45 kg,
+    250 kN/m, no damper), kicked by a 20 ms half-sine base pulse and then free: Coulomb friction (the
+    stick-slip law with F_s = F_c) loses exactly 2 F_c/k of amplitude per half cycle and comes to rest
+    inside ±F_c/k; with an undamped (e = 1) cubic bump stop the energy ½mv² + ½kx² measured inside the
+    free travel fixes the turning point x_m by ½k x_m² + k_b (p²/2 + p⁴/(4 p0²)) = E, p = x_m − gap."""
+    m, k, fc = 45.0, 250000.0, 100.0
+    h = 1 / 8192.0
+    n = int(1.5 / h)
+    t = np.arange(n) * h
+    u = np.where(t < 0.02, 40.0 * np.sin(np.pi * t / 0.02), 0.0)
+    free = t > 0.03
+
+    def run(law):
+        pl = Plant({"seat_frame": m}, {"suspension": ("seat_frame", None, k, 0.0)}, (), ("seat_frame", None, law))
+        out = {"x": ("lin", pl.deflection_row("seat_frame", None), 0.0),
+               "v": ("lin", pl.rate_row("seat_frame", None), 0.0)}
+        y = simulate(pl, u, h, out)
+        return y["x"][free], y["v"][free]
+
+    x, v = run(StickSlip(fc, fc))
+    turns = [x[q] for q in range(1, len(x) - 1) if (x[q] - x[q - 1]) * (x[q + 1] - x[q]) < 0]
+    drops = np.abs(np.diff(np.abs(turns)))[:5]
+    print("stick-slip: amplitude drop per half cycle %s mm (closed form 2 F_c/k = %.4f mm); at rest %.4f mm "
+          "(|x| <= F_c/k = %.4f mm)" % (np.round(1e3 * drops, 4).tolist(), 2e3 * fc / k, 1e3 * x[-1], 1e3 * fc / k))
+    gap, kb, p0 = 0.001, 1e6, 0.0005
+    x, v = run(BumpStop(gap, kb, p0, 0.0, "both", "cubic"))
+    q = int(np.argmax(np.abs(x) < 0.5 * gap))
+    E = 0.5 * m * v[q] ** 2 + 0.5 * k * x[q] ** 2
+    xm = optimize.brentq(lambda z: 0.5 * k * z ** 2 + kb * ((z - gap) ** 2 / 2 + (z - gap) ** 4 / (4 * p0 ** 2)) - E,
+                         gap, 0.1)
+    q2 = q + int(np.argmax(np.abs(x[q:]) > gap))  # the next contact, its turning point
+    q3 = q2 + int(np.argmax(np.abs(x[q2:]) < gap))
+    print("bump stop (cubic, e = 1): turning point %.5f mm, closed form %.5f mm (free travel %.1f mm); "
+          "after 1.4 s %.5f mm" % (1e3 * np.max(np.abs(x[q2:q3])), 1e3 * xm, 1e3 * gap, 1e3 * np.max(np.abs(x[-2000:]))))
+
+
+# ----------------------------------------------------------------------------------------------
 # One case
 # ----------------------------------------------------------------------------------------------
 RATES = (256, 500, 512, 1000, 1024, 2000)
@@ -559,6 +783,9 @@ def outputs_for(plant, force):
         row = -k4 * plant.deflection_row("pelvis", "cushion") - c4 * plant.rate_row("pelvis", "cushion")
         on_k4 = plant.nonlinear is not None and plant.nonlinear[0] == "pelvis"
         out["f_seat_z"] = ("lin", row, 1.0 if on_k4 else 0.0)
+    if "suspension" in plant.links:  # suspension stroke and its rate (seed001-full)
+        out["defl_susp"] = ("lin", plant.deflection_row("seat_frame", None), 0.0)
+        out["defl_susp_rate"] = ("lin", plant.rate_row("seat_frame", None), 0.0)
     return out
 
 
@@ -608,7 +835,7 @@ def between_run_detectability(effs, fs, order):
     return d
 
 
-def make_case(case_dir, seed, index, override=None):
+def make_case(case_dir, seed, index, override=None, model="reference"):
     """One case. `override` (controlled experiments): keys fs_hz, spectrum (kind), force_plate, base_dc
     replace the drawn nuisance after the draws; `params`/`strength` reuse a truth.json's effect."""
     override = override or {}
@@ -617,8 +844,10 @@ def make_case(case_dir, seed, index, override=None):
     fs = int(override.get("fs_hz", fs))
     m = max(2, math.ceil(4000 / fs))
     ffs = fs * m
-    subject = draw_subject(rng)
-    if rng.uniform() < 0.25:
+    subject = draw_subject(rng, model)
+    if model != "reference":
+        family, form = draw_family_s1(rng)
+    elif rng.uniform() < 0.25:
         family, form = "none", "none"
     else:
         family = str(rng.choice(list(FAMILIES)))
@@ -631,7 +860,7 @@ def make_case(case_dir, seed, index, override=None):
     mags = [(0.25, 1.0, 0.5), (0.4, 1.6, 0.8)][int(rng.integers(2))]
     T = rng.uniform(60, 180)
     durs = [max(60.0, round(T * rng.uniform(0.97, 1.03), 2)) for _ in mags]
-    spectrum = draw_spectrum(rng, fs)
+    spectrum = draw_spectrum(rng, fs) if model == "reference" else draw_spectrum_s1(rng, fs)
     if "spectrum" in override and override["spectrum"] != spectrum["kind"]:
         spectrum = _spectrum_of(override["spectrum"], np.random.default_rng([seed, index, 7]), fs)
     force = bool(rng.uniform() < 0.4)
@@ -654,6 +883,9 @@ def make_case(case_dir, seed, index, override=None):
     twins_fine = [simulate(twin_plant, u, 1 / ffs, outputs_for(twin_plant, force)) for u in bases]
     sigma = {"cushion": float(np.std(twins_fine[1]["defl_cushion"][pre:])),
              "k4": float(np.std(twins_fine[1]["defl_k4"][pre:]))}
+    if model != "reference":
+        sigma["susp_high"] = float(np.std(twins_fine[1]["defl_susp"][pre:]))
+        sigma["susp_rate_high"] = float(np.std(twins_fine[1]["defl_susp_rate"][pre:]))
     strength = 1.0
     params = draw_effect(rng, family, form, strength) if family != "none" else {}
     if "params" in override:
@@ -705,8 +937,8 @@ def make_case(case_dir, seed, index, override=None):
         name = ["run-low", "run-high", "check-mid"][r] + ".csv"
         write_csv(os.path.join(case_dir, name), chans, fs, layout)
         files.append(name)
-    truth = {"case": index, "seed": seed, "family": family, "form": form, "params": params,
-             "strength_scale": strength, "detectability": det,
+    truth = {"model": model, "case": index, "seed": seed, "family": family, "form": form, "params": params,
+             "strength_scale": strength, "detectability": det, "twin_sigma_high_run": sigma,
              "subject": {"masses_kg": subject[0], "links": {k: {"k": v[2], "c": v[3]} for k, v in subject[1].items()}},
              "nuisances": {"fs_hz": fs, "fine_rate_hz": ffs, "spectrum": spectrum, "magnitudes_ms2": list(mags),
                            "durations_s": durs, "force_plate": force,
@@ -792,6 +1024,8 @@ def main():
                     help="with --like: fs_hz=N, spectrum=KIND, force_plate=0|1, base_dc=M/S2")
     ap.add_argument("--family", choices=sorted(FAMILIES), help="study set: every case gets this effect family")
     ap.add_argument("--form", help="study set: every case gets this form (implies its family)")
+    ap.add_argument("--model", choices=sorted(MODELS), default="reference",
+                    help="the seat: reference (5 DOF) or seed001-full (paper 001 body, cushion, suspension)")
     a = ap.parse_args()
     override = None
     if a.form:
@@ -809,13 +1043,14 @@ def main():
             k, v = kv.split("=", 1)
             override[k] = v if k == "spectrum" else (bool(int(v)) if k == "force_plate" else float(v))
         a.seed, a.first, a.cases = like["seed"], like["case"], 1
+        a.model = like.get("model", "reference")
     os.makedirs(a.outdir, exist_ok=True)
     for i in range(a.first, a.first + a.cases):
         d = os.path.join(a.outdir, "case-%03d" % i)
         if os.path.exists(os.path.join(d, "truth.json")) and not a.force:
             continue
         os.makedirs(d, exist_ok=True)
-        tr = make_case(d, a.seed, i, override)
+        tr = make_case(d, a.seed, i, override, a.model)
         if override and a.like:
             tr["override"] = {k: v for k, v in override.items() if k not in ("params", "strength")}
             with open(os.path.join(d, "truth.json"), "w") as fh:
@@ -831,7 +1066,10 @@ def main():
 
 
 if __name__ == "__main__" and len(sys.argv) > 1 and sys.argv[1] == "--check-frf":
-    frf_check()
+    check_model = sys.argv[3] if sys.argv[2:3] == ["--model"] else "reference"
+    frf_check(check_model)
+    if check_model != "reference":
+        susp_law_check()
     sys.exit(0)
 
 if __name__ == "__main__":

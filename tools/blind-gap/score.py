@@ -37,13 +37,13 @@ def cases(root):
     return sorted(d for d in glob.glob(os.path.join(root, "case-*")) if os.path.isdir(d))
 
 
-def run_exec(root, wbv):
+def run_exec(root, wbv, model="reference"):
     for d in cases(root):
         if os.path.exists(os.path.join(d, "gap.rc")):
             continue
         with open(os.path.join(d, "cmd.json")) as fh:
             cmd = json.load(fh)
-        argv = ["nice", "-n", "10", wbv, "gap", "--model", "reference"] + cmd + ["--json"]
+        argv = ["nice", "-n", "10", wbv, "gap", "--model", model] + cmd + ["--json"]
         t0 = time.monotonic()
         p = subprocess.run(argv, cwd=d, capture_output=True, text=True)
         wall = time.monotonic() - t0
@@ -253,6 +253,16 @@ def markdown(rows, judged, seed):
             lines.append("  - separating measurement: %s" % j["separating"])
         if j["warnings"]:
             lines.append("  - warnings: " + " | ".join(str(w) for w in j["warnings"]))
+    lines.append("")
+    lines.append("Per case (top 3 by check-run ΔBIC):")
+    lines.append("")
+    lines.append("| case | truth | detect % | spectrum | verdict | top 3 (ΔBIC) |")
+    lines.append("| --- | --- | --- | --- | --- | --- |")
+    for r, j in zip(rows, judged):
+        lines.append("| %s | %s/%s | %.0f | %s | %s%s | %s |" % (
+            j["case"][5:], j["truth_family"], j["form"], j["detect_pct"], r["truth"]["nuisances"]["spectrum"]["kind"],
+            j["verdict"], "" if j["right"] else " ✗",
+            ", ".join("%s %.0f" % (c, b) for c, b, _, _ in j.get("top", []))))
     return "\n".join(lines)
 
 
@@ -261,6 +271,7 @@ def main():
     sub = ap.add_subparsers(dest="cmd", required=True)
     e = sub.add_parser("exec")
     e.add_argument("root")
+    e.add_argument("--model", default="reference", help="the model the cases were generated for (gen.py --model)")
     e.add_argument("--wbv", default=os.environ.get("WBV", os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "target", "release", "wbv")))
     s = sub.add_parser("score")
     s.add_argument("root")
@@ -268,7 +279,7 @@ def main():
     s.add_argument("--seed", default="?")
     a = ap.parse_args()
     if a.cmd == "exec":
-        run_exec(a.root, a.wbv)
+        run_exec(a.root, a.wbv, a.model)
         return
     rows = load(a.root)
     judged = [judge(r) for r in rows]
