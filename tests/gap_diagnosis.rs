@@ -323,3 +323,84 @@ fn fore_aft_channels_under_a_vertical_model_are_left_out_with_a_warning() {
     );
     assert!(d.bands.iter().all(|b| b.path != "base-seat-x"));
 }
+
+/// `s` with independent white noise of a fixed r.m.s. `level` (m/s², N for the force) added to
+/// every channel: a lab's noise floor, the same at every magnitude (the truth bench's own noise
+/// is a fraction of each channel's r.m.s.).
+fn with_floor(s: &Signals, level: f64, seed: u64) -> Signals {
+    use rand::SeedableRng;
+    use rand_distr::{Distribution, StandardNormal};
+    let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(seed);
+    let mut out = Signals::new(s.sample_rate_hz, s.source.clone());
+    for (n, d) in s.names.iter().zip(&s.data) {
+        let scale = if n.starts_with("f_") { 80.0 } else { 1.0 };
+        let v: Vec<f64> = d
+            .iter()
+            .map(|x| {
+                let e: f64 = StandardNormal.sample(&mut rng);
+                x + scale * level * e
+            })
+            .collect();
+        out.push(n.clone(), v).unwrap();
+    }
+    out
+}
+
+#[test]
+fn a_preloaded_foam_is_named_by_its_distortion_and_a_linear_foam_is_not() {
+    // A foam stiffening about its static sag, k·d_e·(1 − e^(−d/d_e)) (the truth bench's form, not
+    // a candidate's law): its best linear approximation barely changes (the mean deflection shifts
+    // until E[f′] = k), so the FRF fit alone named it viscoelastic; what it does is distort
+    // base→seat more as the magnitude rises, and leave seat→head coherent. A standard linear
+    // solid foam at the same settings distorts nothing and keeps its name. Both with a fixed lab
+    // noise floor on top of the bench's proportional noise.
+    use wbv::diagnosis::distortion::Site;
+    use wbv::diagnosis::truth::forms::Form;
+    let model = catalog::resolve("reference").unwrap();
+    for (form, strength) in [(Form::PreloadExp, 0.35), (Form::Sls, 0.6)] {
+        let case = make_case_with(
+            3,
+            5,
+            &CaseOptions {
+                effects: Some(vec![(form, strength)]),
+                spectrum: Some("white"),
+                fs_hz: Some(500.0),
+                duration_s: Some(80.0),
+                noise: Some(0.01),
+                force: Some(false),
+            },
+        )
+        .unwrap();
+        let floor = |s: &Signals, k: u64| with_floor(s, 0.004, k);
+        let train: Vec<Signals> = case
+            .train
+            .iter()
+            .enumerate()
+            .map(|(k, s)| floor(s, k as u64))
+            .collect();
+        let d = diagnose(&model, &train, &floor(&case.check, 9)).unwrap();
+        let dist = d.distortion.as_ref().expect("runs of different magnitude");
+        let seat = dist.paths.iter().find(|p| p.path == "base-seat").unwrap();
+        let head = dist.paths.iter().find(|p| p.path == "seat-head").unwrap();
+        match form {
+            Form::PreloadExp => {
+                assert_eq!(dist.site, Some(Site::Support), "{dist:?}");
+                assert!(seat.rise_db > 6.0 && head.rise_db < 2.0, "{dist:?}");
+                assert!(
+                    ["cushion-stiffening", "cushion-contact", "cushion-bottoming"]
+                        .contains(&d.verdict.as_str()),
+                    "{} — {}",
+                    d.verdict,
+                    d.verdict_text
+                );
+                assert!(d.verdict_text.contains("distortion"));
+            }
+            _ => {
+                assert_eq!(dist.site, None, "{dist:?}");
+                // The fixed floor lowers the ratio at high magnitude (it falls, −3 dB here).
+                assert!(seat.rise_db < 1.0 && !seat.distorts(), "{dist:?}");
+                assert_eq!(d.verdict, "cushion-viscoelastic", "{}", d.verdict_text);
+            }
+        }
+    }
+}

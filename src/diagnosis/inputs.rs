@@ -154,3 +154,49 @@ pub(super) fn mask_incoherent(r: &mut RunSpectra) {
         }
     }
 }
+
+/// Fewest samples at a channel's extreme value that mark it as clipped: a continuous signal
+/// reaches its maximum once, and even a 1e-4 m/s² CSV resolution repeats a peak value only a few
+/// times in a long run; an amplifier or ADC at its rail holds it for whole flat tops.
+pub const CLIPPED_SAMPLES: usize = 10;
+
+/// The channels of `s` that look clipped, with the number of samples at their extreme value and
+/// that value (gap.md §3.5 item 1: quality gates). Clipping is a distortion of the sensor chain
+/// that grows with magnitude, which the distortion trend would otherwise put in the structure.
+pub(super) fn clipped(s: &Signals) -> Vec<(String, usize, f64)> {
+    s.names
+        .iter()
+        .zip(&s.data)
+        .filter_map(|(name, x)| {
+            let hi = x.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+            let lo = x.iter().copied().fold(f64::INFINITY, f64::min);
+            if hi.is_nan() || lo.is_nan() || hi <= lo {
+                return None;
+            }
+            let at = |v: f64| x.iter().filter(|&&y| y == v).count();
+            let (n_hi, n_lo) = (at(hi), at(lo));
+            let (n, v) = if n_hi >= n_lo { (n_hi, hi) } else { (n_lo, lo) };
+            (n >= CLIPPED_SAMPLES).then(|| (name.clone(), n, v))
+        })
+        .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::f64::consts::PI;
+
+    #[test]
+    fn a_flat_top_is_clipping_and_a_sine_is_not() {
+        let mut s = Signals::new(500.0, "run.csv".to_string());
+        let t: Vec<f64> = (0..5000).map(|i| i as f64 / 500.0).collect();
+        let sine: Vec<f64> = t.iter().map(|t| (2.0 * PI * 3.3 * t).sin()).collect();
+        let rail: Vec<f64> = sine.iter().map(|x| (1.5 * x).clamp(-1.2, 1.2)).collect();
+        s.push("a_base_z".to_string(), sine).unwrap();
+        s.push("a_seat_z".to_string(), rail).unwrap();
+        let c = clipped(&s);
+        assert_eq!(c.len(), 1, "{c:?}");
+        assert_eq!(c[0].0, "a_seat_z");
+        assert!(c[0].1 > 100 && (c[0].2.abs() - 1.2).abs() < 1e-12);
+    }
+}

@@ -11,6 +11,7 @@
 
 mod all_runs;
 pub mod candidate;
+pub mod distortion;
 pub use crate::numeric::lm as fit;
 mod fitting;
 pub mod gapmap;
@@ -110,6 +111,31 @@ pub fn diagnose(model: &Model, train: &[Signals], check: &Signals) -> Result<Dia
     );
     inputs::keep_common(&mut tr, &mut ck, &mut warnings);
     check_inputs(&tr, &ck, &mut warnings)?;
+    // On the raw estimates: masking zeroes the coherence of paths with few coherent bins, and a
+    // distorting path at high magnitude is exactly such a path.
+    let mut distortion =
+        distortion::trend(&tr.iter().chain(std::iter::once(&ck)).collect::<Vec<_>>());
+    let clips: Vec<String> = train
+        .iter()
+        .chain(std::iter::once(check))
+        .flat_map(|s| {
+            inputs::clipped(s).into_iter().map(move |(c, n, v)| {
+                format!(
+                    "{}: {c} holds its extreme value {v} for {n} samples",
+                    s.source
+                )
+            })
+        })
+        .collect();
+    if !clips.is_empty() {
+        warnings.push(format!(
+            "clipping? {}: the growth of distortion with magnitude is not attributed to the structure",
+            clips.join("; ")
+        ));
+        if let Some(d) = &mut distortion {
+            d.site = None;
+        }
+    }
     for r in tr.iter_mut().chain(std::iter::once(&mut ck)) {
         warnings.extend(r.offset_notes.iter().cloned());
         if r.df_hz > measure::RESOLUTION_HZ * 1.01 {
@@ -282,6 +308,13 @@ pub fn diagnose(model: &Model, train: &[Signals], check: &Signals) -> Result<Dia
         a.adopt(&base, &null, &ck, &mut cands, &mut fits)?;
     }
     let (verdict, verdict_text, separating) = decide(&null, &cands, accepted, all_runs.as_ref());
+    let (verdict, verdict_text, separating) = match distortion
+        .as_ref()
+        .and_then(|d| verdict::located(d, &null, &cands, &verdict))
+    {
+        Some((v, t)) => (v, t, None),
+        None => (verdict, verdict_text, separating),
+    };
 
     // Forward selection: a second effect from another family when the named one leaves a
     // structural residual; tried for the four best others, accepted by the same rule against the
@@ -378,6 +411,7 @@ pub fn diagnose(model: &Model, train: &[Signals], check: &Signals) -> Result<Dia
         warnings,
         runs,
         peak_shift_percent_per_doubling: peak_shift,
+        distortion,
         gap_map,
         classification,
         nominal,

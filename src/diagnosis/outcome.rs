@@ -97,6 +97,9 @@ pub struct Diagnosis {
     pub runs: Vec<RunSummary>,
     /// Change of the body-mode peak per doubling of magnitude, % (measured).
     pub peak_shift_percent_per_doubling: Option<f64>,
+    /// Growth of each path's incoherent power with magnitude and the nonlinearity's site it
+    /// points to (`None` with one run or runs of nearly the same magnitude).
+    pub distortion: Option<super::distortion::Distortion>,
     /// Gap map of the nominal model replayed with the check run's measured base.
     pub gap_map: Vec<BandCell>,
     /// Verbal classification of the nominal gap.

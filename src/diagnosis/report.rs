@@ -87,6 +87,28 @@ pub fn text(d: &Diagnosis) -> String {
     if let Some(s) = d.peak_shift_percent_per_doubling {
         let _ = writeln!(out, "  body peak moves {s:+.1} % per doubling of magnitude");
     }
+    if let Some(x) = &d.distortion {
+        let _ = writeln!(
+            out,
+            "  distortion, incoherent/coherent power from {:.2} to {:.2} m/s²: {}{}",
+            x.magnitudes.0,
+            x.magnitudes.1,
+            x.paths
+                .iter()
+                .map(|p| format!(
+                    "{} {:+.1} dB{}",
+                    p.path,
+                    p.rise_db,
+                    if p.distorts() { " (grows)" } else { "" }
+                ))
+                .collect::<Vec<_>>()
+                .join(", "),
+            x.site.map_or(String::new(), |s| format!(
+                ": a nonlinearity {}",
+                s.describe()
+            ))
+        );
+    }
     for c in &d.classification {
         let _ = writeln!(out, "  - {c}");
     }

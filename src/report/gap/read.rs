@@ -100,6 +100,24 @@ struct DiagnosisIn {
     candidates: Vec<RankedIn>,
     second: Option<RankedIn>,
     separating_measurement: Option<String>,
+    /// Absent from files written before the distortion trend existed.
+    #[serde(default)]
+    distortion: Option<DistortionIn>,
+}
+
+#[derive(Debug, Deserialize)]
+struct DistortionIn {
+    magnitudes: (Num, Num),
+    paths: Vec<PathDistortionIn>,
+    site: Option<crate::diagnosis::distortion::Site>,
+}
+
+#[derive(Debug, Deserialize)]
+struct PathDistortionIn {
+    path: String,
+    rise_db: Num,
+    exponent: Num,
+    monotone: bool,
 }
 
 /// Rebuilds a [`Diagnosis`] from its JSON; `file` names the source in errors.
@@ -233,6 +251,27 @@ impl Rebuild<'_> {
             warnings: d.warnings,
             runs,
             peak_shift_percent_per_doubling: d.peak_shift_percent_per_doubling,
+            distortion: d
+                .distortion
+                .map(|x| {
+                    Ok(crate::diagnosis::distortion::Distortion {
+                        magnitudes: (x.magnitudes.0.get(), x.magnitudes.1.get()),
+                        paths: x
+                            .paths
+                            .into_iter()
+                            .map(|p| {
+                                Ok(crate::diagnosis::distortion::PathDistortion {
+                                    path: self.path(&p.path)?,
+                                    rise_db: p.rise_db.get(),
+                                    exponent: p.exponent.get(),
+                                    monotone: p.monotone,
+                                })
+                            })
+                            .collect::<Result<_>>()?,
+                        site: x.site,
+                    })
+                })
+                .transpose()?,
             gap_map: self.cells(d.gap_map)?,
             classification: d.classification,
             nominal: self.stage(d.nominal)?,

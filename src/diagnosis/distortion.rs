@@ -1,0 +1,359 @@
+//! Nonlinear distortion located by its growth with magnitude (gap.md §2 rows 3–5 and 13, §3.8:
+//! "magnitude dependence for distortion").
+//!
+//! On a linear path the incoherent part of the output is noise: relative to the coherent response
+//! it stays put (noise in proportion to the signal) or falls (a fixed noise floor) as the
+//! magnitude A rises. A nonlinearity's distortion grows faster than the coherent response (a
+//! quadratic term's power goes as A⁴ against A²), so the noise-to-signal ratio (1 − γ²)/γ² of every
+//! path that crosses it rises with magnitude. A preloaded or bottoming foam, suspension friction
+//! or end-stops raise it on base→seat and leave seat→head and the apparent mass alone (their input
+//! is the seat's own motion); a softening body raises it on seat→head and the apparent mass too.
+//!
+//! The candidates are statistically linearised, and a one-sided foam's best linear approximation
+//! barely moves: the mean deflection shifts until E[f(d)] = 0, and for `k·d_e·(1 − e^(−d/d_e))` that
+//! makes E[f′(d)] = k exactly — what the runs show is distortion, not a stiffer FRF. So the
+//! distortion is evidence of its own: it says which group of candidates may be named.
+
+use super::candidate::Candidate;
+use super::measure::{Path, RunSpectra};
+use serde::{Deserialize, Serialize};
+
+/// Rise of the noise-to-signal ratio (dB, lowest to highest magnitude) a path must show to count
+/// as distorting. Linear paths on the truth bench stay within ±0.6 dB (median over bins; 60
+/// cases of every linear family, proportional noise 0.5–3 %); a quadratic distortion over a 3:1
+/// magnitude range gives ≈ 20·log10(3) = 9.5 dB.
+pub const MIN_RISE_DB: f64 = 3.0;
+/// Least exponent e of NSR ∝ A^(2e) for a distorting path (0: linear with proportional noise,
+/// < 0: a fixed noise floor, ≈ 1: quadratic distortion).
+pub const MIN_EXPONENT: f64 = 0.3;
+/// Least ratio of the highest to the lowest run magnitude for the comparison to mean anything.
+pub const MIN_MAGNITUDE_RATIO: f64 = 1.3;
+/// A body path rising with a distorting base→seat puts the nonlinearity in the occupant when its
+/// rise is at least this share of base→seat's and this many dB: softening bodies on the truth
+/// bench give 0.5–1.0 of it, cushions ≤ 0 (seat→head −0.1 to −6.5 dB while base→seat rose 3.6–16 dB).
+pub const BODY_SHARE: (f64, f64) = (0.3, 1.5);
+/// Frequency range compared, Hz: the body and cushion modes and their low harmonics.
+pub const BAND_HZ: (f64, f64) = (1.0, 40.0);
+
+/// One path's distortion trend.
+#[derive(Debug, Clone, Serialize)]
+pub struct PathDistortion {
+    /// Path name.
+    pub path: &'static str,
+    /// Median over the bins in [`BAND_HZ`] of the rise of the noise-to-signal ratio (1 − γ²)/γ²
+    /// from the lowest- to the highest-magnitude run, dB.
+    pub rise_db: f64,
+    /// Exponent e of NSR ∝ A^(2e) between those runs: `rise_db / (20·log10(A_hi/A_lo))`.
+    pub exponent: f64,
+    /// Whether the ratio rises at every step of magnitude (with three or more runs, one drifting
+    /// run cannot make a trend).
+    pub monotone: bool,
+}
+
+impl PathDistortion {
+    /// Whether this path shows distortion growing with magnitude.
+    pub fn distorts(&self) -> bool {
+        self.rise_db >= MIN_RISE_DB && self.exponent >= MIN_EXPONENT && self.monotone
+    }
+}
+
+/// Where a nonlinearity sits, from which paths distort.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Site {
+    /// Between base and seat (cushion, suspension): base→seat distorts, the body paths do not.
+    Support,
+    /// In the occupant: seat→head or the apparent mass distorts.
+    Body,
+    /// Base→seat distorts and no body path was measured.
+    Unlocated,
+}
+
+impl Site {
+    /// Whether candidate `c` is a nonlinearity at this site.
+    pub fn admits(self, c: Candidate) -> bool {
+        match self {
+            Site::Support => matches!(
+                c,
+                Candidate::CushionStiffening
+                    | Candidate::CushionContact
+                    | Candidate::CushionBottoming
+                    | Candidate::SuspensionFriction
+                    | Candidate::EndStop
+            ),
+            Site::Body => matches!(
+                c,
+                Candidate::BodySoftening | Candidate::BodySofteningMagnitude
+            ),
+            Site::Unlocated => c.amplitude_dependent(),
+        }
+    }
+
+    /// Words for reports.
+    pub fn describe(self) -> &'static str {
+        match self {
+            Site::Support => "between base and seat (cushion or suspension)",
+            Site::Body => "in the occupant",
+            Site::Unlocated => "between base and seat or in the occupant (no body path measured)",
+        }
+    }
+}
+
+/// The distortion trend of every path over the runs.
+#[derive(Debug, Clone, Serialize)]
+pub struct Distortion {
+    /// Lowest and highest run magnitude compared, m/s² r.m.s.
+    pub magnitudes: (f64, f64),
+    /// Per path measured in every run.
+    pub paths: Vec<PathDistortion>,
+    /// Where the nonlinearity sits, when a path distorts.
+    pub site: Option<Site>,
+}
+
+/// Mean ln NSR of path `p` in `r` around each frequency of `grid` (within ± `half` Hz: the
+/// coarsest run's bins, so runs of other lengths or rates compare on one grid); `None` where `r`
+/// has no bin there. Coherence is clamped to [1e-4, 1 − 1e-6] so a perfectly coherent or empty bin
+/// stays finite. Bins, not bands, are compared: distortion products land where the input is weak
+/// (a road spectrum's upper bands), which one-third-octave bands would weigh like any other.
+fn levels(r: &RunSpectra, p: Path, grid: &[f64], half: f64) -> Option<Vec<Option<f64>>> {
+    let e = r.path(p)?;
+    Some(
+        grid.iter()
+            .map(|&f| {
+                let v: Vec<f64> = r
+                    .freq_hz
+                    .iter()
+                    .zip(&e.coherence)
+                    .filter(|(x, _)| (**x - f).abs() <= half)
+                    .map(|(_, &g)| {
+                        let g = g.clamp(1e-4, 1.0 - 1e-6);
+                        ((1.0 - g) / g).ln()
+                    })
+                    .collect();
+                (!v.is_empty()).then(|| v.iter().sum::<f64>() / v.len() as f64)
+            })
+            .collect(),
+    )
+}
+
+fn median(mut v: Vec<f64>) -> Option<f64> {
+    if v.is_empty() {
+        return None;
+    }
+    v.sort_by(f64::total_cmp);
+    let n = v.len();
+    Some(if n % 2 == 1 {
+        v[n / 2]
+    } else {
+        0.5 * (v[n / 2 - 1] + v[n / 2])
+    })
+}
+
+/// The distortion trend over `runs` (any order; compared in order of magnitude), or `None` with
+/// fewer than two runs or a magnitude range under [`MIN_MAGNITUDE_RATIO`]. Call it on the raw
+/// estimates, before incoherent paths are masked.
+pub fn trend(runs: &[&RunSpectra]) -> Option<Distortion> {
+    let mut rs: Vec<&RunSpectra> = runs.to_vec();
+    rs.sort_by(|a, b| a.base_rms.total_cmp(&b.base_rms));
+    let (lo, hi) = (rs.first()?.base_rms, rs.last()?.base_rms);
+    if rs.len() < 2 || lo.is_nan() || lo <= 0.0 || hi / lo < MIN_MAGNITUDE_RATIO {
+        return None;
+    }
+    let db = 10.0 / std::f64::consts::LN_10;
+    let coarse = rs.iter().max_by(|a, b| a.df_hz.total_cmp(&b.df_hz))?;
+    let grid: Vec<f64> = coarse
+        .freq_hz
+        .iter()
+        .copied()
+        .filter(|f| (BAND_HZ.0..=BAND_HZ.1).contains(f))
+        .collect();
+    let half = 0.5 * coarse.df_hz * 1.001;
+    let paths: Vec<PathDistortion> = Path::ALL
+        .iter()
+        .filter_map(|&p| {
+            let levels: Vec<Vec<Option<f64>>> = rs
+                .iter()
+                .map(|r| levels(r, p, &grid, half))
+                .collect::<Option<_>>()?;
+            // Median over the bins every run has of the level change between two runs.
+            let step = |a: usize, b: usize| {
+                median(
+                    (0..levels[a].len())
+                        .filter_map(|n| Some(levels[b][n]? - levels[a][n]?))
+                        .collect(),
+                )
+            };
+            let rise = step(0, rs.len() - 1)? * db;
+            let monotone = (1..rs.len()).all(|i| step(i - 1, i).is_some_and(|s| s > 0.0));
+            Some(PathDistortion {
+                path: p.name(),
+                rise_db: rise,
+                exponent: rise / (20.0 * (hi / lo).log10()),
+                monotone,
+            })
+        })
+        .collect();
+    let of = |p: Path| paths.iter().find(|d| d.path == p.name());
+    let seat = of(Path::BaseSeat).filter(|d| d.distorts());
+    // A body path that distorts, or rises in step with a distorting base→seat (a softening body's
+    // distortion is generated at the body–seat interface and shows on both; a cushion's leaves
+    // seat→head flat or falling, the seat's own motion being that path's input).
+    let body = |p: Path| {
+        of(p).is_some_and(|d| {
+            d.distorts()
+                || seat.is_some_and(|s| {
+                    d.monotone && d.rise_db >= BODY_SHARE.1.max(BODY_SHARE.0 * s.rise_db)
+                })
+        })
+    };
+    let measured = |p: Path| of(p).is_some();
+    let site = if body(Path::SeatHead) || body(Path::ApparentMass) {
+        Some(Site::Body)
+    } else if seat.is_some() {
+        Some(
+            if measured(Path::SeatHead) || measured(Path::ApparentMass) {
+                Site::Support
+            } else {
+                Site::Unlocated
+            },
+        )
+    } else {
+        None
+    };
+    Some(Distortion {
+        magnitudes: (lo, hi),
+        paths,
+        site,
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::diagnosis::measure::PathEstimate;
+    use num_complex::Complex64;
+
+    /// A run whose paths have the given constant coherence on 0.25 Hz bins from 0.5 to 50 Hz.
+    fn run(rms: f64, coh: &[(Path, f64)]) -> RunSpectra {
+        let freq_hz: Vec<f64> = (2..=200).map(|i| 0.25 * i as f64).collect();
+        RunSpectra {
+            source: format!("run at {rms}"),
+            fs: 500.0,
+            df_hz: 0.25,
+            duration_s: 120.0,
+            segments: 59,
+            base_psd: (Vec::new(), Vec::new()),
+            seat_psd: vec![1.0; freq_hz.len()],
+            head_psd: None,
+            base_rms: rms,
+            offset_notes: Vec::new(),
+            paths: coh
+                .iter()
+                .map(|&(path, g)| PathEstimate {
+                    path,
+                    h1: vec![Complex64::new(1.0, 0.0); freq_hz.len()],
+                    coherence: vec![g; freq_hz.len()],
+                })
+                .collect(),
+            freq_hz,
+        }
+    }
+
+    /// NSR for a coherence γ²: (1 − γ²)/γ²; the coherence that gives `nsr`.
+    fn coh(nsr: f64) -> f64 {
+        1.0 / (1.0 + nsr)
+    }
+
+    #[test]
+    fn quadratic_distortion_on_the_seat_path_locates_the_support() {
+        // NSR ∝ A² on base→seat (exponent 1), constant on seat→head: a nonlinear cushion.
+        let runs: Vec<RunSpectra> = [0.5, 1.0, 1.5]
+            .iter()
+            .map(|&a| {
+                run(
+                    a,
+                    &[
+                        (Path::BaseSeat, coh(0.01 * (a / 0.5f64).powi(2))),
+                        (Path::SeatHead, coh(0.01)),
+                    ],
+                )
+            })
+            .collect();
+        let d = trend(&runs.iter().collect::<Vec<_>>()).unwrap();
+        let bs = &d.paths[0];
+        // Closed form: 10·log10(NSR ratio) = 10·log10(9) = 9.54 dB, e = 1.
+        assert!((bs.rise_db - 10.0 * 9f64.log10()).abs() < 0.05, "{bs:?}");
+        assert!((bs.exponent - 1.0).abs() < 0.01 && bs.monotone);
+        assert!(!d.paths[1].distorts());
+        assert_eq!(d.site, Some(Site::Support));
+        assert!(Site::Support.admits(Candidate::CushionBottoming));
+        assert!(!Site::Support.admits(Candidate::CushionViscoelastic));
+    }
+
+    #[test]
+    fn a_fixed_noise_floor_or_a_drifting_middle_run_is_not_distortion() {
+        // Fixed floor: NSR ∝ A⁻² (coherence improves with magnitude).
+        let floor: Vec<RunSpectra> = [0.5, 1.5]
+            .iter()
+            .map(|&a| run(a, &[(Path::BaseSeat, coh(0.05 * (0.5 / a).powi(2)))]))
+            .collect();
+        let d = trend(&floor.iter().collect::<Vec<_>>()).unwrap();
+        assert!(d.paths[0].rise_db < -9.0 && d.site.is_none());
+        // One drifting run in the middle: rises then falls, not a trend.
+        let drift: Vec<RunSpectra> = [(0.5, 0.01), (1.0, 0.2), (1.5, 0.05)]
+            .iter()
+            .map(|&(a, n)| run(a, &[(Path::BaseSeat, coh(n)), (Path::SeatHead, coh(0.01))]))
+            .collect();
+        let d = trend(&drift.iter().collect::<Vec<_>>()).unwrap();
+        assert!(d.paths[0].rise_db > MIN_RISE_DB && !d.paths[0].monotone);
+        assert!(d.site.is_none());
+    }
+
+    #[test]
+    fn body_distortion_and_an_unmeasured_body_and_a_narrow_magnitude_range() {
+        let body: Vec<RunSpectra> = [0.5, 1.5]
+            .iter()
+            .map(|&a| {
+                let n = coh(0.01 * (a / 0.5f64).powi(2));
+                run(a, &[(Path::BaseSeat, n), (Path::SeatHead, n)])
+            })
+            .collect();
+        assert_eq!(
+            trend(&body.iter().collect::<Vec<_>>()).unwrap().site,
+            Some(Site::Body)
+        );
+        let seat_only: Vec<RunSpectra> = [0.5, 1.5]
+            .iter()
+            .map(|&a| run(a, &[(Path::BaseSeat, coh(0.01 * (a / 0.5f64).powi(2)))]))
+            .collect();
+        assert_eq!(
+            trend(&seat_only.iter().collect::<Vec<_>>()).unwrap().site,
+            Some(Site::Unlocated)
+        );
+        let narrow = [run(1.0, &[]), run(1.2, &[])];
+        assert!(trend(&narrow.iter().collect::<Vec<_>>()).is_none());
+    }
+
+    #[test]
+    fn a_body_path_rising_in_step_with_the_seat_path_is_the_body() {
+        // Base→seat NSR ×9 (9.5 dB); seat→head ×2 (3.0 dB ≥ 0.3 × 9.5 = 2.9): the body. With
+        // seat→head ×1.26 (1.0 dB, under 1.5 dB): the support.
+        let site = |head: f64| {
+            let runs: Vec<RunSpectra> = [(0.5, 1.0, 1.0), (1.5, 9.0, head)]
+                .iter()
+                .map(|&(a, s, h)| {
+                    run(
+                        a,
+                        &[
+                            (Path::BaseSeat, coh(0.01 * s)),
+                            (Path::SeatHead, coh(0.01 * h)),
+                        ],
+                    )
+                })
+                .collect();
+            trend(&runs.iter().collect::<Vec<_>>()).unwrap().site
+        };
+        assert_eq!(site(2.0), Some(Site::Body));
+        assert_eq!(site(1.26), Some(Site::Support));
+    }
+}
