@@ -135,12 +135,13 @@ impl Candidate {
                     v_ref: FRICTION_V_REF,
                 });
             }
+            // The stop in proportion to the suspension's own stiffness: k_stop = p[1]·k_s.
             Candidate::EndStop => {
                 let i = need(role_link(s, Role::Suspension), "suspension")?;
                 let k = s.links[i].element.static_stiffness();
                 s.links[i].law = Some(Law::EndStop {
                     gap: p[0],
-                    k_stop: END_STOP_RATIO * k,
+                    k_stop: p[1] * k,
                 });
             }
             Candidate::MissingDof => add_frame(s, p[0], p[1], p[2])?,

@@ -22,8 +22,6 @@ pub use structure::{
 pub const FRAME_MASS_KG: f64 = 5.0;
 /// Reference velocity of the friction law in m/s (tanh regularisation width).
 pub const FRICTION_V_REF: f64 = 0.01;
-/// End-stop stiffness as a multiple of the suspension stiffness.
-pub const END_STOP_RATIO: f64 = 10.0;
 /// Damping ratio of the feet-support knee and heel pad (a soft-tissue contact).
 pub const SUPPORT_ZETA: f64 = 0.3;
 
@@ -111,7 +109,12 @@ pub enum Candidate {
     SensorMountForce,
     /// Coulomb friction on the suspension, F_c tanh(v/v_ref).
     SuspensionFriction,
-    /// End-stops on the suspension beyond ±gap.
+    /// End-stops on the suspension beyond ±gap: a stop of stiffness k_stop = ratio·k_s (both
+    /// free) adds to the suspension spring past the free travel (gap.md E6, `Law::EndStop`), so its
+    /// equivalent stiffness k_s + k_stop·erfc(gap/(σ√2)) grows with the stroke r.m.s. σ. The ratio
+    /// is free because a real bump stop is progressive rubber: its Gaussian-equivalent stiffness
+    /// ratio is anywhere from ~0.3 to 30 depending on how far the stroke penetrates, and a fixed
+    /// ratio forces the gap to absorb that spread.
     EndStop,
     /// A seat-frame mass–spring–damper between the base and the cushion.
     MissingDof,
@@ -348,7 +351,14 @@ impl Candidate {
             Candidate::SuspensionFriction => {
                 vec![Param::new("f_c_n", 0.5, 1000.0, &[5.0, 50.0], true)]
             }
-            Candidate::EndStop => vec![Param::new("gap_m", 5e-4, 0.1, &[0.003, 0.02], true)],
+            // Gap from 0.2 mm (a stiff suspension's stroke at low magnitude is ~0.5 mm r.m.s.) to
+            // 10 cm (a soft suspension's free travel); the starts span a stiff seat's stroke to a
+            // soft one's. The stop from a tenth of the suspension's stiffness (the first touch of
+            // a progressive rubber stop) to thirty times it (a hard stop).
+            Candidate::EndStop => vec![
+                Param::new("gap_m", 2e-4, 0.1, &[0.0007, 0.002, 0.02], true),
+                Param::new("k_stop_over_k", 0.1, 30.0, &[1.0, 5.0], true),
+            ],
             Candidate::MissingDof => vec![
                 Param::new("f_frame_hz", 6.0, 80.0, &[12.0, 25.0, 45.0], true),
                 Param::new("zeta_frame", 0.02, 0.7, &[0.1], true),
@@ -417,6 +427,30 @@ mod tests {
         }
         assert_eq!(Candidate::CushionBottoming.family(), "cushion stiffening");
         assert!(Candidate::CushionBottoming.amplitude_dependent());
+    }
+
+    #[test]
+    fn end_stop_scales_its_stop_with_the_suspension_stiffness() {
+        // k_stop = ratio·k_s with both the gap and the ratio free (no fixed stop stiffness).
+        let s = system("seed001-full");
+        let i = role_link(&s, Role::Suspension).unwrap();
+        let k = s.links[i].element.static_stiffness();
+        for (gap, ratio) in [(0.0007, 0.3), (0.002, 25.0)] {
+            let v = Candidate::EndStop.apply(&s, &[gap, ratio]).unwrap();
+            assert_eq!(
+                v.system.links[i].law,
+                Some(Law::EndStop {
+                    gap,
+                    k_stop: ratio * k
+                })
+            );
+        }
+        let names: Vec<String> = Candidate::EndStop
+            .params()
+            .into_iter()
+            .map(|p| p.name)
+            .collect();
+        assert_eq!(names, ["gap_m", "k_stop_over_k"]);
     }
 
     #[test]
