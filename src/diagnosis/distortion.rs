@@ -16,6 +16,7 @@
 
 use super::candidate::Candidate;
 use super::measure::{Path, RunSpectra};
+use crate::numeric::median;
 use serde::{Deserialize, Serialize};
 
 /// Rise of the noise-to-signal ratio (dB, lowest to highest magnitude) a path must show to count
@@ -136,19 +137,6 @@ fn levels(r: &RunSpectra, p: Path, grid: &[f64], half: f64) -> Option<Vec<Option
             })
             .collect(),
     )
-}
-
-fn median(mut v: Vec<f64>) -> Option<f64> {
-    if v.is_empty() {
-        return None;
-    }
-    v.sort_by(f64::total_cmp);
-    let n = v.len();
-    Some(if n % 2 == 1 {
-        v[n / 2]
-    } else {
-        0.5 * (v[n / 2 - 1] + v[n / 2])
-    })
 }
 
 /// The distortion trend over `runs` (any order; compared in order of magnitude), or `None` with

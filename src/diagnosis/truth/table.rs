@@ -2,6 +2,7 @@
 //! verdicts, the acceptance rule of issue 15, and its text and Markdown tables.
 
 use super::*;
+use crate::numeric::median;
 
 /// One row of a summary table.
 #[derive(Debug, Clone, Serialize)]
@@ -54,19 +55,6 @@ pub struct Summary {
     pub confusion: Vec<(String, String, usize)>,
     /// Median diagnosis wall time per case, s.
     pub median_diagnosis_s: f64,
-}
-
-fn median(mut v: Vec<f64>) -> Option<f64> {
-    if v.is_empty() {
-        return None;
-    }
-    v.sort_by(f64::total_cmp);
-    let n = v.len();
-    Some(if n % 2 == 1 {
-        v[n / 2]
-    } else {
-        0.5 * (v[n / 2 - 1] + v[n / 2])
-    })
 }
 
 fn row(group: &str, key: String, c: &[&CaseScore]) -> Row {
