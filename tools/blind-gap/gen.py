@@ -584,8 +584,8 @@ def peak(f, H, lo=0.8, hi=30.0):
     return float(np.abs(H[sel][i])), float(f[sel][i])
 # ----------------------------------------------------------------------------------------------
 # The suspension seat (--model seed001-full): suspension friction and end-stops in forms that are
-# not wbv's candidates (wbv: F_c·tanh(v/0.01 m/s) statistically linearised; a linear stop 10·k_s
-# beyond ±gap), plus the other families on that seat.
+# not wbv's candidates (wbv: F_c·tanh(v/0.01 m/s) statistically linearised; a linear stop of free
+# stiffness, 0.1–30·k_s, beyond ±gap), plus the other families on that seat.
 # ----------------------------------------------------------------------------------------------
 S1_FAMILIES = {
     "suspension": ["stick-slip", "dahl", "bump-cubic", "bump-exp"],
