@@ -176,6 +176,20 @@ impl Candidate {
                     Candidate::Backrest => Role::Backrest,
                     _ => Role::Footrest,
                 };
+                // A backrest is a foam: its Maxwell arm (k_m = p[2]·k, relaxation time p[3]).
+                if let (Candidate::Backrest, Element::KelvinVoigt { k, .. }) = (self, &link.element)
+                {
+                    let k_m = p[2] * k;
+                    s.links.push(Link {
+                        name: format!("{}-arm", link.name),
+                        role,
+                        element: Element::Maxwell {
+                            k: k_m,
+                            c: k_m * p[3],
+                        },
+                        ..link.clone()
+                    });
+                }
                 s.links.push(Link { role, ..link });
             }
             Candidate::FeetSupport => {

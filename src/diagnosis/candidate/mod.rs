@@ -120,8 +120,11 @@ pub enum Candidate {
     MissingDof,
     /// A second body mode: part of the heaviest body mass (viscera) on its own spring–damper.
     BodyMode,
-    /// A backrest (gap.md E7): the upper torso (heaviest body mass) leans on a spring–damper to the
-    /// seat frame, a load path that bypasses the seat pan, so seat→head is no longer body-only.
+    /// A backrest (gap.md E7): the upper torso (heaviest body mass) leans on the seat frame through
+    /// a foam — a spring–damper tuned to `f_support_hz` with a relaxing Maxwell arm (k_m/k, τ; the
+    /// standard linear solid of a backrest pad, stiffer and lossier above 1/(2πτ); k_m → 0 is the
+    /// plain spring–damper) — a load path that bypasses the seat pan, so seat→head is no longer
+    /// body-only.
     Backrest,
     /// Feet on the floor (gap.md E9): a legs mass joined to the lowest body mass (pelvis and
     /// thighs) by a knee spring–damper and to the base by a heel pad (ζ 0.3 each): a load path
@@ -369,7 +372,13 @@ impl Candidate {
                 Param::new("f_mode_hz", 2.0, 30.0, &[5.0, 10.0], true),
                 Param::new("zeta_mode", 0.03, 0.8, &[0.25], true),
             ],
-            Candidate::Backrest | Candidate::ThighSupport => vec![
+            Candidate::Backrest => vec![
+                Param::new("f_support_hz", 0.5, 25.0, &[2.0, 6.0], true),
+                Param::new("zeta_support", 0.05, 3.0, &[0.4], true),
+                Param::new("k_m_over_k", 0.01, 3.0, &[0.3], true),
+                Param::new("tau_s", 0.002, 0.1, &[0.015], true),
+            ],
+            Candidate::ThighSupport => vec![
                 Param::new("f_support_hz", 0.5, 25.0, &[2.0, 6.0], true),
                 Param::new("zeta_support", 0.05, 3.0, &[0.4], true),
             ],
