@@ -67,18 +67,8 @@ impl Candidate {
             }
             Candidate::CushionViscoelastic => {
                 for &i in &cushion {
-                    let l = s.links[i].clone();
-                    let k_m = p[0] * l.element.static_stiffness();
-                    s.links.push(Link {
-                        name: format!("{}-arm", l.name),
-                        element: Element::Maxwell {
-                            k: k_m,
-                            c: k_m * p[1],
-                        },
-                        law: None,
-                        record_deflection: false,
-                        ..l
-                    });
+                    let arm = maxwell_arm(&s.links[i], p[0], p[1]);
+                    s.links.push(arm);
                 }
             }
             // The foam's dashpot becomes a fractional one, c_α·(iω)^α, of loss `p[0]` times the
@@ -177,18 +167,9 @@ impl Candidate {
                     _ => Role::Footrest,
                 };
                 // A backrest is a foam: its Maxwell arm (k_m = p[2]·k, relaxation time p[3]).
-                if let (Candidate::Backrest, Element::KelvinVoigt { k, .. }) = (self, &link.element)
-                {
-                    let k_m = p[2] * k;
-                    s.links.push(Link {
-                        name: format!("{}-arm", link.name),
-                        role,
-                        element: Element::Maxwell {
-                            k: k_m,
-                            c: k_m * p[3],
-                        },
-                        ..link.clone()
-                    });
+                if matches!(self, Candidate::Backrest) {
+                    let arm = maxwell_arm(&link, p[2], p[3]);
+                    s.links.push(Link { role, ..arm });
                 }
                 s.links.push(Link { role, ..link });
             }

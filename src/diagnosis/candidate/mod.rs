@@ -13,7 +13,7 @@ mod prior;
 mod structure;
 
 pub use prior::{BASE_BOUND, base_params, prior_sigma, scaled};
-use structure::{add_dof, kv_link, on_base};
+use structure::{add_dof, kv_link, maxwell_arm, on_base};
 pub use structure::{
     add_frame, cushion_links, heaviest_body_mass, interface_link, role_link, support_target,
 };

@@ -28,6 +28,23 @@ pub(super) fn kv_link(
     }
 }
 
+/// A relaxing (Maxwell) arm beside link `l`: spring k_m = `ratio`·k (k the link's static
+/// stiffness) in series with a dashpot of relaxation time `tau_s`, c_m = k_m·τ — with `l` the
+/// standard linear solid of a foam (Zener), stiffer and lossier above 1/(2πτ).
+pub(super) fn maxwell_arm(l: &Link, ratio: f64, tau_s: f64) -> Link {
+    let k_m = ratio * l.element.static_stiffness();
+    Link {
+        name: format!("{}-arm", l.name),
+        element: Element::Maxwell {
+            k: k_m,
+            c: k_m * tau_s,
+        },
+        law: None,
+        record_deflection: false,
+        ..l.clone()
+    }
+}
+
 /// The body coordinate a support path acts on: the heaviest body point mass for a backrest (the
 /// upper torso), the lowest body point mass (the one joined by a body link to the seat or the base:
 /// pelvis and thighs) for the feet. `None` when the model has no such point mass of its own or
