@@ -242,6 +242,7 @@ mod tests {
                     path,
                     h1: vec![Complex64::new(1.0, 0.0); freq_hz.len()],
                     coherence: vec![g; freq_hz.len()],
+                    quadrature: Vec::new(),
                 })
                 .collect(),
             freq_hz,

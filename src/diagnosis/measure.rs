@@ -2,6 +2,7 @@
 //! estimated with the same Welch segmentation (Hann, 50 % overlap) so that a gap is never an
 //! estimator artefact (Bendat & Piersol, *Random Data*, 4th ed., §9.2).
 
+use super::leakage::{self, Quadrature};
 use crate::analysis::spectrum::{Segment, Welch, WelchOptions};
 use crate::error::{Error, Result};
 use crate::signals::Signals;
@@ -83,6 +84,9 @@ pub struct PathEstimate {
     pub h1: Vec<Complex64>,
     /// Ordinary coherence γ² per bin.
     pub coherence: Vec<f64>,
+    /// The frequencies each bin's H1 averages over, read from the input channel's spectrum (empty:
+    /// every bin at its own frequency); see [`super::leakage`].
+    pub quadrature: Vec<Quadrature>,
 }
 
 /// The spectral summary of one run.
@@ -183,6 +187,8 @@ pub fn estimate(signals: &Signals) -> Result<RunSpectra> {
         .filter(|&i| all.freq_hz[i] >= lo && all.freq_hz[i] <= hi)
         .collect();
     let pick = |v: &[f64]| keep.iter().map(|&i| v[i]).collect::<Vec<f64>>();
+    let freq_hz = pick(&all.freq_hz);
+    let mut quadratures: Vec<(&str, Vec<Quadrature>)> = Vec::new();
     let mut paths = Vec::new();
     let mut head_psd = None;
     for path in Path::ALL {
@@ -196,10 +202,19 @@ pub fn estimate(signals: &Signals) -> Result<RunSpectra> {
         }
         let h1 = cs.h1();
         let coh = cs.coherence();
+        let quadrature = match quadratures.iter().find(|q| q.0 == x) {
+            Some(q) => q.1.clone(),
+            None => {
+                let q = leakage::quadratures(xs, fs, w.segment_len(), &freq_hz)?;
+                quadratures.push((x, q.clone()));
+                q
+            }
+        };
         paths.push(PathEstimate {
             path,
             h1: keep.iter().map(|&i| h1[i]).collect(),
             coherence: pick(&coh),
+            quadrature,
         });
     }
     let mean = |x: &[f64]| x.iter().sum::<f64>() / x.len().max(1) as f64;
@@ -219,7 +234,7 @@ pub fn estimate(signals: &Signals) -> Result<RunSpectra> {
     Ok(RunSpectra {
         source: signals.source.clone(),
         fs,
-        freq_hz: pick(&all.freq_hz),
+        freq_hz,
         df_hz: w.df_hz(),
         duration_s,
         segments: all.segments,

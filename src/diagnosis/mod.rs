@@ -16,6 +16,7 @@ pub use crate::numeric::lm as fit;
 mod fitting;
 pub mod gapmap;
 mod inputs;
+mod leakage;
 pub mod measure;
 mod outcome;
 #[cfg(feature = "plot")]

@@ -361,10 +361,35 @@ pub fn predict(v: &Variant, run: &RunSpectra) -> Result<Vec<Vec<Complex64>>> {
     let mut out = vec![vec![Complex64::new(0.0, 0.0); run.freq_hz.len()]; paths.len()];
     let mut buf = vec![Complex64::new(0.0, 0.0); paths.len()];
     let taps = Taps::of(&lin)?;
+    // A bin whose H1 averages over a non-smooth input spectrum (beside a line) is predicted as
+    // that average, Σ w_q H(f_q) (see [`super::leakage`]), so that the leakage bias is on both
+    // sides of the gap; paths that share an input share the quadrature and its solves.
+    let mut acc = vec![Complex64::new(0.0, 0.0); paths.len()];
     for (b, &f) in run.freq_hz.iter().enumerate() {
-        path_values(&lin, &taps, v, f, &paths, &mut buf)?;
-        for (p, val) in buf.iter().enumerate() {
-            out[p][b] = *val;
+        let quad = |p: usize| run.paths[p].quadrature.get(b).filter(|q| !q.is_empty());
+        if (0..paths.len()).any(|p| quad(p).is_none()) {
+            path_values(&lin, &taps, v, f, &paths, &mut buf)?;
+            for (p, val) in buf.iter().enumerate() {
+                out[p][b] = *val;
+            }
+        }
+        for p in 0..paths.len() {
+            let Some(q) = quad(p) else { continue };
+            if (0..p).any(|e| quad(e) == Some(q)) {
+                continue;
+            }
+            acc.iter_mut().for_each(|a| *a = Complex64::new(0.0, 0.0));
+            for &(fq, wq) in q {
+                path_values(&lin, &taps, v, fq, &paths, &mut buf)?;
+                for (a, val) in acc.iter_mut().zip(&buf) {
+                    *a += val * wq;
+                }
+            }
+            for (e, a) in acc.iter().enumerate() {
+                if quad(e) == Some(q) {
+                    out[e][b] = *a;
+                }
+            }
         }
     }
     Ok(out)
