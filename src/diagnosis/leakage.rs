@@ -22,6 +22,8 @@ const MAX_SUBDIVISION: usize = 8;
 const MIN_FINE_AVERAGES: usize = 5;
 /// Points of a bin's quadrature when its weight is not the smooth-spectrum kernel.
 const QUADRATURE_POINTS: usize = 5;
+/// Quadrature points closer than this many analysis bins are merged (see [`compress`]).
+const MERGE_BINS: f64 = 0.15;
 /// A bin keeps its own frequency unless its weight's mean moves by more than this many bins or
 /// its spread differs from the flat-spectrum kernel's by more than this fraction: thresholds ≈ 4
 /// standard errors of the fine estimate's scatter on a smooth spectrum.
@@ -72,7 +74,7 @@ pub fn quadratures(x: &[f64], fs: f64, n: usize, freq_hz: &[f64]) -> Result<Vec<
             if (mu - mu0).abs() <= MEAN_SHIFT_BINS && (sd / sd0 - 1.0).abs() <= SPREAD_CHANGE {
                 Vec::new()
             } else {
-                compress(&pts)
+                compress(&pts, MERGE_BINS * df)
             }
         })
         .collect())
@@ -110,8 +112,9 @@ fn moments(pts: impl Iterator<Item = (f64, f64)> + Clone) -> (f64, f64) {
 }
 
 /// [`QUADRATURE_POINTS`] equal-weight slices of the cumulative weight, each at its own weighted
-/// mean frequency: exact for H linear within a slice, and a line keeps its own point.
-fn compress(pts: &[(f64, f64)]) -> Quadrature {
+/// mean frequency: exact for H linear within a slice, and a line keeps its own point. Slices less
+/// than `span` Hz apart are merged.
+fn compress(pts: &[(f64, f64)], span: f64) -> Quadrature {
     let total: f64 = pts.iter().map(|p| p.1).sum();
     if total <= 0.0 {
         return Vec::new();
@@ -135,10 +138,21 @@ fn compress(pts: &[(f64, f64)]) -> Quadrature {
             }
         }
     }
-    out.into_iter()
-        .filter(|&(_, w)| w > 0.0)
-        .map(|(fw, w)| (fw / w, w))
-        .collect()
+    // Slices within MERGE_BINS of each other (a line's weight fills several) become one point at
+    // their weighted mean: exact where H is linear over that span, and each point costs a solve.
+    let mut merged: Quadrature = Vec::with_capacity(q);
+    for (fw, w) in out.into_iter().filter(|&(_, w)| w > 0.0) {
+        let f = fw / w;
+        match merged.last_mut() {
+            Some(last) if f - last.0 <= span => {
+                let total = last.1 + w;
+                last.0 = (last.0 * last.1 + f * w) / total;
+                last.1 = total;
+            }
+            _ => merged.push((f, w)),
+        }
+    }
+    merged
 }
 
 #[cfg(test)]
