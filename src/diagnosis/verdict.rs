@@ -47,6 +47,18 @@ pub(super) fn training_closed(null: &Ranked, c: &Ranked) -> f64 {
     score::fraction_closed(null.train_chi2_red, c.train_chi2_red, 1.0)
 }
 
+/// Overdispersion ĉ = max(1, χ²/ν) of a fit (QAIC, Burnham & Anderson 2002, §2.5): when even the
+/// better of two models leaves residuals ĉ times the noise estimate's variance, every
+/// log-likelihood difference between them is ĉ times too large, so a BIC margin between
+/// candidates is read in units of ĉ. Detection against the null is not rescaled.
+pub(super) fn overdispersion(chi2_red: f64) -> f64 {
+    if chi2_red.is_finite() {
+        chi2_red.max(1.0)
+    } else {
+        1.0
+    }
+}
+
 /// The best candidate if the held-out run accepts it: detected and closing at least
 /// [`MIN_CLOSED`] of the structural gap; when the null already fits within the noise estimate
 /// (reduced χ² ≤ 1, where the fraction is the relative fall of χ²) the effect must also show in
@@ -149,13 +161,20 @@ pub(super) fn decide(
             // run; a close second of the same family is another form of the same effect, named in
             // the text. All three runs together (the training fit's in-sample BIC plus the
             // held-out run's) decide such a pair when they separate it by the same margin.
+            // Both margins are in units of the better candidate's overdispersion ĉ (see
+            // [`overdispersion`]): a misfit that leaves χ²/ν = 25 makes a 15-unit ΔBIC difference
+            // chance (blind lab case, a stick-slip suspension and a base mount resonance both
+            // closing 100 % at ΔBIC −5·10⁵, 15 apart; all runs put the friction 870 ahead).
+            let check_c = overdispersion(b.check.chi2_red);
             let rival = cands.iter().skip(1).find(|s| {
-                s.delta_bic - b.delta_bic < IDENTIFIABLE_MARGIN
+                (s.delta_bic - b.delta_bic) / check_c < IDENTIFIABLE_MARGIN
                     && s.fraction_closed >= MIN_CLOSED
                     && family(&s.id) != family(&b.id)
             });
+            let all_c =
+                |s: &Ranked| overdispersion(b.train_chi2_red.min(s.train_chi2_red));
             let (b, rival, tie_note) = match rival {
-                Some(s) if b.delta_bic_all - s.delta_bic_all >= IDENTIFIABLE_MARGIN => (
+                Some(s) if (b.delta_bic_all - s.delta_bic_all) / all_c(s) >= IDENTIFIABLE_MARGIN => (
                     s,
                     None,
                     format!(
@@ -163,7 +182,7 @@ pub(super) fn decide(
                         b.id, b.delta_bic, s.delta_bic, s.id, s.delta_bic_all, b.delta_bic_all
                     ),
                 ),
-                Some(s) if s.delta_bic_all - b.delta_bic_all >= IDENTIFIABLE_MARGIN => (
+                Some(s) if (s.delta_bic_all - b.delta_bic_all) / all_c(s) >= IDENTIFIABLE_MARGIN => (
                     b,
                     None,
                     format!(
@@ -420,6 +439,25 @@ mod tests {
             text.contains("on all runs together backrest is ahead"),
             "{text}"
         );
+        // A misfit both share (χ²/ν 25 on the held-out run, 24 on training) makes a 15-unit
+        // held-out difference a tie that all runs, 870 apart (36 ĉ), decide.
+        let poor = ranked("null", 600.0, 500.0, 0.0, 0.0, 1.0);
+        let big = vec![
+            ranked("sensor-delay", 25.0, 25.0, -533_636.0, -14_203_707.0, 0.997),
+            ranked("backrest", 24.0, 25.1, -533_621.0, -14_204_576.0, 0.997),
+        ];
+        let accepted = held_out_accepted(&poor, &big);
+        let (verdict, text, _) = decide(&poor, &big, accepted, None);
+        assert_eq!(verdict, "backrest", "{text}");
+        // Unscaled, 15 units would have named the held-out run's best.
+        let mut fit = big.clone();
+        for c in &mut fit {
+            c.check.chi2_red = 1.0;
+            c.train_chi2_red = 1.0;
+        }
+        let accepted = held_out_accepted(&poor, &fit);
+        let (verdict, text, _) = decide(&poor, &fit, accepted, None);
+        assert_eq!(verdict, "sensor-delay", "{text}");
         // All runs within the margin as well: not identifiable, with the separating measurement.
         cands[1].delta_bic_all = -101.0;
         let accepted = held_out_accepted(&null, &cands);
