@@ -178,22 +178,27 @@ pub(super) fn decide(
             let all_c =
                 |s: &Ranked| overdispersion(b.train_chi2_red.min(s.train_chi2_red));
             let (b, rival, tie_note) = match rival {
-                Some(s) if (b.delta_bic_all - s.delta_bic_all) / all_c(s) >= IDENTIFIABLE_MARGIN => (
-                    s,
-                    None,
-                    format!(
-                        "; on the held-out run alone {} fits as well (ΔBIC {:.1} vs {:.1}), on all runs together {} is ahead (ΔBIC {:.1} vs {:.1})",
-                        b.id, b.delta_bic, s.delta_bic, s.id, s.delta_bic_all, b.delta_bic_all
-                    ),
-                ),
-                Some(s) if (s.delta_bic_all - b.delta_bic_all) / all_c(s) >= IDENTIFIABLE_MARGIN => (
-                    b,
-                    None,
-                    format!(
-                        "; on the held-out run alone {} fits almost as well (ΔBIC {:.1} vs {:.1}), on all runs together {} is ahead (ΔBIC {:.1} vs {:.1})",
-                        s.id, s.delta_bic, b.delta_bic, b.id, b.delta_bic_all, s.delta_bic_all
-                    ),
-                ),
+                Some(s) if (b.delta_bic_all - s.delta_bic_all).abs() / all_c(s) >= IDENTIFIABLE_MARGIN => {
+                    let (win, lose) = if s.delta_bic_all < b.delta_bic_all {
+                        (s, b)
+                    } else {
+                        (b, s)
+                    };
+                    let fits = if std::ptr::eq(lose, b) { "as well" } else { "almost as well" };
+                    (
+                        win,
+                        None,
+                        format!(
+                            "; on the held-out run alone {} fits {fits} (ΔBIC {:.1} vs {:.1}), on all runs together {} is ahead (ΔBIC {:.1} vs {:.1})",
+                            lose.id,
+                            lose.delta_bic,
+                            win.delta_bic,
+                            win.id,
+                            win.delta_bic_all,
+                            lose.delta_bic_all
+                        ),
+                    )
+                }
                 other => (b, other, String::new()),
             };
             if let Some(s) = rival {
@@ -462,6 +467,15 @@ mod tests {
             text.contains("on all runs together backrest is ahead"),
             "{text}"
         );
+        // The held-out run's best ahead on all runs as well keeps its name, the rival noted.
+        let ahead = vec![
+            ranked("backrest", 0.9, 0.8, -24.0, -139.0, 0.44),
+            ranked("sensor-delay", 1.1, 0.8, -23.7, -98.0, 0.33),
+        ];
+        let accepted = held_out_accepted(&null, &ahead);
+        let (verdict, text, _) = decide(&null, &ahead, accepted, None);
+        assert_eq!(verdict, "backrest", "{text}");
+        assert!(text.contains("sensor-delay fits almost as well"), "{text}");
         // A misfit both share (χ²/ν 25 on the held-out run, 24 on training) makes a 15-unit
         // held-out difference a tie that all runs, 870 apart (36 ĉ), decide.
         let poor = ranked("null", 600.0, 500.0, 0.0, 0.0, 1.0);
