@@ -5,9 +5,11 @@
 //! it stays put (noise in proportion to the signal) or falls (a fixed noise floor) as the
 //! magnitude A rises. A nonlinearity's distortion grows faster than the coherent response (a
 //! quadratic term's power goes as A⁴ against A²), so the noise-to-signal ratio (1 − γ²)/γ² of every
-//! path that crosses it rises with magnitude. A preloaded or bottoming foam, suspension friction
-//! or end-stops raise it on base→seat and leave seat→head and the apparent mass alone (their input
-//! is the seat's own motion); a softening body raises it on seat→head and the apparent mass too.
+//! path that crosses it rises with magnitude. A preloaded or bottoming foam or end-stops raise it
+//! on base→seat and leave seat→head and the apparent mass alone (their input is the seat's own
+//! motion); a softening body raises it on seat→head and the apparent mass too. Coulomb friction's
+//! share of the force falls as the magnitude rises, so its distortion need not grow
+//! ([`super::candidate::Candidate::distortion_grows`]).
 //!
 //! The candidates are statistically linearised, and a one-sided foam's best linear approximation
 //! barely moves: the mean deflection shifts until E[f(d)] = 0, and for `k·d_e·(1 − e^(−d/d_e))` that

@@ -85,7 +85,7 @@ pub struct PathEstimate {
     /// Ordinary coherence γ² per bin.
     pub coherence: Vec<f64>,
     /// The frequencies each bin's H1 averages over, read from the input channel's spectrum (empty:
-    /// every bin at its own frequency); see [`super::leakage`].
+    /// every bin at its own frequency); see `diagnosis::leakage`.
     pub quadrature: Vec<Quadrature>,
 }
 

@@ -339,14 +339,14 @@ pub(super) fn located(
         .iter()
         .filter(|r| Candidate::from_id(&r.id).is_some_and(|c| site.admits(c)))
         .min_by(|a, b| a.delta_bic_all.total_cmp(&b.delta_bic_all))?;
-    // Coulomb friction's share of the force falls as the magnitude rises, so its distortion
-    // does not grow and the trend cannot place it: a friction the frequency responses name
-    // stands unless the site's best fits all runs as well (blind lab case s1-1/016, a stick-slip
+    // A nonlinearity whose distortion does not grow with magnitude (Coulomb friction, see
+    // [`Candidate::distortion_grows`]) cannot be placed by the trend: one the frequency responses
+    // name stands unless the site's best fits all runs as well (blind lab case s1-1/016, a stick-slip
     // suspension: friction ΔBIC −257 over all runs, the body softening the site named +6). Other
     // nonlinear names do not stand against the site — a stiffer cushion and a softer body shift
     // the same resonance, and there the distortion is the better witness (blind seed 1 cases
     // 001 and seed 2 case 000: the FRFs named body-softening, the truth was cushion stiffening).
-    if verdict == Candidate::SuspensionFriction.id()
+    if Candidate::from_id(verdict).is_some_and(|c| c.amplitude_dependent() && !c.distortion_grows())
         && let Some(v) = cands.iter().find(|r| r.id == verdict)
         && (b.delta_bic_all - v.delta_bic_all) / overdispersion(v.train_chi2_red)
             >= IDENTIFIABLE_MARGIN

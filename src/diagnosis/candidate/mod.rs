@@ -234,6 +234,13 @@ impl Candidate {
         )
     }
 
+    /// Whether the effect's distortion grows with the run's magnitude, so the distortion trend
+    /// ([`crate::diagnosis::distortion`]) can place it. Coulomb friction's share of the force
+    /// falls as the magnitude rises: its distortion does not grow.
+    pub fn distortion_grows(self) -> bool {
+        self.amplitude_dependent() && self != Candidate::SuspensionFriction
+    }
+
     /// Whether the candidate acts only on the seat-pan force (the apparent-mass path): without a
     /// measured `f_seat_z` it cannot change anything and is not fitted.
     pub fn reads_force_only(self) -> bool {
