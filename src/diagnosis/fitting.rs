@@ -1,5 +1,6 @@
 //! Fitting a stack of candidates with the base model's parameters (bounded Levenberg–Marquardt
-//! with Gaussian priors on the base parameters, multistart scouts) on the training runs.
+//! with an active set and Gaussian priors on the base parameters, multistart scouts) on the
+//! training runs, and the null re-fit started again where the best candidates left the base.
 
 use super::candidate::{BASE_BOUND, Candidate, Param, base_params, prior_sigma, scaled};
 use super::measure::RunSpectra;
@@ -58,6 +59,25 @@ pub(super) const SCOUT_ITERATIONS: usize = 10;
 /// LM iterations of the final fit.
 pub(super) const FIT_ITERATIONS: usize = 40;
 
+/// Bounded Levenberg–Marquardt with an active set ([`fit::Settings::active_set`]): a base
+/// parameter on its ±30 % bound with the gradient pushing out is held while the others are solved
+/// for. Projection alone stalled there: the projected step of a parameter pressed against its
+/// bound gives no decrease, λ grows and the fit stops short of the optimum (CI subset case 14,
+/// seed 7: null χ² 0.228 with projection, 0.197 with the active set, 0.179 started from the
+/// truth's parameters; a candidate, started at the null's optimum, then gained from the
+/// optimiser alone and was detected at ΔBIC −23.6 on a clean seat).
+fn lm<F>(f: &F, u0: &[f64], lo: &[f64], hi: &[f64], max_iter: usize) -> Result<fit::Fit>
+where
+    F: Fn(&[f64]) -> Result<Vec<f64>> + Sync,
+{
+    let settings = fit::Settings {
+        max_iter,
+        active_set: true,
+        ..fit::Settings::default()
+    };
+    fit::minimise(|| Ok(()), |_, u| f(u), u0, lo, hi, &settings)
+}
+
 /// Fits the stack `cands` (empty = null) jointly with the base parameters on `train`; `warm` gives
 /// the starting base parameters and any leading effect parameters (forward selection), the rest
 /// start from each parameter's multistart values.
@@ -102,12 +122,12 @@ pub(super) fn fit_candidate(
             .collect();
     }
     let fit = if starts.len() == 1 {
-        fit::levenberg_marquardt(&f, &starts[0], &lo, &hi, FIT_ITERATIONS)?
+        lm(&f, &starts[0], &lo, &hi, FIT_ITERATIONS)?
     } else {
         // Scout every start briefly, then carry the best one to convergence.
         let scouts: Vec<fit::Fit> = starts
             .par_iter()
-            .map(|s| fit::levenberg_marquardt(&f, s, &lo, &hi, SCOUT_ITERATIONS))
+            .map(|s| lm(&f, s, &lo, &hi, SCOUT_ITERATIONS))
             .collect::<Result<_>>()?;
         let mut best: Option<fit::Fit> = None;
         for ft in scouts {
@@ -116,12 +136,48 @@ pub(super) fn fit_candidate(
             }
         }
         let scout = best.expect("at least one start");
-        fit::levenberg_marquardt(&f, &scout.u, &lo, &hi, FIT_ITERATIONS)?
+        lm(&f, &scout.u, &lo, &hi, FIT_ITERATIONS)?
     };
     Ok(Fitted {
         variant: build(base, cands, &fit.u, rms_ref)?,
         fit,
     })
+}
+
+/// Starts of [`refine_null`]: the base parameters of this many candidates with the lowest
+/// training cost.
+pub(super) const NULL_RESTARTS: usize = 3;
+
+/// The null re-fit started again from the base parameters `u[..nb]` of the [`NULL_RESTARTS`]
+/// candidates that fit the training runs best below the null, the lowest-cost of these and `null`
+/// kept. A candidate nests the null and starts at its optimum, so a lower candidate cost bought by
+/// base parameters alone is a better null optimum the first fit did not reach, not evidence of the
+/// effect (the nested comparison of a likelihood-ratio or BIC test assumes both optima are found).
+pub(super) fn refine_null<S>(
+    base: &Base,
+    train: &[RunSpectra],
+    null: Fitted,
+    fitted: &[(Candidate, Fitted, S)],
+) -> Result<Fitted> {
+    let nb = base.params.len();
+    let mut order: Vec<&Fitted> = fitted
+        .iter()
+        .map(|(_, f, _)| f)
+        .filter(|f| f.fit.cost < null.fit.cost)
+        .collect();
+    order.sort_by(|a, b| a.fit.cost.total_cmp(&b.fit.cost));
+    let refits: Vec<Fitted> = order
+        .par_iter()
+        .take(NULL_RESTARTS)
+        .map(|f| fit_candidate(base, &[], train, &f.fit.u[..nb]))
+        .collect::<Result<_>>()?;
+    // Ties keep the earlier (first fit, then the better candidate's start): deterministic.
+    Ok(refits.into_iter().fold(
+        null,
+        |best, f| {
+            if f.fit.cost < best.fit.cost { f } else { best }
+        },
+    ))
 }
 
 pub(super) fn estimates(base: &Base, cands: &[Candidate], ft: &fit::Fit) -> Vec<Estimate> {

