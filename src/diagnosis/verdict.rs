@@ -59,19 +59,19 @@ pub(super) fn overdispersion(chi2_red: f64) -> f64 {
     }
 }
 
-/// The best candidate if the held-out run accepts it: detected and closing at least
-/// [`MIN_CLOSED`] of the structural gap; when the null already fits within the noise estimate
-/// (reduced χ² ≤ 1, where the fraction is the relative fall of χ²) the effect must also show in
-/// the ISO figures ([`VISIBLE_SIZE`]): a subject whose masses differ leaves residues there that
-/// several candidates detect at no visible size (CI subset case 14, seed 7: a clean seat with
-/// 4.8 % mass error, `cushion-viscoelastic` at ΔBIC −23.6 closing 25 %, a_w −0.2 %).
+/// The best candidate if the held-out run accepts it: detected, and closing at least
+/// [`MIN_CLOSED`] of the structural gap when there is one. When the null already fits within the
+/// noise estimate (reduced χ² ≤ 1) there is no structural gap to close, and detection alone names
+/// the effect, with its size however small (issue 15: `none` means nothing significant). A size
+/// gate (0.5 % of a_w) and the relative fall of χ² stood here while the null re-fit stopped short
+/// of its optimum on parameters at their bounds: clean subjects then left residues that candidates
+/// detected at ΔBIC −24 (CI subset case 14, seed 7); with the active-set fit
+/// ([`super::fitting`]) clean cases' best ΔBIC is ≥ −4.1 on the blind sets and a backrest detected
+/// at −27 closing 23 % (bench case 188) is named.
 pub(super) fn held_out_accepted<'a>(null: &Ranked, cands: &'a [Ranked]) -> Option<&'a Ranked> {
     cands.first().filter(|b| {
         b.delta_bic <= ACCEPT_DELTA_BIC
-            && b.fraction_closed >= MIN_CLOSED
-            && (!score::within_noise(null.check.chi2_red)
-                || b.aw_change_percent.abs() >= VISIBLE_SIZE.0
-                || b.seat_change_points.abs() >= VISIBLE_SIZE.1)
+            && (b.fraction_closed >= MIN_CLOSED || score::within_noise(null.check.chi2_red))
     })
 }
 
@@ -169,7 +169,10 @@ pub(super) fn decide(
             // [`overdispersion`]): a misfit that leaves χ²/ν = 25 makes a 15-unit ΔBIC difference
             // chance (blind lab case, a stick-slip suspension and a base mount resonance both
             // closing 100 % at ΔBIC −5·10⁵, 15 apart; all runs put the friction 870 ahead).
-            let check_c = overdispersion(b.check.chi2_red);
+            // ĉ of the better candidate over the runs it was fitted and judged on: a check run
+            // that a misfit leaves at 3.9 while the training runs show 25 does not make a
+            // 36-unit difference evidence (blind suspension seed 2, case 014).
+            let check_c = overdispersion(b.check.chi2_red.max(b.train_chi2_red));
             let rival = cands.iter().skip(1).find(|s| {
                 (s.delta_bic - b.delta_bic) / check_c < IDENTIFIABLE_MARGIN
                     && s.fraction_closed >= MIN_CLOSED
@@ -228,11 +231,17 @@ pub(super) fn decide(
             (
                 b.id.clone(),
                 format!(
-                    "{} (detected: ΔBIC {:.1}, probability {:.2}) closes {:.0} % of the structural gap on the held-out run; its size: seat a_w {:+.1} %, SEAT {:+.1} points, band gap {:+.2} dB RMS{}{alt}",
+                    "{} (detected: ΔBIC {:.1}, probability {:.2}) {} {:.0} % of the {} on the held-out run; its size: seat a_w {:+.1} %, SEAT {:+.1} points, band gap {:+.2} dB RMS{}{alt}",
                     b.id,
                     b.delta_bic,
                     b.probability,
+                    if score::within_noise(d0) { "lowers" } else { "closes" },
                     100.0 * b.fraction_closed,
+                    if score::within_noise(d0) {
+                        "reduced χ² the re-fitted base model leaves within the noise"
+                    } else {
+                        "structural gap"
+                    },
                     b.aw_change_percent,
                     b.seat_change_points,
                     b.band_gap_change_db,
@@ -395,7 +404,7 @@ mod tests {
     use super::*;
     use crate::diagnosis::gapmap::Weighted;
 
-    /// A ranked entry with the figures the rule reads (sizes 2 % / 2 points, visible).
+    /// A ranked entry with the figures the rule reads (sizes 2 % / 2 points).
     fn ranked(id: &str, train: f64, check: f64, dbic: f64, dbic_all: f64, closed: f64) -> Ranked {
         Ranked {
             id: id.into(),
@@ -450,6 +459,64 @@ mod tests {
         let accepted = held_out_accepted(&null, &cands);
         let (verdict, text, _) = decide(&null, &cands, accepted, None);
         assert_eq!(verdict, "sensor-gain", "{text}");
+    }
+
+    #[test]
+    fn within_the_noise_a_detected_effect_is_named_however_little_it_closes() {
+        // Bench case 188: the null fits the check run within the noise (0.41); a backrest is
+        // detected at ΔBIC −27.4 and lowers χ² by 23 %. There is no structural gap to close.
+        let null = ranked("null", 0.42, 0.41, 0.0, 0.0, 1.0);
+        let mut cands = vec![ranked("backrest", 0.29, 0.31, -27.4, -167.8, 0.23)];
+        cands[0].aw_change_percent = 0.5;
+        cands[0].seat_change_points = 0.6;
+        cands[0].band_gap_change_db = -0.0;
+        let accepted = held_out_accepted(&null, &cands);
+        let (verdict, text, _) = decide(&null, &cands, accepted, None);
+        assert_eq!(verdict, "backrest", "{text}");
+        assert!(text.contains("practically small"), "{text}");
+        assert!(text.contains("lowers 23 % of the reduced χ²"), "{text}");
+        // Not detected (ΔBIC −8): nothing significant, `none`.
+        cands[0].delta_bic = -8.0;
+        let accepted = held_out_accepted(&null, &cands);
+        assert!(accepted.is_none());
+        assert_eq!(decide(&null, &cands, accepted, None).0, "none");
+        // Above the noise the fraction of the gap still rules: 23 % of a gap of 1.6 is not named.
+        let gap = ranked("null", 1.7, 1.6, 0.0, 0.0, 1.0);
+        cands[0].delta_bic = -27.4;
+        assert!(held_out_accepted(&gap, &cands).is_none());
+    }
+
+    #[test]
+    fn the_overdispersion_of_a_margin_counts_the_training_runs_misfit() {
+        // Blind suspension seed 2, case 014 (stick-slip): both candidates close all of the check
+        // run's gap and leave χ²/ν 3.9 there but 24–25 on the training runs. 36 units apart on
+        // the check run is 1.4 ĉ of the training misfit: a tie that all runs (828 apart) decide.
+        let null = ranked("null", 13_154.0, 979.5, 0.0, 0.0, 1.0);
+        let cands = vec![
+            ranked(
+                "sensor-mount-base",
+                24.8,
+                3.86,
+                -524_892.3,
+                -13_102_329.0,
+                1.0,
+            ),
+            ranked(
+                "suspension-friction",
+                23.9,
+                3.93,
+                -524_856.5,
+                -13_103_157.3,
+                1.0,
+            ),
+        ];
+        let accepted = held_out_accepted(&null, &cands);
+        let (verdict, text, _) = decide(&null, &cands, accepted, None);
+        assert_eq!(verdict, "suspension-friction", "{text}");
+        assert!(
+            text.contains("on all runs together suspension-friction is ahead"),
+            "{text}"
+        );
     }
 
     #[test]
