@@ -228,20 +228,24 @@ pub(super) fn decide(
                 .map_or(String::new(), |s| {
                     format!(" ({} fits almost as well: the form is uncertain)", s.id)
                 });
+            let what = if score::within_noise(d0) {
+                format!(
+                    "lowers the held-out run's reduced χ², already within the noise after the re-fit, by {:.0} %",
+                    100.0 * b.fraction_closed
+                )
+            } else {
+                format!(
+                    "closes {:.0} % of the structural gap on the held-out run",
+                    100.0 * b.fraction_closed
+                )
+            };
             (
                 b.id.clone(),
                 format!(
-                    "{} (detected: ΔBIC {:.1}, probability {:.2}) {} {:.0} % of the {} on the held-out run; its size: seat a_w {:+.1} %, SEAT {:+.1} points, band gap {:+.2} dB RMS{}{alt}",
+                    "{} (detected: ΔBIC {:.1}, probability {:.2}) {what}; its size: seat a_w {:+.1} %, SEAT {:+.1} points, band gap {:+.2} dB RMS{}{alt}",
                     b.id,
                     b.delta_bic,
                     b.probability,
-                    if score::within_noise(d0) { "lowers" } else { "closes" },
-                    100.0 * b.fraction_closed,
-                    if score::within_noise(d0) {
-                        "reduced χ² the re-fitted base model leaves within the noise"
-                    } else {
-                        "structural gap"
-                    },
                     b.aw_change_percent,
                     b.seat_change_points,
                     b.band_gap_change_db,
@@ -474,7 +478,10 @@ mod tests {
         let (verdict, text, _) = decide(&null, &cands, accepted, None);
         assert_eq!(verdict, "backrest", "{text}");
         assert!(text.contains("practically small"), "{text}");
-        assert!(text.contains("lowers 23 % of the reduced χ²"), "{text}");
+        assert!(
+            text.contains("within the noise after the re-fit, by 23 %"),
+            "{text}"
+        );
         // Not detected (ΔBIC −8): nothing significant, `none`.
         cands[0].delta_bic = -8.0;
         let accepted = held_out_accepted(&null, &cands);
