@@ -66,8 +66,8 @@ pub(super) fn overdispersion(chi2_red: f64) -> f64 {
 /// gate (0.5 % of a_w) and the relative fall of χ² stood here while the null re-fit stopped short
 /// of its optimum on parameters at their bounds: clean subjects then left residues that candidates
 /// detected at ΔBIC −24 (CI subset case 14, seed 7); with the active-set fit
-/// ([`super::fitting`]) clean cases' best ΔBIC is ≥ −4.1 on the blind sets and a backrest detected
-/// at −27 closing 23 % (bench case 188) is named.
+/// ([`super::fitting`]) the best ΔBIC of the 32 blind clean cases whose null fits within the noise
+/// is ≥ −4.1, and a backrest detected at −27 closing 23 % (bench case 188) is named.
 pub(super) fn held_out_accepted<'a>(null: &Ranked, cands: &'a [Ranked]) -> Option<&'a Ranked> {
     cands.first().filter(|b| {
         b.delta_bic <= ACCEPT_DELTA_BIC
