@@ -59,23 +59,20 @@ pub(super) const SCOUT_ITERATIONS: usize = 10;
 /// LM iterations of the final fit.
 pub(super) const FIT_ITERATIONS: usize = 40;
 
-/// Bounded Levenberg–Marquardt with an active set ([`fit::Settings::active_set`]): a base
-/// parameter on its ±30 % bound with the gradient pushing out is held while the others are solved
-/// for. Projection alone stalled there: the projected step of a parameter pressed against its
-/// bound gives no decrease, λ grows and the fit stops short of the optimum (CI subset case 14,
-/// seed 7: null χ² 0.228 with projection, 0.197 with the active set, 0.179 started from the
-/// truth's parameters; a candidate, started at the null's optimum, then gained from the
-/// optimiser alone and was detected at ΔBIC −23.6 on a clean seat).
-fn lm<F>(f: &F, u0: &[f64], lo: &[f64], hi: &[f64], max_iter: usize) -> Result<fit::Fit>
-where
-    F: Fn(&[f64]) -> Result<Vec<f64>> + Sync,
-{
-    let settings = fit::Settings {
+/// Levenberg–Marquardt settings of every diagnosis fit: `max_iter` iterations and an active set
+/// ([`fit::Settings::active_set`]), so a base parameter on its ±30 % bound with the gradient
+/// pushing out is held while the others are solved for. Projection alone stalled there: the
+/// projected step of a parameter pressed against its bound gives no decrease, λ grows and the fit
+/// stops short of the optimum (CI subset case 14, seed 7: null χ² 0.228 with projection, 0.197
+/// with the active set, 0.179 started from the truth's parameters; a candidate, started at the
+/// null's optimum, then gained from the optimiser alone and was detected at ΔBIC −23.6 on a clean
+/// seat).
+fn settings(max_iter: usize) -> fit::Settings {
+    fit::Settings {
         max_iter,
         active_set: true,
         ..fit::Settings::default()
-    };
-    fit::minimise(|| Ok(()), |_, u| f(u), u0, lo, hi, &settings)
+    }
 }
 
 /// Fits the stack `cands` (empty = null) jointly with the base parameters on `train`; `warm` gives
@@ -122,12 +119,12 @@ pub(super) fn fit_candidate(
             .collect();
     }
     let fit = if starts.len() == 1 {
-        lm(&f, &starts[0], &lo, &hi, FIT_ITERATIONS)?
+        fit::levenberg_marquardt(&f, &starts[0], &lo, &hi, &settings(FIT_ITERATIONS))?
     } else {
         // Scout every start briefly, then carry the best one to convergence.
         let scouts: Vec<fit::Fit> = starts
             .par_iter()
-            .map(|s| lm(&f, s, &lo, &hi, SCOUT_ITERATIONS))
+            .map(|s| fit::levenberg_marquardt(&f, s, &lo, &hi, &settings(SCOUT_ITERATIONS)))
             .collect::<Result<_>>()?;
         let mut best: Option<fit::Fit> = None;
         for ft in scouts {
@@ -136,7 +133,7 @@ pub(super) fn fit_candidate(
             }
         }
         let scout = best.expect("at least one start");
-        lm(&f, &scout.u, &lo, &hi, FIT_ITERATIONS)?
+        fit::levenberg_marquardt(&f, &scout.u, &lo, &hi, &settings(FIT_ITERATIONS))?
     };
     Ok(Fitted {
         variant: build(base, cands, &fit.u, rms_ref)?,

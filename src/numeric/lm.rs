@@ -153,8 +153,7 @@ pub struct Settings {
 
 impl Default for Settings {
     /// 100 iterations, Jacobian step 1e-4 of the range (inward at the upper bound), relative
-    /// tolerance 1e-6, no gradient test, Marquardt's damping, projection only (the gap
-    /// diagnosis's settings).
+    /// tolerance 1e-6, no gradient test, Marquardt's damping, projection only.
     fn default() -> Self {
         Settings {
             max_iter: 100,
@@ -185,23 +184,19 @@ fn cost(r: &[f64]) -> f64 {
     r.iter().map(|x| x * x).sum()
 }
 
-/// Minimises Σ r(u)² within `lo ≤ u ≤ hi`, starting at `u0`, with default [`Settings`] but
-/// `max_iter`; `f` returns the residuals (the same count at every point).
+/// Minimises Σ r(u)² within `lo ≤ u ≤ hi`, starting at `u0`, with `settings`; `f` returns the
+/// residuals (the same count at every point) and needs no workspace of its own.
 pub fn levenberg_marquardt<F>(
     f: &F,
     u0: &[f64],
     lo: &[f64],
     hi: &[f64],
-    max_iter: usize,
+    settings: &Settings,
 ) -> Result<Fit>
 where
     F: Fn(&[f64]) -> Result<Vec<f64>> + Sync,
 {
-    let settings = Settings {
-        max_iter,
-        ..Settings::default()
-    };
-    minimise(|| Ok(()), |_, u| f(u), u0, lo, hi, &settings)
+    minimise(|| Ok(()), |_, u| f(u), u0, lo, hi, settings)
 }
 
 /// Minimises Σ r(u)² within `lo ≤ u ≤ hi`, starting at `u0`. `f` evaluates the residuals in a
@@ -359,7 +354,8 @@ mod tests {
                 .map(|(t, y)| u[0] * (-u[1] * t).exp() - y)
                 .collect())
         };
-        let fit = levenberg_marquardt(&f, &[1.0, 0.1], &[0.0, 0.0], &[10.0, 5.0], 100).unwrap();
+        let s = Settings::default();
+        let fit = levenberg_marquardt(&f, &[1.0, 0.1], &[0.0, 0.0], &[10.0, 5.0], &s).unwrap();
         assert!(
             (fit.u[0] - 2.0).abs() < 1e-6 && (fit.u[1] - 0.7).abs() < 1e-6,
             "{:?}",
@@ -379,15 +375,7 @@ mod tests {
                 active_set,
                 ..Settings::default()
             };
-            minimise(
-                || Ok(()),
-                |_, u| f(u),
-                &[-1.0, 3.0],
-                &[-2.0, -2.0],
-                &[1.0, 5.0],
-                &s,
-            )
-            .unwrap()
+            levenberg_marquardt(&f, &[-1.0, 3.0], &[-2.0, -2.0], &[1.0, 5.0], &s).unwrap()
         };
         let held = run(true);
         assert!(
@@ -404,7 +392,11 @@ mod tests {
     #[test]
     fn stops_at_an_active_bound() {
         let f = |u: &[f64]| -> Result<Vec<f64>> { Ok(vec![u[0] - 5.0]) };
-        let fit = levenberg_marquardt(&f, &[0.0], &[-1.0], &[1.0], 50).unwrap();
+        let s = Settings {
+            max_iter: 50,
+            ..Settings::default()
+        };
+        let fit = levenberg_marquardt(&f, &[0.0], &[-1.0], &[1.0], &s).unwrap();
         assert!((fit.u[0] - 1.0).abs() < 1e-12);
     }
 
