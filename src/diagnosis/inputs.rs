@@ -181,6 +181,34 @@ pub(super) fn clipped(s: &Signals) -> Vec<(String, usize, f64)> {
         .collect()
 }
 
+/// Warnings for runs given twice: the check run equal to a training run (its score is then not
+/// held out, and an over-fitted candidate is not caught) or a training run repeated (it counts
+/// twice in the fit and the evidence). Runs are the same recording when their sample rates and
+/// base channels are identical, sample for sample, whatever their file names.
+pub(super) fn repeated(train: &[Signals], check: &Signals) -> Vec<String> {
+    let same = |a: &Signals, b: &Signals| {
+        a.sample_rate_hz == b.sample_rate_hz
+            && a.get("a_base_z").is_some()
+            && a.get("a_base_z") == b.get("a_base_z")
+    };
+    let mut out = Vec::new();
+    for (i, t) in train.iter().enumerate() {
+        if same(t, check) {
+            out.push(format!(
+                "the check run {} is the same recording as training run {}: its score is not held out, so an over-fitted candidate is not caught; give a run the fit has not seen",
+                check.source, t.source
+            ));
+        }
+        if let Some(u) = train[..i].iter().find(|u| same(u, t)) {
+            out.push(format!(
+                "training run {} is the same recording as {}: it counts twice in the fit and the evidence",
+                t.source, u.source
+            ));
+        }
+    }
+    out
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -198,5 +226,42 @@ mod tests {
         assert_eq!(c.len(), 1, "{c:?}");
         assert_eq!(c[0].0, "a_seat_z");
         assert!(c[0].1 > 100 && (c[0].2.abs() - 1.2).abs() < 1e-12);
+    }
+
+    fn run(name: &str, fs: f64, base: &[f64]) -> Signals {
+        let mut s = Signals::new(fs, name.to_string());
+        s.push("a_base_z".to_string(), base.to_vec()).unwrap();
+        s.push("a_seat_z".to_string(), base.iter().map(|v| 0.9 * v).collect())
+            .unwrap();
+        s
+    }
+
+    #[test]
+    fn a_run_given_twice_is_named() {
+        let a = run("low.csv", 500.0, &[0.1, -0.2, 0.3, 0.05]);
+        let b = run("high.csv", 500.0, &[0.3, -0.6, 0.9, 0.15]);
+        assert!(
+            repeated(
+                &[a.clone(), b.clone()],
+                &run("mid.csv", 500.0, &[0.2, 0.1, -0.1, 0.0])
+            )
+            .is_empty()
+        );
+        // The check run is a training run under another name.
+        let w = repeated(
+            &[a.clone(), b.clone()],
+            &run("copy.csv", 500.0, &[0.3, -0.6, 0.9, 0.15]),
+        );
+        assert_eq!(w.len(), 1);
+        assert!(
+            w[0].contains("copy.csv") && w[0].contains("high.csv") && w[0].contains("not held out")
+        );
+        // A training run repeated; the same samples at another rate are another recording.
+        let w = repeated(
+            &[a.clone(), b.clone(), a.clone()],
+            &run("x.csv", 250.0, &[0.1, -0.2, 0.3, 0.05]),
+        );
+        assert_eq!(w.len(), 1);
+        assert!(w[0].contains("counts twice"));
     }
 }

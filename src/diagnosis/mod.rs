@@ -112,6 +112,7 @@ pub fn diagnose(model: &Model, train: &[Signals], check: &Signals) -> Result<Dia
     );
     inputs::keep_common(&mut tr, &mut ck, &mut warnings);
     check_inputs(&tr, &ck, &mut warnings)?;
+    warnings.extend(inputs::repeated(train, check));
     // On the raw estimates: masking zeroes the coherence of paths with few coherent bins, and a
     // distorting path at high magnitude is exactly such a path.
     let mut distortion =
