@@ -404,3 +404,45 @@ fn a_preloaded_foam_is_named_by_its_distortion_and_a_linear_foam_is_not() {
         }
     }
 }
+
+fn inverted(s: &Signals, name: &str) -> Signals {
+    let mut out = Signals::new(s.sample_rate_hz, s.source.clone());
+    for (n, d) in s.names.iter().zip(&s.data) {
+        let k = if n == name { -1.0 } else { 1.0 };
+        out.push(n.clone(), d.iter().map(|v| k * v).collect())
+            .unwrap();
+    }
+    out
+}
+
+#[test]
+fn an_upside_down_seat_accelerometer_is_named_and_the_seat_still_judged() {
+    // The clean case with a_seat_z inverted in every run (was: `sensor-delay` at ΔBIC −3.8e7 on a
+    // lab case): the channel is named as a gain of −1, and with the sign corrected the seat is
+    // judged clean as before. The check run repeated as a training run is named too.
+    let case = null_case();
+    let model = catalog::resolve("reference").unwrap();
+    let train: Vec<Signals> = case.train.iter().map(|s| inverted(s, "a_seat_z")).collect();
+    let check = inverted(&case.check, "a_seat_z");
+    let d = diagnose(&model, &train, &check).unwrap();
+    assert_eq!(d.verdict, "sensor-gain", "{}", d.verdict_text);
+    assert_eq!(d.polarity.len(), 1, "{:?}", d.polarity);
+    assert_eq!(d.polarity[0].channels, "a_seat_z");
+    assert_eq!(d.polarity[0].runs.len(), train.len() + 1);
+    assert!(
+        d.verdict_text
+            .contains("with the sign corrected, no effect is detected"),
+        "{}",
+        d.verdict_text
+    );
+    let mut again = train.clone();
+    again.push(check.clone());
+    let d = diagnose(&model, &again, &check).unwrap();
+    assert!(
+        d.warnings
+            .iter()
+            .any(|w| w.contains("is the same recording as training run")),
+        "{:?}",
+        d.warnings
+    );
+}

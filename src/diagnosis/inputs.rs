@@ -2,6 +2,7 @@
 //! paths left out where too few bins are coherent.
 
 use super::measure::{Path, RunSpectra};
+use super::outcome::Inversion;
 use super::*;
 use crate::error::{Error, Result};
 
@@ -209,6 +210,162 @@ pub(super) fn repeated(train: &[Signals], check: &Signals) -> Vec<String> {
     out
 }
 
+/// Vertical paths whose sign below the first resonance is known: every vertical transmissibility
+/// tends to +1 and the apparent mass to +M there (papers 001 eqs. 8–10).
+const SIGNED_PATHS: [Path; 4] = [
+    Path::BaseSeat,
+    Path::SeatHead,
+    Path::BaseHead,
+    Path::ApparentMass,
+];
+
+/// Finds channels whose polarity is inverted and corrects the path estimates in place (H1 of a
+/// path with one inverted channel is negated; coherence and PSDs do not change).
+///
+/// Per run and path, the sign is the median over coherent bins up to 1.5 × the model's first
+/// natural frequency (at least the 4 lowest coherent bins) of cos(arg(H_meas/H_model)), with
+/// H_model the nominal model's linear FRF ([`crate::response::frf`]): below its first resonance a
+/// structural error moves the phase by tens of degrees, an inverted channel by 180°. A path reads
+/// inverted below −0.5, upright above +0.5. The channels are then the fewest flips that explain
+/// every decided path; a path set no flip pattern explains is left alone, with a warning.
+pub(super) fn polarity(
+    system: &crate::system::System,
+    runs: &mut [&mut RunSpectra],
+    warnings: &mut Vec<String>,
+) -> Vec<Inversion> {
+    let f1 = crate::response::modes::undamped(system)
+        .ok()
+        .and_then(|m| m.first().map(|m| m.freq_hz))
+        .unwrap_or(4.0);
+    let channel = |name: &str| system.channels.iter().position(|c| c.name == name);
+    let mut found: Vec<Inversion> = Vec::new();
+    for r in runs.iter_mut() {
+        // Sign of each signed path present in this run: Some(±1) decided, None undecided.
+        let mut signs: Vec<(Path, f64)> = Vec::new();
+        for p in &r.paths {
+            if !SIGNED_PATHS.contains(&p.path) {
+                continue;
+            }
+            let (x, y) = p.path.channels();
+            let (Some(ix), Some(iy)) = (channel(x), channel(y)) else {
+                continue;
+            };
+            let bins: Vec<usize> = (0..r.freq_hz.len())
+                .filter(|&i| score::trusted(p.coherence[i]))
+                .collect();
+            let mut low: Vec<usize> = bins
+                .iter()
+                .copied()
+                .filter(|&i| r.freq_hz[i] <= 1.5 * f1)
+                .collect();
+            if low.len() < 4 {
+                low = bins.iter().copied().take(4).collect();
+            }
+            if low.len() < 4 {
+                continue;
+            }
+            let mut cos: Vec<f64> = low
+                .iter()
+                .filter_map(|&i| {
+                    let ch = crate::response::frf::solve_point(system, r.freq_hz[i]).ok()?;
+                    let model = ch[iy] / ch[ix];
+                    let c = (p.h1[i] / model).arg().cos();
+                    c.is_finite().then_some(c)
+                })
+                .collect();
+            if cos.len() < 4 {
+                continue;
+            }
+            cos.sort_by(f64::total_cmp);
+            let med = cos[cos.len() / 2];
+            if med.abs() > 0.5 {
+                signs.push((p.path, med.signum()));
+            }
+        }
+        if signs.iter().all(|(_, s)| *s > 0.0) {
+            continue;
+        }
+        // The fewest channel flips that give every decided path its sign.
+        let names: Vec<&str> = ["a_base_z", "a_seat_z", "a_head_z", "f_seat_z"]
+            .into_iter()
+            .filter(|n| {
+                signs
+                    .iter()
+                    .any(|(p, _)| [p.channels().0, p.channels().1].contains(n))
+            })
+            .collect();
+        let sign_of = |mask: usize, n: &str| {
+            let i = names.iter().position(|m| *m == n);
+            if i.is_some_and(|i| mask >> i & 1 == 1) {
+                -1.0
+            } else {
+                1.0
+            }
+        };
+        let explains = |mask: usize| {
+            signs.iter().all(|(p, s)| {
+                let (x, y) = p.channels();
+                sign_of(mask, x) * sign_of(mask, y) == *s
+            })
+        };
+        let fewest = (0..1usize << names.len())
+            .filter(|&m| explains(m))
+            .map(|m| m.count_ones())
+            .min();
+        let Some(fewest) = fewest else {
+            warnings.push(format!(
+                "{}: the phases below the first resonance fit no pattern of inverted channels (paths {}): polarity left as read",
+                r.source,
+                signs
+                    .iter()
+                    .map(|(p, s)| format!("{} {}", p.name(), if *s > 0.0 { "upright" } else { "inverted" }))
+                    .collect::<Vec<_>>()
+                    .join(", ")
+            ));
+            continue;
+        };
+        let masks: Vec<usize> = (0..1usize << names.len())
+            .filter(|&m| explains(m) && m.count_ones() == fewest)
+            .collect();
+        // Ambiguous masks (base→seat alone: base or seat) name every channel they could be.
+        let label = masks
+            .iter()
+            .map(|&m| {
+                names
+                    .iter()
+                    .enumerate()
+                    .filter(|(i, _)| m >> i & 1 == 1)
+                    .map(|(_, n)| *n)
+                    .collect::<Vec<_>>()
+                    .join(" and ")
+            })
+            .collect::<Vec<_>>()
+            .join(" or ");
+        let mask = masks[0];
+        for p in &mut r.paths {
+            let (x, y) = p.path.channels();
+            if SIGNED_PATHS.contains(&p.path) && sign_of(mask, x) * sign_of(mask, y) < 0.0 {
+                p.h1.iter_mut().for_each(|h| *h = -*h);
+            }
+        }
+        match found.iter_mut().find(|f| f.channels == label) {
+            Some(f) => f.runs.push(r.source.clone()),
+            None => found.push(Inversion {
+                channels: label,
+                runs: vec![r.source.clone()],
+            }),
+        }
+    }
+    for f in &found {
+        warnings.push(format!(
+            "{} inverted in {}: below the first resonance its paths are 180° from the model's (a transmissibility tends to +1 there, the apparent mass to +M); the diagnosis uses it with the sign corrected — check the sensor's mounting or axis convention",
+            f.channels,
+            f.runs.join(", ")
+        ));
+    }
+    found
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -231,8 +388,11 @@ mod tests {
     fn run(name: &str, fs: f64, base: &[f64]) -> Signals {
         let mut s = Signals::new(fs, name.to_string());
         s.push("a_base_z".to_string(), base.to_vec()).unwrap();
-        s.push("a_seat_z".to_string(), base.iter().map(|v| 0.9 * v).collect())
-            .unwrap();
+        s.push(
+            "a_seat_z".to_string(),
+            base.iter().map(|v| 0.9 * v).collect(),
+        )
+        .unwrap();
         s
     }
 
@@ -263,5 +423,62 @@ mod tests {
         );
         assert_eq!(w.len(), 1);
         assert!(w[0].contains("counts twice"));
+    }
+
+    /// The reference model's own response to a random base, 120 s at 256 Hz, with `invert`
+    /// negated.
+    fn replayed(invert: &[&str]) -> (crate::model::Model, RunSpectra) {
+        use rand::SeedableRng;
+        use rand_distr::Distribution;
+        let model = crate::model::catalog::resolve("reference").unwrap();
+        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(7);
+        let base: Vec<f64> = (0..256 * 120)
+            .map(|_| rand_distr::StandardNormal.sample(&mut rng))
+            .collect();
+        let sim = super::super::replay::replay(model.system(), &base, 256.0, "run.csv").unwrap();
+        let mut s = Signals::new(256.0, "run.csv".to_string());
+        for (n, d) in sim.names.iter().zip(&sim.data) {
+            let k = if invert.contains(&n.as_str()) {
+                -1.0
+            } else {
+                1.0
+            };
+            s.push(n.clone(), d.iter().map(|v| k * v).collect())
+                .unwrap();
+        }
+        (model, super::super::measure::estimate(&s).unwrap())
+    }
+
+    #[test]
+    fn an_inverted_channel_is_found_and_corrected() {
+        let (model, upright) = replayed(&[]);
+        for (flip, name) in [
+            (vec!["a_seat_z"], "a_seat_z"),
+            (vec!["a_head_z"], "a_head_z"),
+            (vec!["f_seat_z"], "f_seat_z"),
+            (vec!["a_base_z"], "a_base_z"),
+        ] {
+            let (_, mut r) = replayed(&flip);
+            let mut w = Vec::new();
+            let found = polarity(model.system(), &mut [&mut r], &mut w);
+            assert_eq!(found.len(), 1, "{flip:?}: {found:?}");
+            assert_eq!(found[0].channels, name);
+            assert!(w[0].contains("inverted in run.csv"), "{w:?}");
+            // Every path is back to the upright estimate.
+            for (p, q) in r.paths.iter().zip(&upright.paths) {
+                for (a, b) in p.h1.iter().zip(&q.h1) {
+                    assert!(
+                        (a - b).norm() <= 1e-9 * b.norm().max(1e-12),
+                        "{flip:?} {:?}",
+                        p.path
+                    );
+                }
+            }
+        }
+        // Upright channels are left alone, silently.
+        let (_, mut r) = replayed(&[]);
+        let mut w = Vec::new();
+        assert!(polarity(model.system(), &mut [&mut r], &mut w).is_empty());
+        assert!(w.is_empty());
     }
 }

@@ -28,7 +28,7 @@ pub mod score;
 pub mod truth;
 mod verdict;
 
-pub use outcome::{BandCoverage, Diagnosis, Estimate, Ranked, RunSummary, Stage};
+pub use outcome::{BandCoverage, Diagnosis, Estimate, Inversion, Ranked, RunSummary, Stage};
 pub use verdict::separating_measurement;
 
 use crate::error::{Error, Result};
@@ -151,6 +151,10 @@ pub fn diagnose(model: &Model, train: &[Signals], check: &Signals) -> Result<Dia
         }
         mask_incoherent(r);
     }
+    let polarity = {
+        let mut all: Vec<&mut RunSpectra> = tr.iter_mut().chain(std::iter::once(&mut ck)).collect();
+        inputs::polarity(system, &mut all, &mut warnings)
+    };
     let n_train = score::residual_count(&tr).max(1) as f64;
     let n_check = score::residual_count(std::slice::from_ref(&ck)).max(1) as f64;
 
@@ -411,7 +415,38 @@ pub fn diagnose(model: &Model, train: &[Signals], check: &Signals) -> Result<Dia
     {
         warnings.push(w);
     }
+    // An inverted channel is a calibration error of gain −1 (catalogue E14): named first when
+    // nothing structural is detected, after the structural effect otherwise.
+    let (verdict, verdict_text) = match polarity.first() {
+        None => (verdict, verdict_text),
+        Some(_) => {
+            let what = polarity
+                .iter()
+                .map(|f| format!("{} inverted in {}", f.channels, f.runs.join(", ")))
+                .collect::<Vec<_>>()
+                .join("; ");
+            if !named.iter().any(|n| n == "sensor-gain") {
+                named.push("sensor-gain".into());
+            }
+            if verdict == "none" {
+                (
+                    "sensor-gain".to_string(),
+                    format!(
+                        "a sensor's polarity is inverted ({what}); with the sign corrected, {verdict_text}"
+                    ),
+                )
+            } else {
+                (
+                    verdict,
+                    format!(
+                        "{verdict_text}. Also a sensor's polarity is inverted ({what}); the diagnosis above uses it corrected"
+                    ),
+                )
+            }
+        }
+    };
     Ok(Diagnosis {
+        polarity,
         named,
         bands,
         verdict,

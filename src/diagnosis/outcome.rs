@@ -86,6 +86,8 @@ pub struct Diagnosis {
     /// The effects named (detected and closing part of the gap), best first; empty for `none`,
     /// `unexplained` and `not-identifiable`.
     pub named: Vec<String>,
+    /// Channels found inverted (gain −1) and corrected before the fit; see `inputs::polarity`.
+    pub polarity: Vec<Inversion>,
     /// Per path, the one-third-octave bands judged (coherent on the check run) and those that
     /// could not be.
     pub bands: Vec<BandCoverage>,
@@ -146,4 +148,15 @@ pub struct BandCoverage {
     pub judged_hz: Vec<f64>,
     /// Band centres (Hz) that could not be judged (coherence < 0.8, or no bin at this resolution).
     pub not_judged_hz: Vec<f64>,
+}
+
+/// A channel whose sign is inverted in some runs (an accelerometer mounted upside down, a force
+/// plate reading compression as negative: the commonest set-up error after units).
+#[derive(Debug, Clone, Serialize, serde::Deserialize)]
+pub struct Inversion {
+    /// The inverted channel, or the two channels of which one is (`a_base_z or a_seat_z` when
+    /// only base→seat is measured).
+    pub channels: String,
+    /// The runs it was found in.
+    pub runs: Vec<String>,
 }

@@ -103,6 +103,9 @@ struct DiagnosisIn {
     /// Absent from files written before the distortion trend existed.
     #[serde(default)]
     distortion: Option<DistortionIn>,
+    /// Absent from files written before the polarity check existed.
+    #[serde(default)]
+    polarity: Vec<crate::diagnosis::Inversion>,
 }
 
 #[derive(Debug, Deserialize)]
@@ -234,6 +237,7 @@ impl Rebuild<'_> {
             })
             .collect::<Result<_>>()?;
         Ok(Diagnosis {
+            polarity: d.polarity,
             verdict: d.verdict,
             named: d.named,
             bands: d
