@@ -419,21 +419,54 @@ fn inverted(s: &Signals, name: &str) -> Signals {
 fn an_upside_down_seat_accelerometer_is_named_and_the_seat_still_judged() {
     // The clean case with a_seat_z inverted in every run (was: `sensor-delay` at ΔBIC −3.8e7 on a
     // lab case): the channel is named as a gain of −1, and with the sign corrected the seat is
-    // judged clean as before. The check run repeated as a training run is named too.
+    // judged clean as before, its a_w as without the error. The check run repeated as a training
+    // run is named too.
     let case = null_case();
     let model = catalog::resolve("reference").unwrap();
     let train: Vec<Signals> = case.train.iter().map(|s| inverted(s, "a_seat_z")).collect();
     let check = inverted(&case.check, "a_seat_z");
     let d = diagnose(&model, &train, &check).unwrap();
+    let upright = diagnose(&model, &case.train, &case.check).unwrap();
     assert_eq!(d.verdict, "sensor-gain", "{}", d.verdict_text);
-    assert_eq!(d.polarity.len(), 1, "{:?}", d.polarity);
-    assert_eq!(d.polarity[0].channels, "a_seat_z");
-    assert_eq!(d.polarity[0].runs.len(), train.len() + 1);
+    assert_eq!(
+        d.null.check.weighted.aw_gap_percent,
+        upright.null.check.weighted.aw_gap_percent
+    );
+    assert_eq!(d.channel_errors.len(), 1, "{:?}", d.channel_errors);
+    assert_eq!(d.channel_errors[0].channels, "a_seat_z");
+    assert_eq!(d.channel_errors[0].factor, -1.0);
+    assert_eq!(d.channel_errors[0].runs.len(), train.len() + 1);
     assert!(
         d.verdict_text
-            .contains("with the sign corrected, no effect is detected"),
+            .contains("with it corrected, no effect is detected"),
         "{}",
         d.verdict_text
+    );
+    // A seat accelerometer in g read as m/s²: named as a unit slip, corrected, a_w as upright.
+    let g = 9.80665;
+    let slip = |s: &Signals| {
+        let mut out = Signals::new(s.sample_rate_hz, s.source.clone());
+        for (n, d) in s.names.iter().zip(&s.data) {
+            let k = if n == "a_seat_z" { 1.0 / g } else { 1.0 };
+            out.push(n.clone(), d.iter().map(|v| k * v).collect())
+                .unwrap();
+        }
+        out
+    };
+    let slipped: Vec<Signals> = case.train.iter().map(slip).collect();
+    let d = diagnose(&model, &slipped, &slip(&case.check)).unwrap();
+    assert_eq!(d.verdict, "sensor-gain", "{}", d.verdict_text);
+    assert!(
+        d.verdict_text.contains("g read as m/s²"),
+        "{}",
+        d.verdict_text
+    );
+    assert!(
+        (d.null.check.weighted.aw_gap_percent - upright.null.check.weighted.aw_gap_percent).abs()
+            < 0.05,
+        "{} vs {}",
+        d.null.check.weighted.aw_gap_percent,
+        upright.null.check.weighted.aw_gap_percent
     );
     let mut again = train.clone();
     again.push(check.clone());

@@ -2,9 +2,10 @@
 //! paths left out where too few bins are coherent.
 
 use super::measure::{Path, RunSpectra};
-use super::outcome::Inversion;
+use super::outcome::ChannelError;
 use super::*;
 use crate::error::{Error, Result};
+use num_complex::Complex64;
 
 pub(super) fn paths_of(r: &RunSpectra) -> Vec<Path> {
     r.paths.iter().map(|p| p.path).collect()
@@ -186,7 +187,7 @@ pub(super) fn clipped(s: &Signals) -> Vec<(String, usize, f64)> {
 /// held out, and an over-fitted candidate is not caught) or a training run repeated (it counts
 /// twice in the fit and the evidence). Runs are the same recording when their sample rates and
 /// base channels are identical, sample for sample, whatever their file names.
-pub(super) fn repeated(train: &[Signals], check: &Signals) -> Vec<String> {
+pub(super) fn repeated(train: &[&Signals], check: &Signals) -> Vec<String> {
     let same = |a: &Signals, b: &Signals| {
         a.sample_rate_hz == b.sample_rate_hz
             && a.get("a_base_z").is_some()
@@ -210,8 +211,8 @@ pub(super) fn repeated(train: &[Signals], check: &Signals) -> Vec<String> {
     out
 }
 
-/// Vertical paths whose sign below the first resonance is known: every vertical transmissibility
-/// tends to +1 and the apparent mass to +M there (papers 001 eqs. 8–10).
+/// Vertical paths whose level and sign below the first resonance are known: every vertical
+/// transmissibility tends to +1 and the apparent mass to +M there (papers 001 eqs. 8–10).
 const SIGNED_PATHS: [Path; 4] = [
     Path::BaseSeat,
     Path::SeatHead,
@@ -219,151 +220,283 @@ const SIGNED_PATHS: [Path; 4] = [
     Path::ApparentMass,
 ];
 
-/// Finds channels whose polarity is inverted and corrects the path estimates in place (H1 of a
-/// path with one inverted channel is negated; coherence and PSDs do not change).
+/// Per channel, the factor its samples are multiplied by to correct them.
+pub(super) type Fix = Vec<(&'static str, f64)>;
+
+/// Per channel, a value in [`fewest`]'s search (0: unchanged).
+type Assignment = Vec<(&'static str, f64)>;
+
+/// Channels a calibration check can name, in the order a tie is broken.
+const CHECKED: [&str; 4] = ["a_base_z", "a_seat_z", "a_head_z", "f_seat_z"];
+
+/// Unit mix-ups a channel's level can show, as (factor the channel reads, what it means): g and
+/// m/s², milli- and kilo- (mm/s², kN), mg, lbf and N. Read values are factor × true.
+const UNIT_SLIPS: [(f64, &str); 8] = [
+    (1.0 / 9.80665, "g read as m/s²"),
+    (9.80665, "m/s² read as g"),
+    (1.0e-3, "kilo-units (kN) read as base units"),
+    (1.0e3, "milli-units (mm/s²) read as base units"),
+    (1.0e3 / 9.80665, "mg read as m/s²"),
+    (9.80665e-3, "m/s² read as mg"),
+    (1.0 / 4.448_222, "lbf read as N"),
+    (4.448_222, "N read as lbf"),
+];
+
+/// A path's measured level and sign relative to the model below its first resonance.
+struct PathCheck {
+    path: Path,
+    /// Median of cos(arg(H_meas/H_model)): +1 upright, −1 inverted.
+    sign: f64,
+    /// Median of ln|H_meas/H_model|.
+    level: f64,
+}
+
+/// The level and sign of each vertical path of run `r` relative to the nominal model's linear
+/// FRF ([`crate::response::frf`]) over its coherent bins up to 1.5 × the model's first natural
+/// frequency `f1` (a path with fewer than 4 is not checked): below the first resonance a structural
+/// error moves a path by tens of per cent and degrees, an inverted channel by 180°, a unit slip by
+/// a fixed factor (9.81, 1000).
+fn path_checks(system: &crate::system::System, r: &RunSpectra, f1: f64) -> Vec<PathCheck> {
+    let channel = |name: &str| system.channels.iter().position(|c| c.name == name);
+    let mut out = Vec::new();
+    for p in &r.paths {
+        if !SIGNED_PATHS.contains(&p.path) {
+            continue;
+        }
+        let (x, y) = p.path.channels();
+        let (Some(ix), Some(iy)) = (channel(x), channel(y)) else {
+            continue;
+        };
+        let bins: Vec<usize> = (0..r.freq_hz.len())
+            .filter(|&i| score::trusted(p.coherence[i]))
+            .collect();
+        // Only below the first resonance: above it a shifted mode moves the phase by up to 180°.
+        let low: Vec<usize> = bins
+            .into_iter()
+            .filter(|&i| r.freq_hz[i] <= 1.5 * f1)
+            .collect();
+        let q: Vec<Complex64> = low
+            .iter()
+            .filter_map(|&i| {
+                let ch = crate::response::frf::solve_point(system, r.freq_hz[i]).ok()?;
+                let q = p.h1[i] / (ch[iy] / ch[ix]);
+                (q.norm() > 0.0 && q.is_finite()).then_some(q)
+            })
+            .collect();
+        if q.len() < 4 {
+            continue;
+        }
+        let median = |mut v: Vec<f64>| {
+            v.sort_by(f64::total_cmp);
+            v[v.len() / 2]
+        };
+        out.push(PathCheck {
+            path: p.path,
+            sign: median(q.iter().map(|q| q.arg().cos()).collect()),
+            level: median(q.iter().map(|q| q.norm().ln()).collect()),
+        });
+    }
+    out
+}
+
+/// The fewest channel corrections that explain every decided path: `decide(path)` gives the
+/// path's required value (None: undecided), `options` the values a corrected channel may take
+/// (log factors; the uncorrected value is 0), `fits(sum_y − sum_x, required)` the tolerance.
+/// Returns the channels' values and every channel set that explains the paths as well (a tie:
+/// base→seat alone cannot tell the base from the seat).
+fn fewest(
+    checks: &[PathCheck],
+    decide: impl Fn(&PathCheck) -> Option<f64>,
+    options: &[f64],
+    fits: impl Fn(f64, f64) -> bool,
+) -> Option<(Assignment, Vec<Vec<&'static str>>)> {
+    let names: Vec<&'static str> = CHECKED
+        .into_iter()
+        .filter(|n| {
+            checks
+                .iter()
+                .any(|c| [c.path.channels().0, c.path.channels().1].contains(n))
+        })
+        .collect();
+    let choices = options.len() + 1;
+    let total = choices.pow(names.len() as u32);
+    let value = |combo: usize, i: usize| {
+        let k = combo / choices.pow(i as u32) % choices;
+        if k == 0 { 0.0 } else { options[k - 1] }
+    };
+    let at = |combo: usize, n: &str| {
+        names
+            .iter()
+            .position(|m| *m == n)
+            .map_or(0.0, |i| value(combo, i))
+    };
+    let explains = |combo: usize| {
+        checks.iter().all(|c| match decide(c) {
+            None => true,
+            Some(want) => {
+                let (x, y) = c.path.channels();
+                fits(at(combo, y) - at(combo, x), want)
+            }
+        })
+    };
+    let changed = |combo: usize| (0..names.len()).filter(|&i| value(combo, i) != 0.0).count();
+    let best = (0..total).filter(|&c| explains(c)).map(changed).min()?;
+    let combos: Vec<usize> = (0..total)
+        .filter(|&c| explains(c) && changed(c) == best)
+        .collect();
+    let values = names
+        .iter()
+        .enumerate()
+        .map(|(i, n)| (*n, value(combos[0], i)))
+        .collect();
+    let mut sets: Vec<Vec<&'static str>> = Vec::new();
+    for &c in &combos {
+        let set: Vec<&'static str> = names
+            .iter()
+            .enumerate()
+            .filter(|(i, _)| value(c, *i) != 0.0)
+            .map(|(_, n)| *n)
+            .collect();
+        if !sets.contains(&set) {
+            sets.push(set);
+        }
+    }
+    Some((values, sets))
+}
+
+/// Calibration errors of the channels of each run, found on the path estimates: an inverted
+/// channel (an accelerometer mounted upside down, a force plate reading compression as negative)
+/// and a unit slip (a channel in g read as m/s², kN as N), the commonest set-up errors. Returns per
+/// run the factor to multiply each wrong channel by, and the findings (merged over runs) for the
+/// report; adds a warning per finding and for a level or sign no pattern explains.
 ///
-/// Per run and path, the sign is the median over coherent bins up to 1.5 × the model's first
-/// natural frequency (at least the 4 lowest coherent bins) of cos(arg(H_meas/H_model)), with
-/// H_model the nominal model's linear FRF ([`crate::response::frf`]): below its first resonance a
-/// structural error moves the phase by tens of degrees, an inverted channel by 180°. A path reads
-/// inverted below −0.5, upright above +0.5. The channels are then the fewest flips that explain
-/// every decided path; a path set no flip pattern explains is left alone, with a warning.
-pub(super) fn polarity(
+/// Per run and path, [`path_checks`] gives the sign and level against the model. A path reads
+/// inverted below −0.5 and upright above +0.5; its level is off by a unit factor when within
+/// ±35 % of one ([`UNIT_SLIPS`]) and right within 0.6–1.6 (a structural error's reach there).
+/// The channels named are the fewest that explain every decided path; a level off by more than
+/// 2.5× that no unit slip explains is reported, not corrected.
+pub(super) fn calibration(
     system: &crate::system::System,
-    runs: &mut [&mut RunSpectra],
+    runs: &[&RunSpectra],
     warnings: &mut Vec<String>,
-) -> Vec<Inversion> {
+) -> (Vec<Fix>, Vec<ChannelError>) {
     let f1 = crate::response::modes::undamped(system)
         .ok()
         .and_then(|m| m.first().map(|m| m.freq_hz))
         .unwrap_or(4.0);
-    let channel = |name: &str| system.channels.iter().position(|c| c.name == name);
-    let mut found: Vec<Inversion> = Vec::new();
-    for r in runs.iter_mut() {
-        // Sign of each signed path present in this run: Some(±1) decided, None undecided.
-        let mut signs: Vec<(Path, f64)> = Vec::new();
-        for p in &r.paths {
-            if !SIGNED_PATHS.contains(&p.path) {
-                continue;
-            }
-            let (x, y) = p.path.channels();
-            let (Some(ix), Some(iy)) = (channel(x), channel(y)) else {
-                continue;
-            };
-            let bins: Vec<usize> = (0..r.freq_hz.len())
-                .filter(|&i| score::trusted(p.coherence[i]))
-                .collect();
-            let mut low: Vec<usize> = bins
-                .iter()
-                .copied()
-                .filter(|&i| r.freq_hz[i] <= 1.5 * f1)
-                .collect();
-            if low.len() < 4 {
-                low = bins.iter().copied().take(4).collect();
-            }
-            if low.len() < 4 {
-                continue;
-            }
-            let mut cos: Vec<f64> = low
-                .iter()
-                .filter_map(|&i| {
-                    let ch = crate::response::frf::solve_point(system, r.freq_hz[i]).ok()?;
-                    let model = ch[iy] / ch[ix];
-                    let c = (p.h1[i] / model).arg().cos();
-                    c.is_finite().then_some(c)
-                })
-                .collect();
-            if cos.len() < 4 {
-                continue;
-            }
-            cos.sort_by(f64::total_cmp);
-            let med = cos[cos.len() / 2];
-            if med.abs() > 0.5 {
-                signs.push((p.path, med.signum()));
+    let mut found: Vec<ChannelError> = Vec::new();
+    let mut fixes = Vec::new();
+    let mut note = |channels: String, error: String, factor: f64, run: &str| match found
+        .iter_mut()
+        .find(|f| f.channels == channels && f.error == error)
+    {
+        Some(f) => f.runs.push(run.to_string()),
+        None => found.push(ChannelError {
+            channels,
+            error,
+            factor,
+            runs: vec![run.to_string()],
+        }),
+    };
+    for r in runs {
+        let checks = path_checks(system, r, f1);
+        let mut fix: Fix = Vec::new();
+        let or = |sets: &[Vec<&str>]| {
+            sets.iter()
+                .map(|s| s.join(" and "))
+                .collect::<Vec<_>>()
+                .join(" or ")
+        };
+        // Signs: each channel upright (0) or inverted (1); a path's sign is the sum mod 2.
+        let sign =
+            |c: &PathCheck| (c.sign.abs() > 0.5).then_some(if c.sign < 0.0 { 1.0 } else { 0.0 });
+        if checks.iter().any(|c| c.sign < -0.5) {
+            match fewest(&checks, sign, &[1.0], |got, want| (got.abs() % 2.0 - want).abs() < 0.5) {
+                Some((values, sets)) => {
+                    for (n, v) in values {
+                        if v != 0.0 {
+                            fix.push((n, -1.0));
+                        }
+                    }
+                    note(or(&sets), "inverted (gain −1)".into(), -1.0, &r.source);
+                }
+                None => warnings.push(format!(
+                    "{}: the phases below the first resonance fit no pattern of inverted channels: polarity left as read",
+                    r.source
+                )),
             }
         }
-        if signs.iter().all(|(_, s)| *s > 0.0) {
-            continue;
-        }
-        // The fewest channel flips that give every decided path its sign.
-        let names: Vec<&str> = ["a_base_z", "a_seat_z", "a_head_z", "f_seat_z"]
-            .into_iter()
-            .filter(|n| {
-                signs
-                    .iter()
-                    .any(|(p, _)| [p.channels().0, p.channels().1].contains(n))
-            })
-            .collect();
-        let sign_of = |mask: usize, n: &str| {
-            let i = names.iter().position(|m| *m == n);
-            if i.is_some_and(|i| mask >> i & 1 == 1) {
-                -1.0
+        // Levels: each channel right (0) or off by a unit slip (ln factor).
+        let slips: Vec<f64> = UNIT_SLIPS.iter().map(|(f, _)| f.ln()).collect();
+        let level = |c: &PathCheck| {
+            if c.level.abs() < 1.6f64.ln() {
+                Some(0.0)
+            } else if c.level.abs() > 2.5f64.ln() {
+                Some(c.level)
             } else {
-                1.0
+                None
             }
         };
-        let explains = |mask: usize| {
-            signs.iter().all(|(p, s)| {
-                let (x, y) = p.channels();
-                sign_of(mask, x) * sign_of(mask, y) == *s
-            })
-        };
-        let fewest = (0..1usize << names.len())
-            .filter(|&m| explains(m))
-            .map(|m| m.count_ones())
-            .min();
-        let Some(fewest) = fewest else {
-            warnings.push(format!(
-                "{}: the phases below the first resonance fit no pattern of inverted channels (paths {}): polarity left as read",
-                r.source,
-                signs
-                    .iter()
-                    .map(|(p, s)| format!("{} {}", p.name(), if *s > 0.0 { "upright" } else { "inverted" }))
-                    .collect::<Vec<_>>()
-                    .join(", ")
-            ));
-            continue;
-        };
-        let masks: Vec<usize> = (0..1usize << names.len())
-            .filter(|&m| explains(m) && m.count_ones() == fewest)
-            .collect();
-        // Ambiguous masks (base→seat alone: base or seat) name every channel they could be.
-        let label = masks
-            .iter()
-            .map(|&m| {
-                names
-                    .iter()
-                    .enumerate()
-                    .filter(|(i, _)| m >> i & 1 == 1)
-                    .map(|(_, n)| *n)
-                    .collect::<Vec<_>>()
-                    .join(" and ")
-            })
-            .collect::<Vec<_>>()
-            .join(" or ");
-        let mask = masks[0];
-        for p in &mut r.paths {
-            let (x, y) = p.path.channels();
-            if SIGNED_PATHS.contains(&p.path) && sign_of(mask, x) * sign_of(mask, y) < 0.0 {
-                p.h1.iter_mut().for_each(|h| *h = -*h);
+        if checks.iter().any(|c| c.level.abs() > 2.5f64.ln()) {
+            match fewest(&checks, level, &slips, |got, want| {
+                (got - want).abs() < 1.35f64.ln()
+            }) {
+                Some((values, sets)) => {
+                    for (n, v) in values {
+                        if v != 0.0 {
+                            let (f, what) = UNIT_SLIPS
+                                .iter()
+                                .find(|(f, _)| f.ln() == v)
+                                .expect("a slip's value");
+                            match fix.iter_mut().find(|(m, _)| *m == n) {
+                                Some((_, k)) => *k /= f,
+                                None => fix.push((n, 1.0 / f)),
+                            }
+                            note(
+                                or(&sets),
+                                format!("reads {f:.4} × the model's level ({what})"),
+                                1.0 / f,
+                                &r.source,
+                            );
+                        }
+                    }
+                }
+                None => {
+                    let worst = checks
+                        .iter()
+                        .max_by(|a, b| a.level.abs().total_cmp(&b.level.abs()))
+                        .expect("a path off");
+                    warnings.push(format!(
+                        "{}: path {} reads {:.3} × the model's level below the first resonance, where no structural error reaches 2.5× and no unit slip fits: check the channels' sensitivities and units",
+                        r.source,
+                        worst.path.name(),
+                        worst.level.exp()
+                    ));
+                }
             }
         }
-        match found.iter_mut().find(|f| f.channels == label) {
-            Some(f) => f.runs.push(r.source.clone()),
-            None => found.push(Inversion {
-                channels: label,
-                runs: vec![r.source.clone()],
-            }),
-        }
+        fixes.push(fix);
     }
     for f in &found {
         warnings.push(format!(
-            "{} inverted in {}: below the first resonance its paths are 180° from the model's (a transmissibility tends to +1 there, the apparent mass to +M); the diagnosis uses it with the sign corrected — check the sensor's mounting or axis convention",
+            "{} {} in {}: read from its paths below the model's first natural frequency ({f1:.2} Hz), where every vertical transmissibility tends to +1 and the apparent mass to +M; corrected (× {:.4}) before the diagnosis — check the sensor's mounting, axis convention or units",
             f.channels,
-            f.runs.join(", ")
+            f.error,
+            f.runs.join(", "),
+            f.factor
         ));
     }
-    found
+    (fixes, found)
+}
+
+/// `s` with each channel of `fix` multiplied by its factor (a calibration correction).
+pub(super) fn scaled(s: &Signals, fix: &[(&str, f64)]) -> Result<Signals> {
+    let mut out = Signals::new(s.sample_rate_hz, s.source.clone());
+    for (n, d) in s.names.iter().zip(&s.data) {
+        let k = fix.iter().find(|(m, _)| m == n).map_or(1.0, |(_, k)| *k);
+        out.push(n.clone(), d.iter().map(|v| k * v).collect())?;
+    }
+    Ok(out)
 }
 
 #[cfg(test)]
@@ -400,34 +533,22 @@ mod tests {
     fn a_run_given_twice_is_named() {
         let a = run("low.csv", 500.0, &[0.1, -0.2, 0.3, 0.05]);
         let b = run("high.csv", 500.0, &[0.3, -0.6, 0.9, 0.15]);
-        assert!(
-            repeated(
-                &[a.clone(), b.clone()],
-                &run("mid.csv", 500.0, &[0.2, 0.1, -0.1, 0.0])
-            )
-            .is_empty()
-        );
+        assert!(repeated(&[&a, &b], &run("mid.csv", 500.0, &[0.2, 0.1, -0.1, 0.0])).is_empty());
         // The check run is a training run under another name.
-        let w = repeated(
-            &[a.clone(), b.clone()],
-            &run("copy.csv", 500.0, &[0.3, -0.6, 0.9, 0.15]),
-        );
+        let w = repeated(&[&a, &b], &run("copy.csv", 500.0, &[0.3, -0.6, 0.9, 0.15]));
         assert_eq!(w.len(), 1);
         assert!(
             w[0].contains("copy.csv") && w[0].contains("high.csv") && w[0].contains("not held out")
         );
         // A training run repeated; the same samples at another rate are another recording.
-        let w = repeated(
-            &[a.clone(), b.clone(), a.clone()],
-            &run("x.csv", 250.0, &[0.1, -0.2, 0.3, 0.05]),
-        );
+        let w = repeated(&[&a, &b, &a], &run("x.csv", 250.0, &[0.1, -0.2, 0.3, 0.05]));
         assert_eq!(w.len(), 1);
         assert!(w[0].contains("counts twice"));
     }
 
-    /// The reference model's own response to a random base, 120 s at 256 Hz, with `invert`
-    /// negated.
-    fn replayed(invert: &[&str]) -> (crate::model::Model, RunSpectra) {
+    /// The reference model's own response to a random base, 120 s at 256 Hz, with each channel
+    /// of `fix` multiplied by its factor (an inverted or mis-scaled sensor).
+    fn replayed(fix: &[(&str, f64)]) -> (crate::model::Model, RunSpectra) {
         use rand::SeedableRng;
         use rand_distr::Distribution;
         let model = crate::model::catalog::resolve("reference").unwrap();
@@ -436,49 +557,49 @@ mod tests {
             .map(|_| rand_distr::StandardNormal.sample(&mut rng))
             .collect();
         let sim = super::super::replay::replay(model.system(), &base, 256.0, "run.csv").unwrap();
-        let mut s = Signals::new(256.0, "run.csv".to_string());
-        for (n, d) in sim.names.iter().zip(&sim.data) {
-            let k = if invert.contains(&n.as_str()) {
-                -1.0
-            } else {
-                1.0
-            };
-            s.push(n.clone(), d.iter().map(|v| k * v).collect())
-                .unwrap();
-        }
+        let s = scaled(&sim, fix).unwrap();
         (model, super::super::measure::estimate(&s).unwrap())
     }
 
     #[test]
-    fn an_inverted_channel_is_found_and_corrected() {
-        let (model, upright) = replayed(&[]);
-        for (flip, name) in [
-            (vec!["a_seat_z"], "a_seat_z"),
-            (vec!["a_head_z"], "a_head_z"),
-            (vec!["f_seat_z"], "f_seat_z"),
-            (vec!["a_base_z"], "a_base_z"),
+    fn an_inverted_or_mis_scaled_channel_is_found_with_its_correction() {
+        let g = 9.80665;
+        let (model, _) = replayed(&[]);
+        for (fix, name, factor) in [
+            (vec![("a_seat_z", -1.0)], "a_seat_z", -1.0),
+            (vec![("a_head_z", -1.0)], "a_head_z", -1.0),
+            (vec![("f_seat_z", -1.0)], "f_seat_z", -1.0),
+            (vec![("a_base_z", -1.0)], "a_base_z", -1.0),
+            // A seat accelerometer in g read as m/s², a force in kN read as N.
+            (vec![("a_seat_z", 1.0 / g)], "a_seat_z", g),
+            (vec![("f_seat_z", 1.0e-3)], "f_seat_z", 1.0e3),
+            // Upside down and in g.
+            (vec![("a_head_z", -1.0 / g)], "a_head_z", -g),
         ] {
-            let (_, mut r) = replayed(&flip);
+            let (_, r) = replayed(&fix);
             let mut w = Vec::new();
-            let found = polarity(model.system(), &mut [&mut r], &mut w);
-            assert_eq!(found.len(), 1, "{flip:?}: {found:?}");
-            assert_eq!(found[0].channels, name);
-            assert!(w[0].contains("inverted in run.csv"), "{w:?}");
-            // Every path is back to the upright estimate.
-            for (p, q) in r.paths.iter().zip(&upright.paths) {
-                for (a, b) in p.h1.iter().zip(&q.h1) {
-                    assert!(
-                        (a - b).norm() <= 1e-9 * b.norm().max(1e-12),
-                        "{flip:?} {:?}",
-                        p.path
-                    );
-                }
-            }
+            let (fixes, found) = calibration(model.system(), &[&r], &mut w);
+            assert!(!found.is_empty(), "{fix:?}");
+            assert!(
+                found.iter().all(|f| f.channels == name),
+                "{fix:?}: {found:?}"
+            );
+            assert_eq!(fixes[0].len(), 1, "{fix:?}: {:?}", fixes[0]);
+            assert_eq!(fixes[0][0].0, name);
+            assert!(
+                (fixes[0][0].1 / factor - 1.0).abs() < 1e-12,
+                "{fix:?}: {:?}",
+                fixes[0]
+            );
+            assert!(w.iter().any(|w| w.contains("in run.csv")), "{w:?}");
         }
-        // Upright channels are left alone, silently.
-        let (_, mut r) = replayed(&[]);
+        // Upright, right channels are left alone, silently.
+        let (_, r) = replayed(&[]);
         let mut w = Vec::new();
-        assert!(polarity(model.system(), &mut [&mut r], &mut w).is_empty());
-        assert!(w.is_empty());
+        let (fixes, found) = calibration(model.system(), &[&r], &mut w);
+        assert!(
+            found.is_empty() && fixes[0].is_empty() && w.is_empty(),
+            "{found:?} {w:?}"
+        );
     }
 }

@@ -28,7 +28,7 @@ pub mod score;
 pub mod truth;
 mod verdict;
 
-pub use outcome::{BandCoverage, Diagnosis, Estimate, Inversion, Ranked, RunSummary, Stage};
+pub use outcome::{BandCoverage, ChannelError, Diagnosis, Estimate, Ranked, RunSummary, Stage};
 pub use verdict::separating_measurement;
 
 use crate::error::{Error, Result};
@@ -105,6 +105,37 @@ pub fn diagnose(model: &Model, train: &[Signals], check: &Signals) -> Result<Dia
     let mut tr: Vec<RunSpectra> = train.iter().map(measure::estimate).collect::<Result<_>>()?;
     let mut ck = measure::estimate(check)?;
     let mut warnings = Vec::new();
+    // Calibration first: an inverted channel or a unit slip is corrected in the samples, so that
+    // every later figure (paths, PSDs, ISO a_w) sees the corrected run.
+    let (fixes, channel_errors) = {
+        let all: Vec<&RunSpectra> = tr.iter().chain(std::iter::once(&ck)).collect();
+        inputs::calibration(system, &all, &mut warnings)
+    };
+    let corrected: Vec<Option<Signals>> = train
+        .iter()
+        .chain(std::iter::once(check))
+        .zip(&fixes)
+        .map(|(s, fix)| {
+            (!fix.is_empty())
+                .then(|| inputs::scaled(s, fix))
+                .transpose()
+        })
+        .collect::<Result<_>>()?;
+    for (i, c) in corrected.iter().enumerate() {
+        if let Some(s) = c {
+            let e = measure::estimate(s)?;
+            match tr.get_mut(i) {
+                Some(t) => *t = e,
+                None => ck = e,
+            }
+        }
+    }
+    let train: Vec<&Signals> = train
+        .iter()
+        .zip(&corrected)
+        .map(|(s, c)| c.as_ref().unwrap_or(s))
+        .collect();
+    let check: &Signals = corrected[train.len()].as_ref().unwrap_or(check);
     inputs::keep_modelled(
         tr.iter_mut().chain(std::iter::once(&mut ck)),
         system,
@@ -112,13 +143,14 @@ pub fn diagnose(model: &Model, train: &[Signals], check: &Signals) -> Result<Dia
     );
     inputs::keep_common(&mut tr, &mut ck, &mut warnings);
     check_inputs(&tr, &ck, &mut warnings)?;
-    warnings.extend(inputs::repeated(train, check));
+    warnings.extend(inputs::repeated(&train, check));
     // On the raw estimates: masking zeroes the coherence of paths with few coherent bins, and a
     // distorting path at high magnitude is exactly such a path.
     let mut distortion =
         distortion::trend(&tr.iter().chain(std::iter::once(&ck)).collect::<Vec<_>>());
     let clips: Vec<String> = train
         .iter()
+        .copied()
         .chain(std::iter::once(check))
         .flat_map(|s| {
             inputs::clipped(s).into_iter().map(move |(c, n, v)| {
@@ -151,10 +183,6 @@ pub fn diagnose(model: &Model, train: &[Signals], check: &Signals) -> Result<Dia
         }
         mask_incoherent(r);
     }
-    let polarity = {
-        let mut all: Vec<&mut RunSpectra> = tr.iter_mut().chain(std::iter::once(&mut ck)).collect();
-        inputs::polarity(system, &mut all, &mut warnings)
-    };
     let n_train = score::residual_count(&tr).max(1) as f64;
     let n_check = score::residual_count(std::slice::from_ref(&ck)).max(1) as f64;
 
@@ -163,6 +191,7 @@ pub fn diagnose(model: &Model, train: &[Signals], check: &Signals) -> Result<Dia
     let mut gap_map = Vec::new();
     for (sig, spec, role) in train
         .iter()
+        .copied()
         .zip(&tr)
         .map(|(s, r)| (s, r, "train"))
         .chain(std::iter::once((check, &ck, "check")))
@@ -415,38 +444,37 @@ pub fn diagnose(model: &Model, train: &[Signals], check: &Signals) -> Result<Dia
     {
         warnings.push(w);
     }
-    // An inverted channel is a calibration error of gain −1 (catalogue E14): named first when
-    // nothing structural is detected, after the structural effect otherwise.
-    let (verdict, verdict_text) = match polarity.first() {
-        None => (verdict, verdict_text),
-        Some(_) => {
-            let what = polarity
-                .iter()
-                .map(|f| format!("{} inverted in {}", f.channels, f.runs.join(", ")))
-                .collect::<Vec<_>>()
-                .join("; ");
-            if !named.iter().any(|n| n == "sensor-gain") {
-                named.push("sensor-gain".into());
-            }
-            if verdict == "none" {
-                (
-                    "sensor-gain".to_string(),
-                    format!(
-                        "a sensor's polarity is inverted ({what}); with the sign corrected, {verdict_text}"
-                    ),
-                )
-            } else {
-                (
-                    verdict,
-                    format!(
-                        "{verdict_text}. Also a sensor's polarity is inverted ({what}); the diagnosis above uses it corrected"
-                    ),
-                )
-            }
+    // A channel's calibration error (catalogue E14: an inverted sign, a unit slip) is named first
+    // when nothing structural is detected, after the structural effect otherwise.
+    let (verdict, verdict_text) = if channel_errors.is_empty() {
+        (verdict, verdict_text)
+    } else {
+        let what = channel_errors
+            .iter()
+            .map(|f| format!("{} {} in {}", f.channels, f.error, f.runs.join(", ")))
+            .collect::<Vec<_>>()
+            .join("; ");
+        if !named.iter().any(|n| n == "sensor-gain") {
+            named.push("sensor-gain".into());
+        }
+        if verdict == "none" {
+            (
+                "sensor-gain".to_string(),
+                format!(
+                    "a channel's calibration is wrong: {what}; with it corrected, {verdict_text}"
+                ),
+            )
+        } else {
+            (
+                verdict,
+                format!(
+                    "{verdict_text}. Also a channel's calibration is wrong: {what}; the diagnosis above uses it corrected"
+                ),
+            )
         }
     };
     Ok(Diagnosis {
-        polarity,
+        channel_errors,
         named,
         bands,
         verdict,

@@ -86,8 +86,9 @@ pub struct Diagnosis {
     /// The effects named (detected and closing part of the gap), best first; empty for `none`,
     /// `unexplained` and `not-identifiable`.
     pub named: Vec<String>,
-    /// Channels found inverted (gain −1) and corrected before the fit; see `inputs::polarity`.
-    pub polarity: Vec<Inversion>,
+    /// Channels found inverted or in the wrong unit and corrected before the fit; see
+    /// `inputs::calibration`.
+    pub channel_errors: Vec<ChannelError>,
     /// Per path, the one-third-octave bands judged (coherent on the check run) and those that
     /// could not be.
     pub bands: Vec<BandCoverage>,
@@ -150,13 +151,17 @@ pub struct BandCoverage {
     pub not_judged_hz: Vec<f64>,
 }
 
-/// A channel whose sign is inverted in some runs (an accelerometer mounted upside down, a force
-/// plate reading compression as negative: the commonest set-up error after units).
+/// A calibration error of a channel found before the fit (see `inputs::calibration`): an inverted
+/// sign or a unit slip.
 #[derive(Debug, Clone, Serialize, serde::Deserialize)]
-pub struct Inversion {
-    /// The inverted channel, or the two channels of which one is (`a_base_z or a_seat_z` when
-    /// only base→seat is measured).
+pub struct ChannelError {
+    /// The channel, or the channels of which one is (`a_base_z or a_seat_z` when only base→seat
+    /// is measured).
     pub channels: String,
+    /// What is wrong (`inverted (gain −1)`, `reads 0.1020 × the model's level (g read as m/s²)`).
+    pub error: String,
+    /// The factor the channel was multiplied by before the diagnosis.
+    pub factor: f64,
     /// The runs it was found in.
     pub runs: Vec<String>,
 }

@@ -103,9 +103,9 @@ struct DiagnosisIn {
     /// Absent from files written before the distortion trend existed.
     #[serde(default)]
     distortion: Option<DistortionIn>,
-    /// Absent from files written before the polarity check existed.
+    /// Absent from files written before the calibration check existed.
     #[serde(default)]
-    polarity: Vec<crate::diagnosis::Inversion>,
+    channel_errors: Vec<crate::diagnosis::ChannelError>,
 }
 
 #[derive(Debug, Deserialize)]
@@ -237,7 +237,7 @@ impl Rebuild<'_> {
             })
             .collect::<Result<_>>()?;
         Ok(Diagnosis {
-            polarity: d.polarity,
+            channel_errors: d.channel_errors,
             verdict: d.verdict,
             named: d.named,
             bands: d
