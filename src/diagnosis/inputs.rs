@@ -1,5 +1,6 @@
-//! Checks of the measured runs before a diagnosis: the paths every run shares, coherence, and the
-//! paths left out where too few bins are coherent.
+//! Checks of the measured runs before a diagnosis: the channels' calibration (an inverted sign, a
+//! unit slip), the paths every run shares, coherence and the paths left out where too few bins are
+//! coherent, clipping, and runs given twice.
 
 use super::measure::{Path, RunSpectra};
 use super::outcome::ChannelError;
