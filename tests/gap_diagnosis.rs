@@ -479,3 +479,50 @@ fn an_upside_down_seat_accelerometer_is_named_and_the_seat_still_judged() {
         d.warnings
     );
 }
+
+/// `x` through an analog RC high-pass of corner `fc` Hz, discretised by the backward difference
+/// y[n] = a·(y[n−1] + x[n] − x[n−1]), a = RC/(RC + Δt) (not the candidate's frequency response).
+fn rc_highpass(x: &[f64], fs: f64, fc: f64) -> Vec<f64> {
+    let rc = 1.0 / (2.0 * std::f64::consts::PI * fc);
+    let a = rc / (rc + 1.0 / fs);
+    let mut y = vec![0.0; x.len()];
+    for n in 1..x.len() {
+        y[n] = a * (y[n - 1] + x[n] - x[n - 1]);
+    }
+    y
+}
+
+#[test]
+fn an_ac_coupled_seat_accelerometer_is_named_a_sensor_high_pass() {
+    // The clean case with the seat accelerometer AC-coupled at 0.8 Hz (an IEPE conditioner) in
+    // every run: a low-frequency gap on the seat's paths only, named a sensor effect, not a
+    // structural one.
+    let case = null_case();
+    let model = catalog::resolve("reference").unwrap();
+    let ac = |s: &Signals| {
+        let mut out = Signals::new(s.sample_rate_hz, s.source.clone());
+        for (n, d) in s.names.iter().zip(&s.data) {
+            let v = if n == "a_seat_z" {
+                rc_highpass(d, s.sample_rate_hz, 0.8)
+            } else {
+                d.clone()
+            };
+            out.push(n.clone(), v).unwrap();
+        }
+        out
+    };
+    let train: Vec<Signals> = case.train.iter().map(ac).collect();
+    let d = diagnose(&model, &train, &ac(&case.check)).unwrap();
+    assert_eq!(d.verdict, "sensor-highpass", "{}", d.verdict_text);
+    let hp = d
+        .candidates
+        .iter()
+        .find(|c| c.id == "sensor-highpass")
+        .unwrap();
+    let seat = hp
+        .params
+        .iter()
+        .find(|p| p.name == "highpass_seat_hz")
+        .unwrap();
+    assert!((seat.value / 0.8 - 1.0).abs() < 0.15, "{seat:?}");
+}

@@ -15,8 +15,8 @@ use crate::system::{Element, Law, Role, System};
 use num_complex::Complex64;
 use std::f64::consts::PI;
 
-/// A measuring channel's own response: gain × 4-pole Butterworth low-pass × mount resonance ×
-/// delay. The identity is `Channel::default()`.
+/// A measuring channel's own response: gain × 4-pole Butterworth low-pass × first-order
+/// high-pass × mount resonance × delay. The identity is `Channel::default()`.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Channel {
     /// Calibration gain (1 = calibrated).
@@ -25,6 +25,10 @@ pub struct Channel {
     pub delay_s: f64,
     /// Corner of a 4-pole Butterworth low-pass (anti-alias filter) in Hz; ∞ = none.
     pub lowpass_hz: f64,
+    /// Corner of a first-order high-pass in Hz, iω/(iω + ω_c): the AC coupling of an IEPE
+    /// accelerometer or its conditioner (typically 0.1–1 Hz, so inside ISO 2631-1's band from
+    /// 0.5 Hz); 0 = DC-coupled.
+    pub highpass_hz: f64,
     /// Mount resonance (Hz, damping ratio) as the absolute transmissibility of a base-excited
     /// oscillator, (1 + 2iζr)/(1 − r² + 2iζr), r = f/f_m; `None` = rigid mount.
     pub mount: Option<(f64, f64)>,
@@ -36,6 +40,7 @@ impl Default for Channel {
             gain: 1.0,
             delay_s: 0.0,
             lowpass_hz: f64::INFINITY,
+            highpass_hz: 0.0,
             mount: None,
         }
     }
@@ -53,6 +58,10 @@ impl Channel {
                 let p = Complex64::from_polar(1.0, a * PI / 8.0);
                 h *= p * p.conj() / ((s - p) * (s - p.conj()));
             }
+        }
+        if self.highpass_hz > 0.0 {
+            let s = Complex64::new(0.0, f / self.highpass_hz);
+            h *= s / (s + 1.0);
         }
         if let Some((fm, z)) = self.mount {
             let r = f / fm;
@@ -398,6 +407,24 @@ pub fn predict(v: &Variant, run: &RunSpectra) -> Result<Vec<Vec<Complex64>>> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn ac_coupling_is_3_db_down_and_45_degrees_ahead_at_its_corner() {
+        // iω/(iω + ω_c): |H| = 1/√2 and arg H = +45° at f = f_c; 1/√(1 + (f_c/f)²) elsewhere.
+        let ch = Channel {
+            highpass_hz: 0.8,
+            ..Channel::default()
+        };
+        let h = ch.response(0.8);
+        assert!((h.norm() - 0.5f64.sqrt()).abs() < 1e-12, "{h}");
+        assert!((h.arg().to_degrees() - 45.0).abs() < 1e-9, "{h}");
+        let h = ch.response(2.0);
+        assert!(
+            (h.norm() - 1.0 / (1.0 + 0.16f64).sqrt()).abs() < 1e-12,
+            "{h}"
+        );
+        assert_eq!(Channel::default().response(0.5), Complex64::new(1.0, 0.0));
+    }
 
     #[test]
     fn cubic_equivalent_stiffness_is_k_plus_3k3_sigma2() {

@@ -104,6 +104,11 @@ impl Candidate {
                 v.seat.lowpass_hz = p[0];
                 v.head.lowpass_hz = p[1];
             }
+            Candidate::SensorHighpass => {
+                v.base.highpass_hz = p[0];
+                v.seat.highpass_hz = p[1];
+                v.head.highpass_hz = p[2];
+            }
             Candidate::SensorGain => {
                 v.base.gain *= p[0];
                 v.seat.gain *= p[1];

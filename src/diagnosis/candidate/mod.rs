@@ -90,6 +90,9 @@ pub enum Candidate {
     SensorDelay,
     /// 4-pole Butterworth anti-alias low-pass on the seat and/or head channel.
     SensorLowpass,
+    /// First-order high-pass (AC coupling of an IEPE accelerometer) on the base, seat and/or
+    /// head channel: a gap below ~2 Hz on the paths of one channel, rising phase lead.
+    SensorHighpass,
     /// Calibration gain error on the base, seat and head accelerometers.
     SensorGain,
     /// Mount resonance of the seat-pad accelerometer.
@@ -138,7 +141,7 @@ pub enum Candidate {
 
 impl Candidate {
     /// Every candidate in report order.
-    pub const ALL: [Candidate; 22] = [
+    pub const ALL: [Candidate; 23] = [
         Candidate::BodySoftening,
         Candidate::BodySofteningMagnitude,
         Candidate::CushionStiffening,
@@ -148,6 +151,7 @@ impl Candidate {
         Candidate::CushionFractional,
         Candidate::SensorDelay,
         Candidate::SensorLowpass,
+        Candidate::SensorHighpass,
         Candidate::SensorGain,
         Candidate::SensorMountSeat,
         Candidate::SensorMountHead,
@@ -175,6 +179,7 @@ impl Candidate {
             Candidate::CushionFractional => "cushion-fractional",
             Candidate::SensorDelay => "sensor-delay",
             Candidate::SensorLowpass => "sensor-lowpass",
+            Candidate::SensorHighpass => "sensor-highpass",
             Candidate::SensorGain => "sensor-gain",
             Candidate::SensorMountSeat => "sensor-mount-seat",
             Candidate::SensorMountHead => "sensor-mount-head",
@@ -204,6 +209,7 @@ impl Candidate {
             }
             Candidate::SensorDelay
             | Candidate::SensorLowpass
+            | Candidate::SensorHighpass
             | Candidate::SensorGain
             | Candidate::SensorMountSeat
             | Candidate::SensorMountHead
@@ -270,6 +276,7 @@ impl Candidate {
             }
             Candidate::SensorDelay
             | Candidate::SensorLowpass
+            | Candidate::SensorHighpass
             | Candidate::SensorGain
             | Candidate::SensorMountSeat
             | Candidate::SensorMountBase => true,
@@ -333,6 +340,11 @@ impl Candidate {
             Candidate::SensorLowpass => vec![
                 Param::new("lowpass_seat_hz", 10.0, 5000.0, &[150.0], true),
                 Param::new("lowpass_head_hz", 10.0, 5000.0, &[150.0], true),
+            ],
+            Candidate::SensorHighpass => vec![
+                Param::new("highpass_base_hz", 0.01, 5.0, &[0.1], true),
+                Param::new("highpass_seat_hz", 0.01, 5.0, &[0.1], true),
+                Param::new("highpass_head_hz", 0.01, 5.0, &[0.1], true),
             ],
             Candidate::SensorGain => vec![
                 Param::new("gain_base", 0.7, 1.4, &[1.0], true),
