@@ -230,15 +230,17 @@ type Assignment = Vec<(&'static str, f64)>;
 /// Channels a calibration check can name, in the order a tie is broken.
 const CHECKED: [&str; 4] = ["a_base_z", "a_seat_z", "a_head_z", "f_seat_z"];
 
+const G: f64 = crate::io::input::STANDARD_GRAVITY;
+
 /// Unit mix-ups a channel's level can show, as (factor the channel reads, what it means): g and
 /// m/s², milli- and kilo- (mm/s², kN), mg, lbf and N. Read values are factor × true.
 const UNIT_SLIPS: [(f64, &str); 8] = [
-    (1.0 / 9.80665, "g read as m/s²"),
-    (9.80665, "m/s² read as g"),
+    (1.0 / G, "g read as m/s²"),
+    (G, "m/s² read as g"),
     (1.0e-3, "kilo-units (kN) read as base units"),
     (1.0e3, "milli-units (mm/s²) read as base units"),
-    (1.0e3 / 9.80665, "mg read as m/s²"),
-    (9.80665e-3, "m/s² read as mg"),
+    (1.0e3 / G, "mg read as m/s²"),
+    (G * 1.0e-3, "m/s² read as mg"),
     (1.0 / 4.448_222, "lbf read as N"),
     (4.448_222, "N read as lbf"),
 ];
@@ -259,6 +261,17 @@ struct PathCheck {
 /// a fixed factor (9.81, 1000).
 fn path_checks(system: &crate::system::System, r: &RunSpectra, f1: f64) -> Vec<PathCheck> {
     let channel = |name: &str| system.channels.iter().position(|c| c.name == name);
+    // Only below the first resonance: above it a shifted mode moves the phase by up to 180°. The
+    // model's channels per bin, solved once for every path.
+    let model: Vec<Option<Vec<Complex64>>> = r
+        .freq_hz
+        .iter()
+        .map(|&f| {
+            (f <= 1.5 * f1)
+                .then(|| crate::response::frf::solve_point(system, f).ok())
+                .flatten()
+        })
+        .collect();
     let mut out = Vec::new();
     for p in &r.paths {
         if !SIGNED_PATHS.contains(&p.path) {
@@ -268,18 +281,10 @@ fn path_checks(system: &crate::system::System, r: &RunSpectra, f1: f64) -> Vec<P
         let (Some(ix), Some(iy)) = (channel(x), channel(y)) else {
             continue;
         };
-        let bins: Vec<usize> = (0..r.freq_hz.len())
+        let q: Vec<Complex64> = (0..r.freq_hz.len())
             .filter(|&i| score::trusted(p.coherence[i]))
-            .collect();
-        // Only below the first resonance: above it a shifted mode moves the phase by up to 180°.
-        let low: Vec<usize> = bins
-            .into_iter()
-            .filter(|&i| r.freq_hz[i] <= 1.5 * f1)
-            .collect();
-        let q: Vec<Complex64> = low
-            .iter()
-            .filter_map(|&i| {
-                let ch = crate::response::frf::solve_point(system, r.freq_hz[i]).ok()?;
+            .filter_map(|i| {
+                let ch = model[i].as_ref()?;
                 let q = p.h1[i] / (ch[iy] / ch[ix]);
                 (q.norm() > 0.0 && q.is_finite()).then_some(q)
             })
@@ -341,9 +346,11 @@ fn fewest(
         })
     };
     let changed = |combo: usize| (0..names.len()).filter(|&i| value(combo, i) != 0.0).count();
-    let best = (0..total).filter(|&c| explains(c)).map(changed).min()?;
-    let combos: Vec<usize> = (0..total)
-        .filter(|&c| explains(c) && changed(c) == best)
+    let explaining: Vec<usize> = (0..total).filter(|&c| explains(c)).collect();
+    let best = explaining.iter().map(|&c| changed(c)).min()?;
+    let combos: Vec<usize> = explaining
+        .into_iter()
+        .filter(|&c| changed(c) == best)
         .collect();
     let values = names
         .iter()
