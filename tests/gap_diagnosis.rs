@@ -192,18 +192,20 @@ fn check_run_outside_the_training_magnitudes_is_warned() {
 }
 
 /// `s` with `offset` added to every sample of the channels named in `names`.
-fn with_offset(s: &Signals, names: &[&str], offset: f64) -> Signals {
+/// `s` with channel `name` replaced by `edit` of its samples (a sensor's or a lab's error).
+fn with_channel(s: &Signals, name: &str, edit: impl Fn(&[f64]) -> Vec<f64>) -> Signals {
     let mut out = Signals::new(s.sample_rate_hz, s.source.clone());
     for (n, d) in s.names.iter().zip(&s.data) {
-        let add = if names.contains(&n.as_str()) {
-            offset
-        } else {
-            0.0
-        };
-        out.push(n.clone(), d.iter().map(|v| v + add).collect())
-            .unwrap();
+        let x = if n == name { edit(d) } else { d.clone() };
+        out.push(n.clone(), x).unwrap();
     }
     out
+}
+
+fn with_offset(s: &Signals, names: &[&str], offset: f64) -> Signals {
+    names.iter().fold(s.clone(), |s, n| {
+        with_channel(&s, n, |d| d.iter().map(|v| v + offset).collect())
+    })
 }
 
 #[test]
@@ -406,13 +408,7 @@ fn a_preloaded_foam_is_named_by_its_distortion_and_a_linear_foam_is_not() {
 }
 
 fn inverted(s: &Signals, name: &str) -> Signals {
-    let mut out = Signals::new(s.sample_rate_hz, s.source.clone());
-    for (n, d) in s.names.iter().zip(&s.data) {
-        let k = if n == name { -1.0 } else { 1.0 };
-        out.push(n.clone(), d.iter().map(|v| k * v).collect())
-            .unwrap();
-    }
-    out
+    with_channel(s, name, |d| d.iter().map(|v| -v).collect())
 }
 
 #[test]
@@ -444,15 +440,7 @@ fn an_upside_down_seat_accelerometer_is_named_and_the_seat_still_judged() {
     );
     // A seat accelerometer in g read as m/s²: named as a unit slip, corrected, a_w as upright.
     let g = 9.80665;
-    let slip = |s: &Signals| {
-        let mut out = Signals::new(s.sample_rate_hz, s.source.clone());
-        for (n, d) in s.names.iter().zip(&s.data) {
-            let k = if n == "a_seat_z" { 1.0 / g } else { 1.0 };
-            out.push(n.clone(), d.iter().map(|v| k * v).collect())
-                .unwrap();
-        }
-        out
-    };
+    let slip = |s: &Signals| with_channel(s, "a_seat_z", |d| d.iter().map(|v| v / g).collect());
     let slipped: Vec<Signals> = case.train.iter().map(slip).collect();
     let d = diagnose(&model, &slipped, &slip(&case.check)).unwrap();
     assert_eq!(d.verdict, "sensor-gain", "{}", d.verdict_text);
@@ -499,18 +487,7 @@ fn an_ac_coupled_seat_accelerometer_is_named_a_sensor_high_pass() {
     // structural one.
     let case = null_case();
     let model = catalog::resolve("reference").unwrap();
-    let ac = |s: &Signals| {
-        let mut out = Signals::new(s.sample_rate_hz, s.source.clone());
-        for (n, d) in s.names.iter().zip(&s.data) {
-            let v = if n == "a_seat_z" {
-                rc_highpass(d, s.sample_rate_hz, 0.8)
-            } else {
-                d.clone()
-            };
-            out.push(n.clone(), v).unwrap();
-        }
-        out
-    };
+    let ac = |s: &Signals| with_channel(s, "a_seat_z", |d| rc_highpass(d, s.sample_rate_hz, 0.8));
     let train: Vec<Signals> = case.train.iter().map(ac).collect();
     let d = diagnose(&model, &train, &ac(&case.check)).unwrap();
     assert_eq!(d.verdict, "sensor-highpass", "{}", d.verdict_text);
