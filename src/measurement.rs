@@ -54,6 +54,7 @@ fn wbv_run(path: &Path, bytes: &[u8], opts: &Options) -> Result<Input> {
     Ok(Input {
         signals: out,
         notes: Vec::new(),
+        undeclared: Vec::new(),
     })
 }
 

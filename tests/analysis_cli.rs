@@ -106,7 +106,9 @@ fn json_report_and_plots() {
     for key in ["a_w", "vdv", "mtvv", "crest_factor"] {
         assert!(seat[key].as_f64().unwrap() > 0.0, "{key}");
     }
-    assert!((v["seat_percent"].as_f64().unwrap() - 200.0).abs() < 1e-6);
+    // Seat = 2 × base; each channel's start is predicted from its own 6-digit samples, so the
+    // ratio holds to the rounding, not to the last bit.
+    assert!((v["seat_percent"].as_f64().unwrap() - 200.0).abs() < 1e-3);
     assert!(v["comfort"].is_string() && v["units"]["vdv"] == "m/s^1.75");
     for f in ["psd.png", "weighted_psd.png", "transmissibility.png"] {
         assert!(plots.join(f).is_file(), "{f}");

@@ -66,6 +66,15 @@ impl fmt::Display for Comfort {
 /// All Annex C ranges containing `a_v`, worded as the standard does, e.g.
 /// "0.550 m/s²: a little uncomfortable (0.315–0.63) or fairly uncomfortable (0.5–1) (ISO 2631-1 Annex C)".
 pub fn overlap_statement(a_v: f64) -> String {
+    format!(
+        "{a_v:.3} m/s²: {} (ISO 2631-1 Annex C)",
+        overlap_ranges(a_v)
+    )
+}
+
+/// The Annex C ranges that contain `a_v` (m/s²), e.g. `a little uncomfortable (0.315–0.63)`; the
+/// ranges overlap, so there may be two.
+pub fn overlap_ranges(a_v: f64) -> String {
     let parts: Vec<String> = RANGES
         .iter()
         .filter(|(_, lo, hi)| lo.is_none_or(|lo| a_v >= lo) && hi.is_none_or(|hi| a_v <= hi))
@@ -76,5 +85,5 @@ pub fn overlap_statement(a_v: f64) -> String {
             (None, None) => c.to_string(),
         })
         .collect();
-    format!("{a_v:.3} m/s²: {} (ISO 2631-1 Annex C)", parts.join(" or "))
+    parts.join(" or ")
 }

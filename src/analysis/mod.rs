@@ -12,6 +12,7 @@ pub mod report;
 pub mod seat;
 pub mod spectrum;
 pub mod stream;
+pub mod units;
 pub mod weighting;
 
 pub use comfort::Comfort;

@@ -43,8 +43,9 @@ pub struct ChannelReport {
     pub weighting: Weighting,
     /// Comfort multiplying factor k (ISO 2631-1 8.2.2).
     pub k: f64,
-    /// Mean of the samples, m/s²: a sensor offset or gravity; it is removed before weighting (the
-    /// filters start in steady state at the first sample), so it changes no weighted figure.
+    /// Mean of the samples, m/s²: a sensor offset or gravity. Every weighting has zero gain at DC
+    /// and the filters start in the steady state of the recording's vibration
+    /// ([`crate::analysis::filter::WeightingChain`]), so it changes no weighted figure.
     #[serde(default)]
     pub mean: f64,
     /// Unweighted r.m.s. (mean included), m/s².
@@ -65,6 +66,10 @@ pub struct ChannelReport {
     pub msdv: Option<f64>,
     /// Unweighted one-third-octave band r.m.s. 0.5–80 Hz, m/s².
     pub bands: Vec<Band>,
+    /// Why this channel's figures are doubtful, when its samples look like another unit than m/s²
+    /// ([`super::units::looks_like`]); absent otherwise.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub unit_doubt: Option<String>,
 }
 
 /// The report of one run.
@@ -87,6 +92,13 @@ pub struct Report {
     /// Frequency-weighted one-third-octave band r.m.s. 0.5–80 Hz of each channel, m/s²: band
     /// r.m.s. times the channel's weighting at the band centre (ISO 2631-1 eq. 6, Tables 3–4).
     pub weighted_bands: BTreeMap<String, Vec<Band>>,
+    /// Warnings that make figures or verdicts doubtful (a channel that looks like g read as m/s²):
+    /// shown before everything else.
+    #[serde(default)]
+    pub warnings: Vec<String>,
+    /// Whether the comfort and health verdicts rest on a channel with a [`ChannelReport::unit_doubt`].
+    #[serde(default)]
+    pub verdict_doubtful: bool,
     /// Advice triggered by the figures (crest factor > 9, 6.3.3 ratios).
     pub notes: Vec<String>,
     /// Unit of every numeric key.
@@ -130,7 +142,9 @@ pub fn offset_note(name: &str, mean: f64, rms: f64) -> Option<String> {
         Some(format!(
             "{name}: mean {mean:.3} m/s² is close to 1 g: gravity seems to be included"
         ))
-    } else if name.starts_with("a_") && (m - 1.0).abs() < 0.1 && ac < 0.5 {
+    } else if name.starts_with("a_")
+        && super::units::looks_like(mean, ac) == Some(super::units::LooksLike::GWithGravity)
+    {
         Some(format!(
             "{name}: mean {mean:.3} with r.m.s. fluctuation {ac:.3}: the data look like g with \
              gravity (1 g ≈ 1.0) read as m/s²; give --units g if so"
@@ -147,7 +161,10 @@ pub fn offset_note(name: &str, mean: f64, rms: f64) -> Option<String> {
 
 impl ChannelReport {
     fn notes(&self, duration_s: f64) -> Vec<String> {
-        let mut notes: Vec<String> = offset_note(&self.name, self.mean, self.rms)
+        // A unit doubt is a warning of its own (Report::warnings), not a note.
+        let offset =
+            offset_note(&self.name, self.mean, self.rms).filter(|_| self.unit_doubt.is_none());
+        let mut notes: Vec<String> = offset
             .map(|n| {
                 if n.contains("gravity seems") {
                     format!("{n} (removed before weighting; the unweighted r.m.s. includes it)")
@@ -188,9 +205,28 @@ impl Report {
         source: &str,
         fs: f64,
         duration_s: f64,
-        channels: Vec<ChannelReport>,
+        mut channels: Vec<ChannelReport>,
         opts: &Options,
     ) -> Report {
+        for c in &mut channels {
+            let ac = (c.rms * c.rms - c.mean * c.mean).max(0.0).sqrt();
+            c.unit_doubt = super::units::looks_like(c.mean, ac).map(|like| {
+                format!(
+                    "{}: the samples look like {like} read as m/s² (mean {:.3}, fluctuation \
+                     {ac:.3}): if so every figure of this channel is {:.4} × the true one and \
+                     the verdicts that use it are doubtful; give --units {}={}",
+                    c.name,
+                    c.mean,
+                    1.0 / like.factor(),
+                    c.name,
+                    like.unit()
+                )
+            });
+        }
+        let warnings: Vec<String> = channels
+            .iter()
+            .filter_map(|c| c.unit_doubt.clone())
+            .collect();
         let comfort_place = if channels.iter().any(|c| c.place == "seat") {
             "seat".to_string()
         } else {
@@ -200,6 +236,10 @@ impl Report {
             c.place == comfort_place
                 || (comfort_place == "seat" && (c.place == "back" || c.place == "feet"))
         };
+        let verdict_doubtful = channels
+            .iter()
+            .filter(in_total)
+            .any(|c| c.unit_doubt.is_some());
         let total_value = channels
             .iter()
             .filter(in_total)
@@ -240,6 +280,8 @@ impl Report {
             seat_percent,
             health,
             weighted_bands,
+            warnings,
+            verdict_doubtful,
             notes,
             channels,
             units: units(),

@@ -63,6 +63,7 @@ pub fn run(args: Args) -> wbv::Result<()> {
     };
     let start = std::time::Instant::now();
     let input = analysis::load_input(&args.path, &args.input.options()?)?;
+    analysis::units::refuse_ambiguous(&input)?;
     let signals = input.signals;
     let loaded = start.elapsed().as_secs_f64();
     let welch = WelchOptions {
@@ -99,7 +100,12 @@ pub fn run(args: Args) -> wbv::Result<()> {
         }
     }
     if args.json {
-        let notes: Vec<String> = input.notes.iter().map(|n| format!("input: {n}")).collect();
+        let notes: Vec<String> = report
+            .warnings
+            .iter()
+            .cloned()
+            .chain(input.notes.iter().map(|n| format!("input: {n}")))
+            .collect();
         super::print_json(
             "analyze",
             &WithFiles {
@@ -115,6 +121,9 @@ pub fn run(args: Args) -> wbv::Result<()> {
 }
 
 pub(crate) fn print_table(r: &Report) {
+    for w in &r.warnings {
+        println!("WARNING: {w}");
+    }
     println!(
         "{}: {:.1} s at {} Hz",
         r.source, r.duration_s, r.sample_rate_hz
@@ -146,8 +155,15 @@ pub(crate) fn print_table(r: &Report) {
         );
     }
     println!(
-        "\nComfort ({}): a_v = {:.4} m/s², class: {}",
-        r.comfort_place, r.total_value, r.comfort
+        "\nComfort ({}): a_v = {:.4} m/s², class: {}{}",
+        r.comfort_place,
+        r.total_value,
+        r.comfort,
+        if r.verdict_doubtful {
+            " (doubtful: see the WARNING above)"
+        } else {
+            ""
+        }
     );
     println!("  {}", r.comfort_statement);
     if let Some(s) = r.seat_percent {

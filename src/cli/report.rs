@@ -5,8 +5,11 @@ use wbv::report::{Settings, default_path, write};
 /// Arguments of `wbv report`.
 #[derive(Debug, clap::Args)]
 pub struct Args {
-    /// Run: an MCAP run, a run directory or a measured-run CSV.
+    /// Run or measurement: a wbv MCAP run or run directory, or any file `wbv analyze` reads
+    /// (delimited text, WAV, MAT, UFF58, another logger's MCAP with --topic; docs/inputs.md).
     run: PathBuf,
+    #[command(flatten)]
+    input: wbv::io::input::InputArgs,
     /// Output HTML file (default: `report.html` beside the run's MCAP, `<stem>-report.html`
     /// beside a CSV).
     #[arg(long)]
@@ -32,6 +35,7 @@ pub fn run(args: Args) -> wbv::Result<()> {
     let settings = Settings {
         exposure_hours: args.exposure_hours,
         gap: args.gap.clone(),
+        input: args.input.options()?,
     };
     let built = write(
         &args.run,
@@ -41,7 +45,20 @@ pub fn run(args: Args) -> wbv::Result<()> {
     )?;
     if args.json {
         let summary = wbv::report::json::ReportSummary::of(&out, &built)?;
-        return super::print_json("report", &summary, &[]);
+        let warnings: Vec<String> = built
+            .report
+            .warnings
+            .iter()
+            .cloned()
+            .chain(built.input_notes.iter().map(|n| format!("input: {n}")))
+            .collect();
+        return super::print_json("report", &summary, &warnings);
+    }
+    for w in &built.report.warnings {
+        eprintln!("WARNING: {w}");
+    }
+    for n in &built.input_notes {
+        eprintln!("input: {n}");
     }
     println!("{}", out.display());
     Ok(())

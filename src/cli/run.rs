@@ -71,7 +71,7 @@ pub fn run(args: Args) -> wbv::Result<()> {
     });
     let settings = wbv::report::Settings {
         exposure_hours: args.exposure_hours,
-        gap: None,
+        ..wbv::report::Settings::default()
     };
     wbv::report::write(&mcap, &html, &settings, wbv::io::atomic::Overwrite::Refuse)?;
     eprintln!(

@@ -29,6 +29,9 @@ pub struct Settings {
     /// A gap diagnosis to show (the JSON of `wbv gap --json`); without it, the run directory's
     /// [`gap::FILE`] when there is one.
     pub gap: Option<PathBuf>,
+    /// How to read a measurement (columns, units, rate, sensitivity, topic, format), as for
+    /// `wbv analyze` (`docs/inputs.md`); a wbv run needs none.
+    pub input: crate::io::input::Options,
 }
 
 impl Default for Settings {
@@ -37,6 +40,7 @@ impl Default for Settings {
         Settings {
             exposure_hours: health::DEFAULT_EXPOSURE_HOURS,
             gap: None,
+            input: crate::io::input::Options::default(),
         }
     }
 }
@@ -49,6 +53,9 @@ pub struct Built {
     pub health: Option<Health>,
     /// The gap section's verdict, when the page has one.
     pub gap: Option<gap::Summary>,
+    /// What the reader decided about the measurement (units taken from the file, a fitted rate,
+    /// columns left out), one sentence each: shown on the page and in the command's warnings.
+    pub input_notes: Vec<String>,
 }
 
 /// The default report file of a run: `report.html` beside its `run.mcap` (a run directory stands
@@ -89,6 +96,7 @@ margin-top:1.6em}table{border-collapse:collapse;margin:.6em 0}td,th{border:1px s
 padding:.25em .6em;text-align:right}th{background:#f2f2f2}td:first-child,th:first-child{text-align:left}\
 figure{margin:1em 0}figure svg{max-width:100%;height:auto}figcaption{color:#555;font-size:.9em}\
 .verdict{font-size:1.1em;padding:.6em;border-left:4px solid #0072b2;background:#f5f9fc}\
+.warning{font-size:1.1em;padding:.6em;border-left:4px solid #d55e00;background:#fdf3ec}\
 table.kv td{text-align:left}";
 
 fn figure_html(out: &mut String, fig: &RunFigure) -> Result<()> {
@@ -223,7 +231,9 @@ pub fn build(run: &Path, settings: &Settings) -> Result<Built> {
         Some(p) => Some(gap::read(p)?),
         None => None,
     };
-    let signals = crate::analysis::load_signals(&file)?;
+    let input = crate::analysis::load_input(&file, &settings.input)?;
+    crate::analysis::units::refuse_ambiguous(&input)?;
+    let signals = input.signals;
     let provenance = if file
         .extension()
         .is_some_and(|e| e.eq_ignore_ascii_case("mcap"))
@@ -264,15 +274,25 @@ pub fn build(run: &Path, settings: &Settings) -> Result<Built> {
         report.sample_rate_hz,
         esc(&signals.names.join(", "))
     );
+    for w in &report.warnings {
+        let _ = writeln!(out, "<p class=\"warning\"><b>Warning:</b> {}</p>", esc(w));
+    }
     out.push_str("<h2>Verdict</h2>\n");
     let _ = writeln!(
         out,
         "<p class=\"verdict\">Comfort (ISO 2631-1 Annex C, public transport): the vibration total \
-         value over the {} is a<sub>v</sub> = {:.3} m/s², <b>{}</b>. {}</p>",
+         value over the {} is a<sub>v</sub> = {:.3} m/s², <b>{}</b> (Annex C: {}).{}</p>",
         esc(&report.comfort_place),
         report.total_value,
         report.comfort,
-        esc(&report.comfort_statement)
+        esc(&crate::analysis::comfort::overlap_ranges(
+            report.total_value
+        )),
+        if report.verdict_doubtful {
+            " <b>Doubtful</b>: it rests on a channel whose unit looks wrong (warning above)."
+        } else {
+            ""
+        }
     );
     match &report.health {
         Some(h) => {
@@ -293,6 +313,9 @@ pub fn build(run: &Path, settings: &Settings) -> Result<Built> {
     }
     for n in &report.notes {
         let _ = writeln!(out, "<p>Note: {}</p>", esc(n));
+    }
+    for n in &input.notes {
+        let _ = writeln!(out, "<p>Input: {}</p>", esc(n));
     }
     // The gap verdict belongs with the run's verdicts, before the details.
     let gap = match (&diagnosis, &gap_file) {
@@ -327,6 +350,7 @@ pub fn build(run: &Path, settings: &Settings) -> Result<Built> {
         report,
         health,
         gap,
+        input_notes: input.notes,
     })
 }
 

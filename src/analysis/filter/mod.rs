@@ -17,8 +17,10 @@ use num_complex::Complex64;
 use std::f64::consts::PI;
 
 mod oversample;
+mod settle;
 
 pub use oversample::{Interpolator, MIN_ANALYSIS_RATE_HZ, oversampling};
+pub use settle::{WeightingChain, predict_past};
 
 /// One digital second-order section H(z) = (b0 + b1 z⁻¹ + b2 z⁻²)/(1 + a1 z⁻¹ + a2 z⁻²).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -206,7 +208,24 @@ impl WeightingFilter {
             .product()
     }
 
-    /// The weighted signal a_w(t) of `x` (same unit), starting from rest.
+    /// Slowest decay rate σ_min of the cascade's free response, 1/s: −fs·ln max|z| over the poles
+    /// z of every section (a transient falls as e^{−σ_min t}).
+    pub fn slowest_decay_rate(&self) -> f64 {
+        let radius = self
+            .sections
+            .iter()
+            .flat_map(|s| {
+                let disc = Complex64::new(s.a[0] * s.a[0] - 4.0 * s.a[1], 0.0).sqrt();
+                [(-s.a[0] + disc) / 2.0, (-s.a[0] - disc) / 2.0]
+            })
+            .map(|z| z.norm())
+            .fold(0.0, f64::max);
+        -radius.ln() * self.fs
+    }
+
+    /// The weighted signal a_w(t) of `x` (same unit), starting from rest: an instrument switched on
+    /// with the signal (ISO 8041-1 test vectors). A recording's figures use [`WeightingChain`],
+    /// which starts the filters in the steady state of the recording's vibration.
     pub fn apply(&self, x: &[f64]) -> Vec<f64> {
         let mut y = x.to_vec();
         self.apply_in_place(&mut y);

@@ -79,15 +79,18 @@ pub(super) fn octave_bands(report: &Report) -> RunFigure {
 }
 
 pub(super) fn running(signals: &Signals, report: &Report, tau_s: f64) -> Result<RunFigure> {
-    let t = time_axis(signals);
     let mut series = vec![];
     let mut notes = vec![];
     for (i, c) in report.channels.iter().enumerate() {
         let Some(x) = signals.get(&c.name) else {
             continue;
         };
-        let aw = WeightingFilter::new(c.weighting, signals.sample_rate_hz)?.apply(x);
-        let r = running_rms(&aw, signals.sample_rate_hz, tau_s, Averaging::Linear);
+        // The report's own chain (settled start, oversampling), so the marked maximum is its MTVV.
+        let chain = WeightingChain::new(c.weighting, signals.sample_rate_hz)?;
+        let fs = chain.rate_hz();
+        let aw = chain.weigh(x);
+        let r = running_rms(&aw, fs, tau_s, Averaging::Linear);
+        let t: Vec<f64> = (0..r.len()).map(|i| i as f64 / fs).collect();
         let (imax, max) =
             r.iter()
                 .copied()

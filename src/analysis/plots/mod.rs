@@ -15,7 +15,7 @@
 
 use super::comfort::RANGES;
 use super::figures::{Averaging, running_rms};
-use super::filter::WeightingFilter;
+use super::filter::WeightingChain;
 use super::health::{self, Health, ZoneEquation};
 use super::report::Report;
 use super::spectrum::{Segment, Welch, WelchOptions};

@@ -2,7 +2,7 @@
 //! oversampling, weighted and unweighted moments, running r.m.s., PSDs and band r.m.s.
 
 use crate::analysis::figures::{Averaging, Moments, RunningRms};
-use crate::analysis::filter::{FilterStream, Interpolator, WeightingFilter, oversampling};
+use crate::analysis::filter::WeightingChain;
 use crate::analysis::octave;
 use crate::analysis::report::{ChannelReport, Options};
 use crate::analysis::spectrum::{PsdAccumulator, Welch};
@@ -38,20 +38,15 @@ pub(super) struct ChannelAnalyzer {
     axis: String,
     weighting: Weighting,
     k: f64,
-    weight: FilterStream,
-    /// Oversampler ahead of the weighting when the input rate is below the filter's verified
-    /// range ([`oversampling`]), and its output buffer.
-    up: Option<Interpolator>,
-    up_buf: Vec<f64>,
+    /// Wk (or Wd/Wc), oversampled when the input rate is below the filter's verified range, started
+    /// in the steady state of the recording's vibration ([`WeightingChain`]).
+    weight: WeightingChain,
     /// Rate of the weighted signal in Hz (input rate × oversampling).
     fs_weighted: f64,
-    /// First sample: subtracted before both weightings, which starts them in steady state (every
-    /// weighting has zero gain at DC), so a constant offset changes no weighted figure.
-    first: Option<f64>,
     /// Σx of the raw samples, for the mean.
     sum: f64,
     /// Wf for the MSDV (vertical axes only).
-    sickness: Option<(FilterStream, Moments)>,
+    sickness: Option<(WeightingChain, Moments)>,
     raw: Moments,
     weighted: Moments,
     linear: RunningRms,
@@ -72,13 +67,10 @@ impl ChannelAnalyzer {
     ) -> Result<Self> {
         let (place, axis) = parse_name(name).expect("caller filtered names");
         let (weighting, k) = weighting_for(place, axis);
-        let factor = oversampling(weighting, fs);
-        let fs_weighted = fs * factor as f64;
+        let weight = WeightingChain::new(weighting, fs)?;
+        let fs_weighted = weight.rate_hz();
         let sickness = if axis == "z" {
-            Some((
-                WeightingFilter::new(Weighting::Wf, fs)?.stream(),
-                Moments::default(),
-            ))
+            Some((WeightingChain::new(Weighting::Wf, fs)?, Moments::default()))
         } else {
             None
         };
@@ -89,11 +81,8 @@ impl ChannelAnalyzer {
             axis: axis.to_string(),
             weighting,
             k,
-            weight: WeightingFilter::new(weighting, fs_weighted)?.stream(),
-            up: (factor > 1).then(|| Interpolator::new(factor)),
-            up_buf: Vec::new(),
+            weight,
             fs_weighted,
-            first: None,
             sum: 0.0,
             sickness,
             raw: Moments::default(),
@@ -110,8 +99,9 @@ impl ChannelAnalyzer {
     /// dose — so they run side by side (each block is thousands of samples, far more than a
     /// task's overhead); every figure is computed exactly as in sequence.
     pub(super) fn push(&mut self, x: &[f64], welch: &mut Welch) {
-        let Some(&x0) = x.first() else { return };
-        let x0 = *self.first.get_or_insert(x0);
+        if x.is_empty() {
+            return;
+        }
         // Sample by sample, so any split into blocks gives the same sum bit for bit.
         for v in x {
             self.sum += v;
@@ -121,31 +111,18 @@ impl ChannelAnalyzer {
             raw.push(x);
             psd.push(welch, x);
         };
-        let (scratch, weight, weighted) = (&mut self.scratch, &mut self.weight, &mut self.weighted);
-        let (linear, exponential) = (&mut self.linear, &mut self.exponential);
-        let (up, up_buf) = (&mut self.up, &mut self.up_buf);
+        let (scratch, weight) = (&mut self.scratch, &mut self.weight);
+        let figures = (&mut self.weighted, &mut self.linear, &mut self.exponential);
         let weighted_chain = || {
             scratch.clear();
-            scratch.extend(x.iter().map(|v| v - x0));
-            let y = match up.as_mut() {
-                Some(ip) => {
-                    up_buf.clear();
-                    ip.push(scratch, up_buf);
-                    up_buf
-                }
-                None => scratch,
-            };
-            weight.process(y);
-            weighted.push(y);
-            linear.push(y);
-            exponential.push(y);
+            weight.push(x, scratch);
+            push_weighted(scratch, figures);
         };
         let (sick_scratch, sickness) = (&mut self.scratch_sickness, &mut self.sickness);
         let sickness_chain = || {
-            if let Some((filter, moments)) = sickness.as_mut() {
+            if let Some((chain, moments)) = sickness.as_mut() {
                 sick_scratch.clear();
-                sick_scratch.extend(x.iter().map(|v| v - x0));
-                filter.process(sick_scratch);
+                chain.push(x, sick_scratch);
                 moments.push(sick_scratch);
             }
         };
@@ -153,14 +130,16 @@ impl ChannelAnalyzer {
     }
 
     pub(super) fn finish(mut self, fs: f64, welch: &Welch) -> Result<ChannelReport> {
-        if let Some(ip) = self.up.as_mut() {
-            self.up_buf.clear();
-            ip.finish(&mut self.up_buf);
-            let y = &mut self.up_buf;
-            self.weight.process(y);
-            self.weighted.push(y);
-            self.linear.push(y);
-            self.exponential.push(y);
+        self.scratch.clear();
+        self.weight.finish(&mut self.scratch);
+        push_weighted(
+            &self.scratch,
+            (&mut self.weighted, &mut self.linear, &mut self.exponential),
+        );
+        if let Some((chain, moments)) = self.sickness.as_mut() {
+            self.scratch_sickness.clear();
+            chain.finish(&mut self.scratch_sickness);
+            moments.push(&self.scratch_sickness);
         }
         let mean = if self.raw.count == 0 {
             0.0
@@ -183,6 +162,17 @@ impl ChannelAnalyzer {
             peak: self.weighted.peak,
             crest_factor: self.weighted.crest_factor(),
             msdv: self.sickness.map(|(_, m)| m.msdv(fs)),
+            unit_doubt: None,
         })
     }
+}
+
+/// Feeds weighted samples to the moments and both running r.m.s.
+fn push_weighted(
+    y: &[f64],
+    (moments, linear, exponential): (&mut Moments, &mut RunningRms, &mut RunningRms),
+) {
+    moments.push(y);
+    linear.push(y);
+    exponential.push(y);
 }

@@ -2,8 +2,8 @@
 //! format (the rules of the module comment of [`super`]).
 
 use super::{
-    Column, FULL_SCALE, Input, MIN_DURATION_S, Options, Raw, Timing, UNITS, fit_rate,
-    is_channel_name, refuse, scale_of,
+    Column, FULL_SCALE, Input, MAX_ACCELERATION_M_S2, MAX_FORCE_N, MIN_DURATION_S, Options, Raw,
+    Timing, UNITS, fit_rate, is_channel_name, refuse, scale_of,
 };
 use crate::error::{Error, Result};
 use crate::signals::Signals;
@@ -201,6 +201,7 @@ pub(crate) fn assemble(raw: Raw, source: &str, opts: &Options) -> Result<Input> 
         notes.push(format!("{source}: {n}"));
     }
     let mut signals = Signals::new(fs, source);
+    let mut undeclared = Vec::new();
     for (ch, mut c) in picked {
         let flag_unit = opts
             .units
@@ -253,6 +254,7 @@ pub(crate) fn assemble(raw: Raw, source: &str, opts: &Options) -> Result<Input> 
                     c.name,
                     if ch.starts_with("f_") { "N" } else { "m/s²" }
                 ));
+                undeclared.push(ch.clone());
                 if ch.starts_with("f_") { "N" } else { "m/s2" }.to_string()
             }
         };
@@ -272,6 +274,24 @@ pub(crate) fn assemble(raw: Raw, source: &str, opts: &Options) -> Result<Input> 
                 format!("column `{}`: sample {} is not finite", c.name, i + 1),
             ));
         }
+        let (bound, unit) = if ch.starts_with("f_") {
+            (MAX_FORCE_N, "N")
+        } else {
+            (MAX_ACCELERATION_M_S2, "m/s²")
+        };
+        if let Some(i) = c.data.iter().position(|v| v.abs() > bound) {
+            return Err(Error::data(
+                source,
+                line_of(i),
+                format!(
+                    "column `{}` ({ch}): sample {} is {:.3e} {unit}, beyond the {bound:.0e} {unit} \
+                     no vibration reaches: a damaged file, or a wrong --units or --sensitivity",
+                    c.name,
+                    i + 1,
+                    c.data[i]
+                ),
+            ));
+        }
         signals.push(ch, c.data)?;
     }
     if signals.len() < 2 {
@@ -285,5 +305,9 @@ pub(crate) fn assemble(raw: Raw, source: &str, opts: &Options) -> Result<Input> 
             format!("run lasts {duration:.3} s; at least {MIN_DURATION_S} s are required"),
         ));
     }
-    Ok(Input { signals, notes })
+    Ok(Input {
+        signals,
+        notes,
+        undeclared,
+    })
 }

@@ -41,6 +41,15 @@ pub const STANDARD_GRAVITY: f64 = 9.80665;
 /// Shortest run accepted, in s (measured-run spec: "files shorter than 10 s are errors").
 pub const MIN_DURATION_S: f64 = 10.0;
 
+/// Largest |acceleration| a channel may hold after units, m/s² (≈ 1000 g): beyond any seat,
+/// vehicle or drop-table shock, so a sample past it is a damaged file or a wrong unit or
+/// sensitivity, never vibration (ISO 2631-1 covers 0.01–10 m/s² r.m.s.; ISO 2631-5 shocks reach
+/// tens of g).
+pub const MAX_ACCELERATION_M_S2: f64 = 1e4;
+
+/// Largest |force| a channel may hold after units, N (a seated occupant's 1000 g).
+pub const MAX_FORCE_N: f64 = 1e6;
+
 /// Largest deviation of a time stamp from the fitted uniform grid, beyond half its printed
 /// resolution, as a fraction of the step (the measured-run spec's 1 % jitter allowance).
 pub const MAX_JITTER: f64 = 0.01;
@@ -86,6 +95,10 @@ pub struct Input {
     pub signals: Signals,
     /// Choices made and columns left out, one sentence each, for the user to see.
     pub notes: Vec<String>,
+    /// Channels whose unit neither the file nor `--units` declared, read as m/s² (or N): the
+    /// ISO path refuses those whose samples look like another unit
+    /// (`crate::analysis::units::refuse_ambiguous`).
+    pub undeclared: Vec<String>,
 }
 
 /// One column of a file as a format module reads it, before mapping and units.
