@@ -193,11 +193,20 @@ fn gravity_and_g_units_are_named_in_the_notes() {
         notes.contains("a_seat_z") && notes.contains("1 g"),
         "{notes}"
     );
+    // Data in g with gravity read as m/s²: a warning before everything else, the channel flagged
+    // and the comfort verdict that uses it marked doubtful.
+    let warnings = r.warnings.join("\n");
     assert!(
-        notes.contains("a_back_x") && notes.contains("--units g"),
+        warnings.contains("a_back_x") && warnings.contains("--units a_back_x=g"),
+        "{warnings}"
+    );
+    assert!(r.channel("a_back_x").unwrap().unit_doubt.is_some());
+    assert!(r.channel("a_seat_z").unwrap().unit_doubt.is_none());
+    assert!(r.verdict_doubtful);
+    assert!(
+        !notes.contains("a_seat_x:") && !notes.contains("a_back_x"),
         "{notes}"
     );
-    assert!(!notes.contains("a_seat_x:"), "{notes}");
 }
 
 #[test]

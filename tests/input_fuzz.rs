@@ -8,6 +8,7 @@
 
 use proptest::prelude::*;
 use std::path::Path;
+use wbv::analysis::{Options as ReportOptions, Report};
 use wbv::io::input::{Format, Options, read_bytes};
 
 fn cases() -> u32 {
@@ -217,8 +218,46 @@ fn seeds() -> Vec<(Vec<u8>, String, Options)> {
     v
 }
 
+/// A file that reads must give a report with finite, physically possible figures, or an error:
+/// never a silent absurd verdict (a flipped byte read as 10³⁶ m/s², a NaN comfort value).
+fn figures_are_plausible(bytes: &[u8], name: &str, opts: &Options) {
+    let Ok(inp) = read_bytes(bytes, Path::new(name), opts) else {
+        return;
+    };
+    let Ok(r) = Report::from_signals(&inp.signals, &ReportOptions::default()) else {
+        return;
+    };
+    let bound = wbv::io::input::MAX_ACCELERATION_M_S2;
+    assert!(
+        r.total_value.is_finite() && r.total_value <= 2.0 * bound,
+        "{name}: a_v {}",
+        r.total_value
+    );
+    for c in &r.channels {
+        for (key, v) in [
+            ("a_w", c.a_w),
+            ("vdv", c.vdv),
+            ("mtvv", c.mtvv),
+            ("crest_factor", c.crest_factor),
+        ] {
+            assert!(v.is_finite() && v >= 0.0, "{name} {}: {key} {v}", c.name);
+        }
+        assert!(
+            c.a_w <= bound && c.peak <= 10.0 * bound,
+            "{name} {}: a_w {} peak {}",
+            c.name,
+            c.a_w,
+            c.peak
+        );
+        assert!(c.msdv.is_none_or(f64::is_finite), "{name} {}: msdv", c.name);
+    }
+    if let Some(s) = r.seat_percent {
+        assert!(s.is_finite(), "{name}: SEAT {s}");
+    }
+}
+
 fn try_all(bytes: &[u8], name: &str, opts: &Options) {
-    let _ = read_bytes(bytes, Path::new(name), opts);
+    figures_are_plausible(bytes, name, opts);
     for f in [Format::Csv, Format::Wav, Format::Mat, Format::Uff] {
         let o = Options {
             format: Some(f),

@@ -21,6 +21,9 @@ pub struct Options {
     pub tau_s: f64,
     /// Spectral estimation of the one-third-octave bands.
     pub welch: WelchOptions,
+    /// Channels whose unit the file or the user declared (`--units`): their samples are never
+    /// doubted ([`ChannelReport::unit_doubt`]); every other acceleration channel is.
+    pub units_declared: Vec<String>,
 }
 
 impl Default for Options {
@@ -29,6 +32,7 @@ impl Default for Options {
             exposure_hours: None,
             tau_s: 1.0,
             welch: WelchOptions::default(),
+            units_declared: Vec::new(),
         }
     }
 }
@@ -210,6 +214,9 @@ impl Report {
     ) -> Report {
         for c in &mut channels {
             let ac = (c.rms * c.rms - c.mean * c.mean).max(0.0).sqrt();
+            if opts.units_declared.contains(&c.name) {
+                continue;
+            }
             c.unit_doubt = super::units::looks_like(c.mean, ac).map(|like| {
                 format!(
                     "{}: the samples look like {like} read as m/s² (mean {:.3}, fluctuation \

@@ -4,11 +4,14 @@
 //! tells the unit — ≈ 9.81 in m/s², ≈ 1.0 in g, ≈ 1000 in mg — when the vibration around it is
 //! small against 1 g (whole-body vibration stays below 0.5 g r.m.s.; ISO 2631-1 Annex C ends at
 //! 2 m/s²). Data in g read as m/s² make every figure 9.81 × too small and the comfort class two or
-//! three classes too good, so [`refuse_ambiguous`] makes it an error where no unit was declared:
-//! one `--units` settles it, while a warning printed after a confident verdict is read too late.
+//! three classes too good. Where no unit was declared, such a channel gets a warning that stands
+//! first in the text, the JSON (`warnings`, and `unit_doubt` beside the channel's figures) and the
+//! HTML report, and the verdicts that use it are marked doubtful
+//! ([`crate::analysis::Report::verdict_doubtful`]). Not an error: m/s² data with a 1 m/s² sensor
+//! bias look the same, and a report that says what it doubts is more use than none; `--units`
+//! (either way) settles it and removes the warning.
 
-use crate::error::{Error, Result};
-use crate::io::input::{Input, STANDARD_GRAVITY};
+use crate::io::input::STANDARD_GRAVITY;
 use std::fmt;
 
 /// A unit an acceleration channel's mean points to, read as m/s².
@@ -66,32 +69,6 @@ pub fn mean_and_fluctuation(x: &[f64]) -> (f64, f64) {
     let mean = x.iter().sum::<f64>() / n;
     let var = x.iter().map(|v| (v - mean).powi(2)).sum::<f64>() / n;
     (mean, var.sqrt())
-}
-
-/// Refuses a measurement whose acceleration channel had no declared unit (read as m/s²) and whose
-/// samples look like g or mg with gravity ([`looks_like`]): the error names the file, the channel,
-/// its mean and the two ways to settle it.
-pub fn refuse_ambiguous(input: &Input) -> Result<()> {
-    let s = &input.signals;
-    for name in input.undeclared.iter().filter(|n| n.starts_with("a_")) {
-        let Some(x) = s.get(name) else { continue };
-        let (mean, ac) = mean_and_fluctuation(x);
-        if let Some(like) = looks_like(mean, ac) {
-            return Err(Error::data(
-                &s.source,
-                None,
-                format!(
-                    "`{name}` has no declared unit and its mean {mean:.3} with fluctuation \
-                     {ac:.3} looks like {like} read as m/s² (every figure would be {:.4} × the \
-                     true one): give --units {name}={} if so, or --units {name}=m/s2 if the \
-                     samples are m/s²",
-                    1.0 / like.factor(),
-                    like.unit()
-                ),
-            ));
-        }
-    }
-    Ok(())
 }
 
 #[cfg(test)]

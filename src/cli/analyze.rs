@@ -63,7 +63,7 @@ pub fn run(args: Args) -> wbv::Result<()> {
     };
     let start = std::time::Instant::now();
     let input = analysis::load_input(&args.path, &args.input.options()?)?;
-    analysis::units::refuse_ambiguous(&input)?;
+    let declared = input.declared();
     let signals = input.signals;
     let loaded = start.elapsed().as_secs_f64();
     let welch = WelchOptions {
@@ -74,6 +74,7 @@ pub fn run(args: Args) -> wbv::Result<()> {
     let opts = Options {
         exposure_hours: args.exposure_hours,
         welch,
+        units_declared: declared,
         ..Options::default()
     };
     let report = Report::from_signals(&signals, &opts)?;
@@ -100,12 +101,11 @@ pub fn run(args: Args) -> wbv::Result<()> {
         }
     }
     if args.json {
-        let notes: Vec<String> = report
-            .warnings
-            .iter()
-            .cloned()
-            .chain(input.notes.iter().map(|n| format!("input: {n}")))
-            .collect();
+        // The report's own warnings are already its document's `warnings`; on stderr too.
+        for w in &report.warnings {
+            eprintln!("warning: {w}");
+        }
+        let notes: Vec<String> = input.notes.iter().map(|n| format!("input: {n}")).collect();
         super::print_json(
             "analyze",
             &WithFiles {
@@ -172,6 +172,11 @@ pub(crate) fn print_table(r: &Report) {
     if let Some(h) = &r.health {
         for line in h.statement() {
             println!("{line}");
+        }
+        if r.verdict_doubtful {
+            println!(
+                "  doubtful: it rests on a channel whose unit looks wrong (see the WARNING above)"
+            );
         }
     }
     for n in &r.notes {

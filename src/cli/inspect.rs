@@ -34,7 +34,8 @@ pub fn run(args: Args) -> wbv::Result<()> {
         return super::print_json("inspect", &wbv::report::json::Inspected::of(&s), &[]);
     }
     println!("{}  ({})", s.path.display(), s.library);
-    let duration = s.end_ns.saturating_sub(s.start_ns) as f64 * 1e-9;
+    // Divided, not multiplied by 1e-9: 6e10 ns prints as 60, not 60.00000000000001.
+    let duration = s.end_ns.saturating_sub(s.start_ns) as f64 / 1e9;
     println!(
         "duration: {duration} s (log time {} … {} ns)",
         s.start_ns, s.end_ns

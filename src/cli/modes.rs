@@ -150,6 +150,13 @@ pub fn run(args: Args) -> wbv::Result<()> {
                 .collect::<String>()
         );
     }
+    let shape = |m: &wbv::response::modes::DampedMode| -> String {
+        m.shape_mag
+            .iter()
+            .zip(&m.shape_phase_deg)
+            .map(|(a, p)| format!("{:>16}", format!("{a:.3} ({p:.0}°)")))
+            .collect()
+    };
     println!("\nDamped modes (state-space eigenvalues): |shape| (phase°)");
     println!(
         "  {:>9} {:>9} {:>7}  {}",
@@ -158,23 +165,33 @@ pub fn run(args: Args) -> wbv::Result<()> {
         "zeta",
         names.iter().map(|n| format!("{n:>16}")).collect::<String>()
     );
-    for m in &dam {
-        let fd = if m.overdamped {
-            "overdamped".to_string()
-        } else {
-            format!("{:9.3}", m.damped_hz)
-        };
+    for m in dam.iter().filter(|m| !m.overdamped) {
         println!(
-            "  {:>9} {:9.3} {:7.3}  {}",
-            fd,
+            "  {:9.3} {:9.3} {:7.3}  {}",
+            m.damped_hz,
             m.natural_hz,
             m.zeta,
-            m.shape_mag
-                .iter()
-                .zip(&m.shape_phase_deg)
-                .map(|(a, p)| format!("{:>16}", format!("{a:.3} ({p:.0}°)")))
-                .collect::<String>()
+            shape(m)
         );
+    }
+    if dam.iter().any(|m| m.overdamped) {
+        // A real eigenvalue λ is no mode: the motion it carries decays as e^{λt} without
+        // oscillating; its corner |λ|/2π is where it shapes the frequency response.
+        println!("\nReal poles (overdamped: decay without oscillation): |shape| (phase°)");
+        println!(
+            "  {:>9} {:>9}  {}",
+            "f [Hz]",
+            "tau [ms]",
+            names.iter().map(|n| format!("{n:>16}")).collect::<String>()
+        );
+        for m in dam.iter().filter(|m| m.overdamped) {
+            println!(
+                "  {:9.3} {:9.3}  {}",
+                m.natural_hz,
+                1e3 / (2.0 * std::f64::consts::PI * m.natural_hz),
+                shape(m)
+            );
+        }
     }
     Ok(())
 }

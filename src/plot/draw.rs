@@ -168,6 +168,14 @@ fn draw_chart<DB: DrawingBackend>(
                                     Rectangle::new([(x + 4, y - 5), (x + 16, y + 5)], c.filled())
                                         .into_dyn()
                                 }
+                                // Two dashes, as the curve is drawn.
+                                Style::Dashed => plotters::element::DashedPathElement::new(
+                                    vec![(x, y), (x + 20, y)],
+                                    7,
+                                    5,
+                                    c.stroke_width(2),
+                                )
+                                .into_dyn(),
                                 _ => PathElement::new(vec![(x, y), (x + 20, y)], c.stroke_width(2))
                                     .into_dyn(),
                             });

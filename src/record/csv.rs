@@ -70,7 +70,7 @@ impl Observer for CsvWriter {
             return Err(Error::data(
                 &self.path,
                 None,
-                format!("non-finite value at t = {} s", step.t),
+                format!("non-finite value at t = {:.6} s", step.t),
             ));
         }
         self.row.clear();

@@ -285,7 +285,7 @@ impl McapRecorder {
         Error::parameter(
             field_name(&self.topics, i),
             format!(
-                "is not finite at step {} (t = {} s); refusing to record NaN or infinity",
+                "is not finite at step {} (t = {:.6} s); refusing to record NaN or infinity",
                 s.index, s.t
             ),
         )
@@ -365,7 +365,7 @@ impl McapRecorder {
         };
         Error::parameter(
             "run",
-            format!("interrupted by a signal at t = {t} s; {what}"),
+            format!("interrupted by a signal at t = {t:.3} s; {what}"),
         )
     }
 }

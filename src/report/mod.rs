@@ -191,21 +191,33 @@ fn model_html(out: &mut String, p: &Provenance) -> Result<()> {
             "<table><tr><th>mode</th><th>natural frequency [Hz]</th><th>damped frequency [Hz]</th>\
              <th>damping ratio ζ [-]</th></tr>",
         );
-        for (i, m) in modes.iter().enumerate() {
+        for (i, m) in modes.iter().filter(|m| !m.overdamped).enumerate() {
             let _ = write!(
                 out,
-                "<tr><td>{}</td><td>{:.3}</td><td>{}</td><td>{:.3}</td></tr>",
+                "<tr><td>{}</td><td>{:.3}</td><td>{:.3}</td><td>{:.3}</td></tr>",
                 i + 1,
                 m.natural_hz,
-                if m.overdamped {
-                    "overdamped".into()
-                } else {
-                    format!("{:.3}", m.damped_hz)
-                },
+                m.damped_hz,
                 m.zeta
             );
         }
         out.push_str("</table>\n");
+        let real: Vec<_> = modes.iter().filter(|m| m.overdamped).collect();
+        if !real.is_empty() {
+            out.push_str(
+                "<p>Real poles (overdamped: motions that decay without oscillating, not modes):</p>\
+                 <table><tr><th>corner frequency |λ|/2π [Hz]</th><th>time constant 1/|λ| [ms]</th></tr>",
+            );
+            for m in real {
+                let _ = write!(
+                    out,
+                    "<tr><td>{:.3}</td><td>{:.3}</td></tr>",
+                    m.natural_hz,
+                    1e3 / (2.0 * std::f64::consts::PI * m.natural_hz)
+                );
+            }
+            out.push_str("</table>\n");
+        }
     }
     Ok(())
 }
@@ -232,7 +244,7 @@ pub fn build(run: &Path, settings: &Settings) -> Result<Built> {
         None => None,
     };
     let input = crate::analysis::load_input(&file, &settings.input)?;
-    crate::analysis::units::refuse_ambiguous(&input)?;
+    let declared = input.declared();
     let signals = input.signals;
     let provenance = if file
         .extension()
@@ -244,6 +256,7 @@ pub fn build(run: &Path, settings: &Settings) -> Result<Built> {
     };
     let opts = Options {
         exposure_hours: Some(settings.exposure_hours),
+        units_declared: declared,
         ..Options::default()
     };
     let report = Report::from_signals(&signals, &opts)?;
@@ -300,6 +313,12 @@ pub fn build(run: &Path, settings: &Settings) -> Result<Built> {
             let _ = write!(out, "<div class=\"verdict\"><p>{}</p><ul>", esc(&lines[0]));
             for l in &lines[1..] {
                 let _ = write!(out, "<li>{}</li>", esc(l.trim()));
+            }
+            if report.verdict_doubtful {
+                out.push_str(
+                    "<li><b>Doubtful</b>: it rests on a channel whose unit looks wrong (warning \
+                     above).</li>",
+                );
             }
             out.push_str("</ul></div>\n");
         }

@@ -80,7 +80,7 @@ pub(super) fn octave_bands(report: &Report) -> RunFigure {
 
 pub(super) fn running(signals: &Signals, report: &Report, tau_s: f64) -> Result<RunFigure> {
     let mut series = vec![];
-    let mut notes = vec![];
+    let mut top: f64 = 0.0;
     for (i, c) in report.channels.iter().enumerate() {
         let Some(x) = signals.get(&c.name) else {
             continue;
@@ -99,23 +99,34 @@ pub(super) fn running(signals: &Signals, report: &Report, tau_s: f64) -> Result<
                     (0, f64::NEG_INFINITY),
                     |b, (j, v)| if v > b.1 { (j, v) } else { b },
                 );
+        top = top.max(max);
         let (tx, yx) = crate::plot::envelope(&t, &r, BUCKETS);
         let col = colour::pick(i);
+        // The MTVV goes into the legend, not beside its marker: channels' maxima often fall at the
+        // same moment, where labels would print over each other.
         series.push(
-            Series::line(format!("{} ({})", c.name, c.weighting.name()), tx, yx).coloured(col),
+            Series::line(
+                format!(
+                    "{} ({}): MTVV {:.3} m/s² at {:.1} s",
+                    c.name,
+                    c.weighting.name(),
+                    max,
+                    t[imax]
+                ),
+                tx,
+                yx,
+            )
+            .coloured(col),
         );
         series.push(
             Series::line("", vec![t[imax]], vec![max])
                 .styled(Style::Markers)
                 .coloured(col),
         );
-        notes.push(Note {
-            x: t[imax],
-            y: max,
-            text: format!("MTVV {:.3} m/s² at {:.1} s", max, t[imax]),
-            dy: -18,
-        });
     }
+    // Headroom above the highest curve for the legend (one line per channel).
+    let rows = report.channels.len() as f64;
+    let y_range = (top > 0.0).then_some((0.0, top * (1.12 + 0.09 * rows)));
     Ok(RunFigure {
         name: "running_rms",
         caption: format!(
@@ -127,7 +138,7 @@ pub(super) fn running(signals: &Signals, report: &Report, tau_s: f64) -> Result<
             x_label: "time [s]".into(),
             y_label: "running r.m.s. a_w(t) [m/s²]".into(),
             series,
-            notes,
+            y_range,
             ..Chart::default()
         }],
         cols: 1,

@@ -48,33 +48,48 @@ pub fn health_charts(h: &Health) -> Vec<Chart> {
             .styled(Style::Markers)
             .coloured((0, 114, 178)),
     ];
-    // The exposure at which the run's line crosses each boundary: time to reach it.
-    let mut notes = vec![];
+    // The exposures at which the run's line crosses each boundary (time to reach it): marked on
+    // the line and named in the legend, where close crossings cannot print over each other.
+    let mut crossings: Vec<(f64, String)> = vec![];
     for (what, t) in [
-        ("action", health::hours_to_a8(h.a_w_max, health::A8_ACTION)),
-        ("limit", health::hours_to_a8(h.a_w_max, health::A8_LIMIT)),
+        (
+            "action value",
+            health::hours_to_a8(h.a_w_max, health::A8_ACTION),
+        ),
+        (
+            "limit value",
+            health::hours_to_a8(h.a_w_max, health::A8_LIMIT),
+        ),
         (
             "zone B.1",
             health::hours_to_zone(h.a_w_max, lo, ZoneEquation::B1),
         ),
     ] {
         if (t0..=t1).contains(&t) {
-            a_series.push(
-                Series::line("", vec![t], vec![h.a_w_max])
-                    .styled(Style::Markers)
-                    .coloured((0, 0, 0)),
-            );
-            notes.push(Note {
-                x: t,
-                y: h.a_w_max,
-                text: format!("{what}: {}", health::hours_text(t)),
-                // Alternately above and below the line, so that close crossings stay readable.
-                dy: if notes.len() % 2 == 0 { -24 } else { 6 },
-            });
+            crossings.push((t, format!("{what} {}", health::hours_text(t))));
         }
     }
+    if !crossings.is_empty() {
+        a_series.push(
+            Series::line(
+                format!(
+                    "reached after: {}",
+                    crossings
+                        .iter()
+                        .map(|(_, s)| s.as_str())
+                        .collect::<Vec<_>>()
+                        .join(", ")
+                ),
+                crossings.iter().map(|(t, _)| *t).collect(),
+                vec![h.a_w_max; crossings.len()],
+            )
+            .styled(Style::Markers)
+            .coloured((0, 0, 0)),
+        );
+    }
     let y_lo = 0.1f64.min(h.a_w_max / 2.0);
-    let y_hi = 10f64.max(h.a_w_max * 2.0);
+    // A decade above the curves for the legend, which would otherwise cover them.
+    let y_hi = 40f64.max(h.a_w_max * 4.0);
     let vdv_at = |t: f64| h.vdv_exposure * (t / h.exposure_hours).powf(0.25);
     let v_series = vec![
         Series::line(
@@ -117,7 +132,6 @@ pub fn health_charts(h: &Health) -> Vec<Chart> {
             x_range: Some((t0, t1)),
             y_range: Some((y_lo, y_hi)),
             series: a_series,
-            notes,
             ..Chart::default()
         },
         Chart {

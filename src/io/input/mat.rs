@@ -35,6 +35,55 @@ fn to_f64(d: &NumericData) -> Option<Vec<f64>> {
     }
 }
 
+/// Checks the top-level data elements of a level-5 MAT-file against its length, which the
+/// `matfile` parser does not: it stops quietly at an element cut short, so a truncated copy would
+/// lose its last variables without a word. Each element is an 8-byte tag (type, size in bytes)
+/// and its data padded to 8 bytes (compressed elements are not padded), or a 'small' element
+/// packed into 8 bytes (MAT-File Format, The MathWorks, 2019, pp. 1-6 to 1-9).
+fn check_elements(bytes: &[u8], err: &dyn Fn(String) -> Error) -> Result<()> {
+    let big = &bytes[126..128] == b"MI";
+    let u32_at = |i: usize| {
+        let a = [bytes[i], bytes[i + 1], bytes[i + 2], bytes[i + 3]];
+        if big {
+            u32::from_be_bytes(a)
+        } else {
+            u32::from_le_bytes(a)
+        }
+    };
+    const COMPRESSED: u32 = 15;
+    let mut at = 128;
+    let mut k = 0;
+    while at < bytes.len() {
+        k += 1;
+        if at + 8 > bytes.len() {
+            return Err(err(format!(
+                "truncated: {} stray bytes after the last complete variable (byte {at})",
+                bytes.len() - at
+            )));
+        }
+        let tag = u32_at(at);
+        if tag >> 16 != 0 {
+            at += 8; // small data element
+            continue;
+        }
+        let size = u32_at(at + 4) as usize;
+        let end = at + 8 + size;
+        if end > bytes.len() {
+            return Err(err(format!(
+                "truncated: data element {k} at byte {at} states {size} bytes, {} remain (a cut \
+                 copy; its variable would be lost)",
+                bytes.len() - at - 8
+            )));
+        }
+        at = if tag == COMPRESSED {
+            end
+        } else {
+            end.div_ceil(8) * 8
+        };
+    }
+    Ok(())
+}
+
 /// Reads the numeric vectors of a MAT-file.
 pub(crate) fn read(bytes: &[u8], source: &str) -> Result<Raw> {
     let err = |m: String| Error::data(source, None, m);
@@ -50,6 +99,7 @@ pub(crate) fn read(bytes: &[u8], source: &str) -> Result<Raw> {
             "not a MAT-file level 5 (expected the 128-byte header `MATLAB 5.0 MAT-file`)".into(),
         ));
     }
+    check_elements(bytes, &err)?;
     let file = std::panic::catch_unwind(|| matfile::MatFile::parse(bytes))
         .map_err(|_| err("malformed MAT-file (the parser gave up)".into()))?
         .map_err(|e| err(format!("malformed MAT-file: {e}")))?;

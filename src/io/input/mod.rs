@@ -96,9 +96,20 @@ pub struct Input {
     /// Choices made and columns left out, one sentence each, for the user to see.
     pub notes: Vec<String>,
     /// Channels whose unit neither the file nor `--units` declared, read as m/s² (or N): the
-    /// ISO path refuses those whose samples look like another unit
-    /// (`crate::analysis::units::refuse_ambiguous`).
+    /// ISO report doubts those whose samples look like another unit (`crate::analysis::units`).
     pub undeclared: Vec<String>,
+}
+
+impl Input {
+    /// The channels whose unit the file or `--units` declared (every channel of a wbv run).
+    pub fn declared(&self) -> Vec<String> {
+        self.signals
+            .names
+            .iter()
+            .filter(|n| !self.undeclared.contains(n))
+            .cloned()
+            .collect()
+    }
 }
 
 /// One column of a file as a format module reads it, before mapping and units.

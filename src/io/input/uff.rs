@@ -150,8 +150,21 @@ pub(crate) fn read(bytes: &[u8], source: &str) -> Result<Raw> {
     let mut rate: Option<(f64, String, usize)> = None;
     let mut datasets = 0;
     while let Some(l) = c.line() {
-        if l.trim() != "-1" {
+        // Between datasets only blank lines may stand: anything else is a damaged file (bytes
+        // inserted, a cut), and skipping to the next `-1` would silently drop a dataset.
+        if l.trim().is_empty() {
             continue;
+        }
+        if l.trim() != "-1" {
+            let shown: String = l.chars().filter(|c| !c.is_control()).take(24).collect();
+            return Err(Error::data(
+                source,
+                Some(c.line),
+                format!(
+                    "`{shown}` stands outside any dataset (a dataset starts with `-1`): the file \
+                     is damaged"
+                ),
+            ));
         }
         let Some(h) = c.line() else { break };
         let start = c.line;

@@ -8,9 +8,64 @@
 use super::{Column, Raw, Timing};
 use crate::error::{Error, Result};
 
+/// Checks the RIFF structure that `hound` does not: the RIFF size against the file's length (a cut
+/// copy, or bytes appended after the RIFF chunk), every chunk inside it, and a data chunk holding a
+/// whole number of frames of `block_align` bytes. RF64 (sizes in a `ds64` chunk) is left to `hound`.
+fn check_riff(bytes: &[u8], err: &dyn Fn(String) -> Error) -> Result<()> {
+    if !bytes.starts_with(b"RIFF") || bytes.len() < 12 {
+        return Ok(());
+    }
+    let u32_at =
+        |i: usize| u32::from_le_bytes([bytes[i], bytes[i + 1], bytes[i + 2], bytes[i + 3]]);
+    let end = u32_at(4) as usize + 8;
+    if bytes.len() < end {
+        return Err(err(format!(
+            "truncated: the RIFF header states {end} bytes, the file has {}",
+            bytes.len()
+        )));
+    }
+    // One pad byte after an odd-sized RIFF chunk is tolerated.
+    if bytes.len() > end + 1 {
+        return Err(err(format!(
+            "{} bytes after the end of the RIFF chunk (byte {end}): a damaged or concatenated file",
+            bytes.len() - end
+        )));
+    }
+    let mut at = 12;
+    let mut block_align = None;
+    while at < end {
+        if at + 8 > end {
+            return Err(err(format!(
+                "{} stray bytes at byte {at}, too few for a chunk header",
+                end - at
+            )));
+        }
+        let id = String::from_utf8_lossy(&bytes[at..at + 4]).into_owned();
+        let size = u32_at(at + 4) as usize;
+        let body = at + 8;
+        if body + size > end {
+            return Err(err(format!(
+                "truncated: chunk `{id}` at byte {at} states {size} bytes, {} remain",
+                end - body
+            )));
+        }
+        if id == "fmt " && size >= 14 {
+            block_align = Some(u16::from_le_bytes([bytes[body + 12], bytes[body + 13]]) as usize);
+        }
+        if let Some(b) = block_align.filter(|&b| id == "data" && b > 0 && !size.is_multiple_of(b)) {
+            return Err(err(format!(
+                "the data chunk's {size} bytes are not a whole number of {b}-byte frames"
+            )));
+        }
+        at = body + size + size % 2;
+    }
+    Ok(())
+}
+
 /// Reads every channel of a WAV file as fractions of full scale.
 pub(crate) fn read(bytes: &[u8], source: &str) -> Result<Raw> {
     let err = |m: String| Error::data(source, None, m);
+    check_riff(bytes, &err)?;
     let mut r = hound::WavReader::new(std::io::Cursor::new(bytes))
         .map_err(|e| err(format!("not a readable WAV file: {e}")))?;
     let spec = r.spec();

@@ -94,7 +94,7 @@ impl Inspected {
         Inspected {
             path: s.path.display().to_string(),
             library: s.library.clone(),
-            duration_s: s.end_ns.saturating_sub(s.start_ns) as f64 * 1e-9,
+            duration_s: s.end_ns.saturating_sub(s.start_ns) as f64 / 1e9,
             start_ns: s.start_ns,
             end_ns: s.end_ns,
             topics: s
