@@ -49,6 +49,7 @@ pub mod proto;
 mod reader;
 mod scene;
 mod topics;
+pub mod viewer;
 mod writer;
 
 pub use json::check_lichtblick_subset;
@@ -144,16 +145,17 @@ impl Encoding {
 
 /// How the time-series topics (`/wbv/measured`, `/wbv/state`, `/wbv/links`) are cut into
 /// messages. The 3-D scene is one message per frame in both.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum MessageLayout {
     /// One message per topic per recorded sample (`wbv.Measured`, `wbv.State`, `wbv.Links`):
-    /// every field a time series in every viewer (`/wbv/state.head.a_abs`). Three MCAP messages per
-    /// step: a full-rate hour costs ≈ 19 CPU-s, mostly per-message framing and compressor calls.
+    /// every field a time series in every viewer (`/wbv/state.head.a_abs`) without configuration,
+    /// so it is the default. Three MCAP messages per step (README, "Speed" for the cost).
+    #[default]
     PerSample,
     /// One message per topic per block of up to [`BATCH_SAMPLES`] samples with a packed array per
     /// field (`wbv.MeasuredBatch`, `wbv.StateBatch`, `wbv.LinksBatch`; protobuf only): a
-    /// thousandth of the messages, so the hour costs the compression of its doubles and little
-    /// else. Viewers see arrays (`/wbv/state.head.a_abs[:]`, against `/wbv/state.t[:]`).
+    /// thousandth of the messages, the smallest and fastest record. Viewers see arrays
+    /// (`/wbv/state.head.a_abs[:]`, against `/wbv/state.t[:]`); every wbv command reads it.
     Batched,
 }
 
@@ -180,15 +182,6 @@ impl MessageLayout {
             MessageLayout::Batched => "batched",
         }
     }
-
-    /// The layout of `encoding` when none is asked for: batched for protobuf (a full-rate hour
-    /// within seconds), per-sample for JSON (the text layout, which is not batched).
-    pub fn default_for(encoding: Encoding) -> Self {
-        match encoding {
-            Encoding::Protobuf => MessageLayout::Batched,
-            Encoding::Json => MessageLayout::PerSample,
-        }
-    }
 }
 
 /// How a run is recorded.
@@ -198,7 +191,7 @@ pub struct RecordOptions {
     pub encoding: Encoding,
     /// Chunk compression.
     pub compression: Compression,
-    /// Message layout of the time series; `None`: [`MessageLayout::default_for`] the encoding.
+    /// Message layout of the time series; `None`: the default ([`MessageLayout::PerSample`]).
     /// `Batched` is protobuf only.
     pub layout: Option<MessageLayout>,
     /// Rate of the time-series topics in Hz; `None` records every step. A lower rate must divide

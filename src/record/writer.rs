@@ -141,7 +141,7 @@ impl McapRecorder {
 
     /// The message layout of the time series (see [`RecordOptions::layout`]).
     fn layout_kind(&self) -> MessageLayout {
-        (self.options.layout).unwrap_or_else(|| MessageLayout::default_for(self.options.encoding))
+        self.options.layout.unwrap_or_default()
     }
 
     fn setup(&mut self, layout: &Layout) -> Result<()> {
