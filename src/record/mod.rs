@@ -35,6 +35,7 @@
 //! over the Foxglove WebSocket protocol while a run is simulated (`wbv simulate --serve`).
 
 mod channels;
+mod chunks;
 pub mod csv;
 pub mod demo;
 mod file;
@@ -75,10 +76,10 @@ pub fn run_file(path: &std::path::Path) -> std::path::PathBuf {
 /// Chunk compression of the MCAP file.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Compression {
-    /// Zstandard level 1, compressed on worker threads (the default: half the size of lz4 for
-    /// the same CPU time, see `benches/record.rs`).
+    /// Zstandard (level -1 with 4-byte matches, see `chunks.rs`), the default: the smallest
+    /// file for the CPU time (see `benches/record.rs`).
     Zstd,
-    /// LZ4, compressed on the writer thread.
+    /// LZ4 frames.
     Lz4,
     /// No compression (largest files, fastest to write).
     None,
@@ -207,8 +208,8 @@ pub struct RecordOptions {
     pub magnification: f64,
     /// Whether an existing file may be replaced.
     pub overwrite: Overwrite,
-    /// Threads that format messages and, with zstd, compress chunks; `None`: one per core, at
-    /// most 4. The file does not depend on it.
+    /// Threads that format messages, and that compress chunks; `None`: one per core, at most 4.
+    /// The file does not depend on it.
     pub threads: Option<usize>,
 }
 
