@@ -6,7 +6,7 @@ use std::collections::BTreeMap;
 use std::fs::File;
 use std::io::{BufWriter, Seek, SeekFrom, Write};
 
-pub use super::chunks::McapWriter;
+pub type McapWriter = super::chunks::McapWriter<BufWriter<RunFile>>;
 
 /// Bytes written between two write-back requests of [`RunFile`].
 const WRITEBACK_BYTES: u64 = 32 << 20;

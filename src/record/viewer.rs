@@ -2,8 +2,9 @@
 //! who has only the `wbv` binary can open the run as plots.
 //!
 //! - [`LAYOUT_FILE`]: the Foxglove / Lichtblick layout (`tools/viewer/wbv-layout.json`): 3-D scene,
-//!   base, seat and head acceleration and the seat force. Neither viewer loads a layout from an
-//!   MCAP file, so it is a file to import (*Layout* → *Import from file…*).
+//!   base, seat and head acceleration and the seat force. Both viewers import a layout from a JSON
+//!   file (*Layout* → *Import from file…*); no documented way to take one from an MCAP attachment
+//!   was found, so it is a file.
 //! - [`BLUEPRINT_FILE`]: the Rerun blueprint (`tools/viewer/wbv.rbl`, written by
 //!   `tools/viewer/rerun_blueprint.py` with rerun-sdk, the only writer of Rerun's format) with the
 //!   same four signals as time series, for recordings of application id [`RERUN_APPLICATION_ID`].
