@@ -1,5 +1,5 @@
-//! One simulated hour at 1 kHz, end to end: `wbv simulate` of the default scenario (reference seat,
-//! Bell 214 spectrum) simulated, recorded to MCAP and analysed, as a whole process, in the same
+//! One simulated hour at 1 kHz, end to end: `wbv simulate` with its defaults (reference seat, white
+//! 0.5–80 Hz random) simulated, recorded to MCAP and analysed, as a whole process, in the same
 //! run: recorded at full rate with protobuf per sample (the default) and batched, with JSON, at
 //! `--record-rate 100`, and with `--no-record`; and the layout × compression table (per-sample and
 //! batched, each with zstd, lz4 and none; `WBV_E2E_LAYOUTS=0` leaves it out). Prints wall time, CPU time (user + system of the process and its

@@ -88,12 +88,13 @@ def main(rerun, path):
                 lengths.update(pc.list_value_length(col).unique().to_pylist())
                 a_seat_z.add(str(pc.struct_field(pc.list_flatten(col), "a_seat_z").type))
             batched = measured[1].endswith("Batch")
-            if a_seat_z != {"double"}:
-                fail(f"/wbv/measured a_seat_z arrives as {sorted(a_seat_z)}, expected Float64")
-            elif not batched and lengths != {1}:
+            want = "list<item: double not null>" if batched else "double"
+            if a_seat_z != {want}:
+                fail(f"/wbv/measured a_seat_z arrives as {sorted(a_seat_z)}, expected {want}")
+            elif lengths != {1}:
                 fail(f"/wbv/measured: {sorted(lengths)} messages per row, expected one per row")
-            sdk = f"rerun-sdk reads /wbv/measured a_seat_z as Float64, {sdk_rows} rows" + (
-                f" of {sorted(lengths)[-1]}-sample lists (batched)" if batched else ", one value per row"
+            sdk = f"rerun-sdk reads /wbv/measured a_seat_z as {want}, {sdk_rows} rows" + (
+                " (one list of samples per batch)" if batched else ", one Float64 per row"
             )
         else:
             sdk = "no protobuf /wbv/measured"

@@ -249,7 +249,7 @@ async function main(path) {
           fail(`layout ${s.panel} ${s.path}: ${s.gaps} steps other than the sample period ${period} ns`);
       }
       const points = [...new Set(plots.map((s) => s.points))].join("/");
-      layoutNote = `layout ${nodePath.basename(layoutFile)}: ${plots.length} plot paths resolve to full-rate series (${points} points, ${period} ns apart)`;
+      layoutNote = `layout ${nodePath.basename(layoutFile)}: ${plots.length} plot paths resolve to series at the sample rate (${points} points, ${period} ns apart)`;
     }
     let metadata = 0;
     for await (const _ of reader.readMetadata()) metadata++;
