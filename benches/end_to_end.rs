@@ -1,8 +1,8 @@
-//! One simulated hour at 1 kHz, end to end: `wbv simulate` of the default scenario (reference seat,
-//! Bell 214 spectrum) simulated, recorded to MCAP and analysed, as a whole process, in the same
-//! run: recorded at full rate with protobuf (the default) and with JSON, at `--record-rate 100`,
-//! and with `--no-record`; and the layout × compression table (batched — the default — and
-//! per-sample, each with zstd, lz4 and none; `WBV_E2E_LAYOUTS=0` leaves it out). Prints wall time, CPU time (user + system of the process and its
+//! One simulated hour at 1 kHz, end to end: `wbv simulate` with its defaults (reference seat, white
+//! 0.5–80 Hz random) simulated, recorded to MCAP and analysed, as a whole process, in the same
+//! run: recorded at full rate with protobuf per sample (the default) and batched, with JSON, at
+//! `--record-rate 100`, and with `--no-record`; and the layout × compression table (per-sample and
+//! batched, each with zstd, lz4 and none; `WBV_E2E_LAYOUTS=0` leaves it out). Prints wall time, CPU time (user + system of the process and its
 //! threads), peak resident memory, file size and bytes per simulated second, so that memory
 //! independent of duration shows directly (`WBV_E2E_HOURS=1,4` for 1 h and 4 h; a full-rate JSON
 //! hour needs about 1.7 GB of free disk in the temp directory, `WBV_E2E_JSON=0` leaves it out).
@@ -37,25 +37,25 @@ fn main() {
         "hours", "run", "wall s", "CPU s", "peak memory", "file GB", "B/sim s"
     );
     let mut cases: Vec<(&str, Vec<&str>)> = vec![
-        ("protobuf batched zstd (default)", vec![]),
+        ("protobuf per-sample zstd (default)", vec![]),
+        ("batched zstd", vec!["--layout", "batched"]),
         (
-            "protobuf batched, --record-rate 100",
+            "per-sample, --record-rate 100",
             vec!["--record-rate", "100"],
         ),
-        ("batched, lz4", vec!["--compression", "lz4"]),
-        ("batched, none", vec!["--compression", "none"]),
-        ("per-sample, zstd", vec!["--layout", "per-sample"]),
+        ("per-sample, lz4", vec!["--compression", "lz4"]),
+        ("per-sample, none", vec!["--compression", "none"]),
         (
-            "per-sample, lz4",
-            vec!["--layout", "per-sample", "--compression", "lz4"],
+            "batched, lz4",
+            vec!["--layout", "batched", "--compression", "lz4"],
         ),
         (
-            "per-sample, none",
-            vec!["--layout", "per-sample", "--compression", "none"],
+            "batched, none",
+            vec!["--layout", "batched", "--compression", "none"],
         ),
     ];
     if std::env::var("WBV_E2E_LAYOUTS").is_ok_and(|v| v == "0") {
-        cases.truncate(2);
+        cases.truncate(3);
     }
     if json {
         cases.push(("json, full rate", vec!["--encoding", "json"]));

@@ -72,7 +72,8 @@ impl Scenario {
 /// Where a scenario's run goes.
 #[derive(Debug, Clone)]
 pub struct Outputs {
-    /// The MCAP recording and how to write it; `None` for `--no-record`.
+    /// The MCAP recording and how to write it; `None` for `--no-record`. The viewer files of
+    /// [`crate::record::viewer`] are written beside it.
     pub mcap: Option<(std::path::PathBuf, crate::record::RecordOptions)>,
     /// A measured-run CSV of the simulated channels.
     pub csv: Option<std::path::PathBuf>,
@@ -165,6 +166,7 @@ impl Scenario {
                 r.attach_results("analysis", &json)?;
             }
             r.end()?;
+            crate::record::viewer::write_beside(r.path(), outputs.overwrite)?;
         }
         if let Some(mut c) = csv {
             c.end()?;

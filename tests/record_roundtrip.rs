@@ -51,13 +51,13 @@ fn recorded_signals_read_back_bit_identically() {
         (Compression::Zstd, Encoding::Protobuf, None),
         (Compression::Lz4, Encoding::Protobuf, batched),
         (Compression::None, Encoding::Protobuf, batched),
-        (Compression::Zstd, Encoding::Protobuf, per_sample),
+        (Compression::Zstd, Encoding::Protobuf, batched),
         (Compression::None, Encoding::Protobuf, per_sample),
         (Compression::Zstd, Encoding::Json, None),
         (Compression::None, Encoding::Json, per_sample),
     ];
     for (c, e, layout) in cases {
-        let kind = layout.unwrap_or(MessageLayout::default_for(e));
+        let kind = layout.unwrap_or_default();
         let name = format!("run-{}-{}-{}", c.as_str(), e.as_str(), kind.as_str());
         let path = dir.path().join(format!("{name}.mcap"));
         record(
@@ -124,7 +124,11 @@ fn batched_layout_is_one_message_per_topic_per_block_and_protobuf_only() {
     let dir = tempfile::tempdir().unwrap();
     let path = dir.path().join("run.mcap");
     // 2001 samples: blocks of 1024 and 977
-    record(&path, opts(Compression::Zstd, Encoding::Protobuf), 2001).unwrap();
+    let batched = RecordOptions {
+        layout: Some(MessageLayout::Batched),
+        ..opts(Compression::Zstd, Encoding::Protobuf)
+    };
+    record(&path, batched, 2001).unwrap();
     let summary = wbv::record::inspect(&path).unwrap();
     let expected = 2001usize.div_ceil(wbv::record::BATCH_SAMPLES) as u64;
     for topic in ["/wbv/measured", "/wbv/state", "/wbv/links"] {

@@ -74,10 +74,7 @@ pub fn run(args: Args) -> wbv::Result<()> {
         ..wbv::report::Settings::default()
     };
     wbv::report::write(&mcap, &html, &settings, wbv::io::atomic::Overwrite::Refuse)?;
-    eprintln!(
-        "Open {} in Foxglove or Lichtblick (layout: tools/viewer/wbv-layout.json) or PlotJuggler.",
-        mcap.display()
-    );
+    eprintln!("{}", super::simulate::viewer_hint(&mcap));
     if args.json {
         let mut written = super::simulate::written(Some(&dir), None)?;
         written.push(Written::of(&html)?);

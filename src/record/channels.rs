@@ -91,7 +91,11 @@ pub fn add(
         }
         Encoding::Protobuf => {
             let keys = |names: &[String]| names.iter().map(|n| plot_key(n)).collect::<Vec<_>>();
-            let fds = proto::run_descriptor(&keys(&layout.masses), &keys(&layout.links))?;
+            let links: Vec<(String, bool)> = (keys(&layout.links).into_iter())
+                .zip(layout.link_deflection.iter().copied())
+                .collect();
+            let fds =
+                proto::run_descriptor(&layout.measured_channels(), &keys(&layout.masses), &links)?;
             let bytes = prost::Message::encode_to_vec(&fds);
             for t in topics {
                 let (name, encoder) = if batched {

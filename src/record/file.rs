@@ -1,22 +1,12 @@
-//! The MCAP writer over the run file: chunking and compression options, the file's early
-//! write-back to the disk, and the channels' schemas.
+//! The run file under the MCAP writer (`chunks`): its early write-back to the disk, and the
+//! channels' schemas.
 
 use super::Compression;
 use std::collections::BTreeMap;
 use std::fs::File;
 use std::io::{BufWriter, Seek, SeekFrom, Write};
 
-pub type McapWriter = mcap::Writer<BufWriter<RunFile>>;
-
-/// zstd level of the chunks: the fastest positive level. Its entropy coding halves the file
-/// against lz4 or negative levels (the digits of full-precision floats are close to random, so
-/// only their ~3.3 bits per character can be saved) for about the same CPU time, and it runs on
-/// the zstd workers while lz4 runs on the writer thread (see `benches/record.rs`).
-const ZSTD_LEVEL: u32 = 1;
-
-/// Uncompressed chunk size: several zstd jobs (2 MiB at level 1), so that the zstd workers run in
-/// parallel within a chunk, and small enough for viewers that decompress a chunk at a time.
-const CHUNK_BYTES: u64 = 8 << 20;
+pub type McapWriter = super::chunks::McapWriter<BufWriter<RunFile>>;
 
 /// Bytes written between two write-back requests of [`RunFile`].
 const WRITEBACK_BYTES: u64 = 32 << 20;
@@ -100,26 +90,16 @@ impl Seek for RunFile {
     }
 }
 
-/// Opens the MCAP writer: chunked, compressed, with message indexes, chunk indexes and summary
-/// (the mcap defaults), zstd on `threads` workers.
+/// Opens the MCAP writer of `file`: chunked, compressed on `threads` threads, with message
+/// indexes, chunk indexes and summary.
 pub fn open(
     file: File,
     compression: Compression,
     threads: usize,
     library: String,
 ) -> mcap::McapResult<McapWriter> {
-    let (compression, level) = match compression {
-        Compression::Zstd => (Some(mcap::Compression::Zstd), ZSTD_LEVEL),
-        Compression::Lz4 => (Some(mcap::Compression::Lz4), 0), // lz4's default (fast) mode
-        Compression::None => (None, 0),
-    };
-    mcap::WriteOptions::new()
-        .compression(compression)
-        .compression_level(level)
-        .compression_threads(threads as u32)
-        .chunk_size(Some(CHUNK_BYTES))
-        .library(library)
-        .create(BufWriter::with_capacity(1 << 20, RunFile::new(file)))
+    let out = BufWriter::with_capacity(1 << 20, RunFile::new(file));
+    McapWriter::new(out, compression, threads, library)
 }
 
 /// Adds a `json` channel on `topic` with its `jsonschema` schema; returns the channel id.

@@ -5,7 +5,6 @@ use super::{MessageLayout, Provenance, RecordOptions};
 use crate::error::{Error, Result};
 use crate::simulate::observer::Layout;
 use std::collections::BTreeMap;
-use std::io::{Seek, Write};
 use std::path::Path;
 
 pub const RUN: &str = "wbv.run";
@@ -62,8 +61,8 @@ impl Settings<'_> {
 
 /// Writes analysis results `(name, JSON)` as the attachments `<name>.json` (at `log_time` ns) and
 /// the `wbv.results` record (nothing when there are none).
-pub fn write_results<W: Write + Seek>(
-    w: &mut mcap::Writer<W>,
+pub fn write_results(
+    w: &mut super::file::McapWriter,
     results: &[(String, serde_json::Value)],
     log_time: u64,
 ) -> mcap::McapResult<()> {

@@ -35,6 +35,7 @@
 //! over the Foxglove WebSocket protocol while a run is simulated (`wbv simulate --serve`).
 
 mod channels;
+mod chunks;
 pub mod csv;
 pub mod demo;
 mod file;
@@ -49,6 +50,7 @@ pub mod proto;
 mod reader;
 mod scene;
 mod topics;
+pub mod viewer;
 mod writer;
 
 pub use json::check_lichtblick_subset;
@@ -74,10 +76,10 @@ pub fn run_file(path: &std::path::Path) -> std::path::PathBuf {
 /// Chunk compression of the MCAP file.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Compression {
-    /// Zstandard level 1, compressed on worker threads (the default: half the size of lz4 for
-    /// the same CPU time, see `benches/record.rs`).
+    /// Zstandard (level -1 with 4-byte matches, see `chunks.rs`), the default: the smallest
+    /// file for the CPU time (see `benches/record.rs`).
     Zstd,
-    /// LZ4, compressed on the writer thread.
+    /// LZ4 frames.
     Lz4,
     /// No compression (largest files, fastest to write).
     None,
@@ -144,16 +146,17 @@ impl Encoding {
 
 /// How the time-series topics (`/wbv/measured`, `/wbv/state`, `/wbv/links`) are cut into
 /// messages. The 3-D scene is one message per frame in both.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum MessageLayout {
     /// One message per topic per recorded sample (`wbv.Measured`, `wbv.State`, `wbv.Links`):
-    /// every field a time series in every viewer (`/wbv/state.head.a_abs`). Three MCAP messages per
-    /// step: a full-rate hour costs ≈ 19 CPU-s, mostly per-message framing and compressor calls.
+    /// every field a time series in every viewer (`/wbv/state.head.a_abs`) without configuration,
+    /// so it is the default. Three MCAP messages per step (README, "Speed" for the cost).
+    #[default]
     PerSample,
     /// One message per topic per block of up to [`BATCH_SAMPLES`] samples with a packed array per
     /// field (`wbv.MeasuredBatch`, `wbv.StateBatch`, `wbv.LinksBatch`; protobuf only): a
-    /// thousandth of the messages, so the hour costs the compression of its doubles and little
-    /// else. Viewers see arrays (`/wbv/state.head.a_abs[:]`, against `/wbv/state.t[:]`).
+    /// thousandth of the messages, the smallest and fastest record. Viewers see arrays
+    /// (`/wbv/state.head.a_abs[:]`, against `/wbv/state.t[:]`); every wbv command reads it.
     Batched,
 }
 
@@ -180,15 +183,6 @@ impl MessageLayout {
             MessageLayout::Batched => "batched",
         }
     }
-
-    /// The layout of `encoding` when none is asked for: batched for protobuf (a full-rate hour
-    /// within seconds), per-sample for JSON (the text layout, which is not batched).
-    pub fn default_for(encoding: Encoding) -> Self {
-        match encoding {
-            Encoding::Protobuf => MessageLayout::Batched,
-            Encoding::Json => MessageLayout::PerSample,
-        }
-    }
 }
 
 /// How a run is recorded.
@@ -198,7 +192,7 @@ pub struct RecordOptions {
     pub encoding: Encoding,
     /// Chunk compression.
     pub compression: Compression,
-    /// Message layout of the time series; `None`: [`MessageLayout::default_for`] the encoding.
+    /// Message layout of the time series; `None`: the default ([`MessageLayout::PerSample`]).
     /// `Batched` is protobuf only.
     pub layout: Option<MessageLayout>,
     /// Rate of the time-series topics in Hz; `None` records every step. A lower rate must divide
@@ -214,8 +208,8 @@ pub struct RecordOptions {
     pub magnification: f64,
     /// Whether an existing file may be replaced.
     pub overwrite: Overwrite,
-    /// Threads that format messages and, with zstd, compress chunks; `None`: one per core, at
-    /// most 4. The file does not depend on it.
+    /// Threads that format messages, and that compress chunks; `None`: one per core, at most 4.
+    /// The file does not depend on it.
     pub threads: Option<usize>,
 }
 

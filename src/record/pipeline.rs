@@ -1,7 +1,7 @@
 //! The recording pipeline behind [`McapRecorder`](super::McapRecorder): the simulation thread
 //! collects the values of each step into [`Block`]s, formatter threads render blocks into JSON
-//! messages in parallel, and one writer thread hands the messages to the MCAP writer (which
-//! frames and compresses the chunks, zstd on its own worker threads).
+//! messages in parallel, and one writer thread hands the messages to the MCAP writer (`chunks`,
+//! which frames them into chunks and compresses each chunk whole on its compressor threads).
 //!
 //! Block `i` always goes to formatter `i mod n` and the writer takes the rendered batches in the
 //! same round-robin order, so the message order — and the file — depends neither on thread timing

@@ -20,9 +20,9 @@ use mcap::records::{MessageHeader, Metadata};
 use std::path::{Path, PathBuf};
 use std::sync::atomic::Ordering;
 
-/// Formatter threads and zstd workers: [`RecordOptions::threads`], else one per core (at most 4).
-/// The file is the same for any count: blocks are written in step order, and zstd's output does
-/// not depend on its number of workers once there is at least one (`tests/record_threads.rs`).
+/// Formatter threads and chunk compressors: [`RecordOptions::threads`], else one per core (at
+/// most 4). The file is the same for any count: blocks and chunks are written in step order, and
+/// each chunk is compressed whole by one thread (`tests/record_threads.rs`).
 fn threads(options: &RecordOptions) -> usize {
     options
         .threads
@@ -82,7 +82,7 @@ impl McapRecorder {
         interrupt::flag();
         let (guard, file) = Partial::create(path, options.overwrite)?;
         let partial = guard.tmp().to_path_buf();
-        let library = format!("wbv/{} mcap-rust/0.26", provenance.version);
+        let library = format!("wbv/{}", provenance.version);
         let writer = file::open(file, options.compression, threads(&options), library)
             .map_err(mcap_err(&partial))?;
         Ok(McapRecorder {
@@ -141,7 +141,7 @@ impl McapRecorder {
 
     /// The message layout of the time series (see [`RecordOptions::layout`]).
     fn layout_kind(&self) -> MessageLayout {
-        (self.options.layout).unwrap_or_else(|| MessageLayout::default_for(self.options.encoding))
+        self.options.layout.unwrap_or_default()
     }
 
     fn setup(&mut self, layout: &Layout) -> Result<()> {

@@ -8,6 +8,9 @@ column whose Arrow type holds the run's double fields as `Float64` (per-sample: 
 batched: a `List(Float64)` per row), with one row per MCAP message (the counts from the file's
 statistics, read with the PyPI `mcap` reader). A JSON run's signal topics arrive only as raw bytes
 (`McapMessage:data`): that is reported, not failed (Rerun does not decode JSON channels).
+Then the .rrd is read back with rerun-sdk's own RRD reader (`rr.chunk.RrdReader`): on a per-sample
+run every row of `/wbv/measured` must hold exactly one message whose `a_seat_z` is a `Float64` —
+one value per row, a time series Rerun plots (a batched run holds a list of samples per row).
 Usage: python rerun_check.py RERUN_BINARY FILE.mcap   (exit status 1 on any failure)
 """
 
@@ -17,6 +20,9 @@ import sys
 import tempfile
 from pathlib import Path
 
+import pyarrow as pa
+import pyarrow.compute as pc
+import rerun as rr
 from mcap.reader import make_reader
 
 SIGNALS = ("/wbv/measured", "/wbv/state", "/wbv/links")
@@ -65,6 +71,34 @@ def main(rerun, path):
             fail(str(e))
             return 1
 
+        # Rerun's own reader: /wbv/measured `a_seat_z`, one Float64 per row (per-sample runs).
+        measured = expected.get("/wbv/measured")
+        if measured and measured[0] == "protobuf":
+            column = f"{measured[1]}:message"
+            reader = rr.chunk.RrdReader(rrd)
+            lengths, a_seat_z, sdk_rows = set(), set(), 0
+            for chunk in reader.store(store=reader.recordings()[0]).stream():
+                if chunk.entity_path != "/wbv/measured":
+                    continue
+                batch = chunk.to_record_batch()
+                if column not in batch.schema.names:
+                    continue
+                col = batch.column(column)
+                sdk_rows += len(col)
+                lengths.update(pc.list_value_length(col).unique().to_pylist())
+                a_seat_z.add(str(pc.struct_field(pc.list_flatten(col), "a_seat_z").type))
+            batched = measured[1].endswith("Batch")
+            want = "list<item: double not null>" if batched else "double"
+            if a_seat_z != {want}:
+                fail(f"/wbv/measured a_seat_z arrives as {sorted(a_seat_z)}, expected {want}")
+            elif lengths != {1}:
+                fail(f"/wbv/measured: {sorted(lengths)} messages per row, expected one per row")
+            sdk = f"rerun-sdk reads /wbv/measured a_seat_z as {want}, {sdk_rows} rows" + (
+                " (one list of samples per batch)" if batched else ", one Float64 per row"
+            )
+        else:
+            sdk = "no protobuf /wbv/measured"
+
     rows = {}
     for m in CHUNK.finditer(listing):
         n, entity, columns = int(m.group(1)), m.group(2), m.group(3).split()
@@ -101,7 +135,10 @@ def main(rerun, path):
         print(f"rerun: {path}: FAILED ({len(errors)} problems)", file=sys.stderr)
         return 1
     version = " ".join(run([rerun, "--version"]).split()[:2])
-    print(f"rerun {path}: ok — {', '.join(decoded) or 'no protobuf signal topics'} decoded as Float64 data ({version})")
+    print(
+        f"rerun {path}: ok — {', '.join(decoded) or 'no protobuf signal topics'} decoded as Float64 "
+        f"data; {sdk} ({version})"
+    )
     return 0
 
 

@@ -10,9 +10,17 @@
 // re-checked (every double finite; a decoded message round-trips through protobufjs); `foxglove.*`
 // schemas compared field by field (name, number, type, label) with the `.proto` that
 // @foxglove/schemas' own generator (`generateProto`) writes for the published schema.
+// Layout: every plot path of the Foxglove/Lichtblick layout that travels with the run
+// (`wbv-layout.json` beside the file, else tools/viewer/wbv-layout.json) must resolve, on a
+// per-sample run, to a full-rate series: a finite number in every message of its topic (decoded
+// with protobufjs, the decoder the Foxglove app uses for protobuf, or JSON.parse), log times one
+// sample period (`wbv.run` sample_rate_hz) apart. Neither Foxglove nor Lichtblick publishes its
+// message-path parser to npm, so the paths are split here: `/topic.field.sub` (no filters or
+// slices, which the layout does not use).
 // Usage: node validate.js FILE.mcap   (exit status 1 on any failure)
 "use strict";
 const fs = require("node:fs/promises");
+const nodePath = require("node:path");
 const { McapIndexedReader, McapStreamReader } = require("@mcap/core");
 const { FileHandleReadable } = require("@mcap/nodejs");
 const { loadDecompressHandlers } = require("@mcap/support");
@@ -76,6 +84,30 @@ function finiteDoubles(type, msg, at, fail) {
   }
 }
 
+// The plot paths of a Foxglove/Lichtblick layout: [{panel, path}] of every enabled series.
+function layoutPlotPaths(layout) {
+  const out = [];
+  for (const [panel, config] of Object.entries(layout.configById ?? {})) {
+    if (!panel.startsWith("Plot!")) continue;
+    for (const p of config.paths ?? []) if (p.enabled !== false) out.push({ panel, path: p.value });
+  }
+  return out;
+}
+
+// The layout that travels with `path`, with its file name.
+async function runLayout(path) {
+  const beside = nodePath.join(nodePath.dirname(path), "wbv-layout.json");
+  const shipped = nodePath.join(__dirname, "..", "viewer", "wbv-layout.json");
+  for (const f of [beside, shipped]) {
+    try {
+      return { file: f, layout: JSON.parse(await fs.readFile(f, "utf8")) };
+    } catch (e) {
+      if (e.code !== "ENOENT") throw e;
+    }
+  }
+  throw new Error("no wbv-layout.json beside the file or in tools/viewer");
+}
+
 async function main(path) {
   const problems = [];
   const fail = (m) => {
@@ -92,6 +124,7 @@ async function main(path) {
     const ajv = new Ajv({ strict: false, allErrors: false });
     const validators = new Map();
     const types = new Map();
+    const namedTypes = new Map();
     let published;
     for (const [id, ch] of reader.channelsById) {
       const schema = reader.schemasById.get(ch.schemaId);
@@ -107,6 +140,10 @@ async function main(path) {
         root.resolveAll();
         const type = root.lookupType(schema.name);
         types.set(id, type);
+        // With the names of the .proto (`a_seat_z`), as the Foxglove app and Lichtblick show them.
+        const named = protobuf.Root.fromDescriptor(fds, { keepCase: true });
+        named.resolveAll();
+        namedTypes.set(id, named.lookupType(schema.name));
         if (schema.name.startsWith("foxglove.")) {
           published ??= publishedFoxglove();
           compareTypes(type, published.lookupType(schema.name), schema.name, new Set(), fail);
@@ -131,6 +168,28 @@ async function main(path) {
       }
       validators.set(id, validators_);
     }
+    const { file: layoutFile, layout } = await runLayout(path);
+    // Per plot path: the topic, the field names, and the series read (points, last log time).
+    const plots = layoutPlotPaths(layout).map(({ panel, path: p }) => {
+      const dot = p.indexOf(".");
+      return { panel, path: p, topic: p.slice(0, dot), fields: p.slice(dot + 1).split("."), points: 0, bad: 0, gaps: 0, last: null };
+    });
+    let period = null;
+    for await (const m of reader.readMetadata({ name: "wbv.run" })) {
+      const hz = Number(m.metadata.get("sample_rate_hz"));
+      if (hz > 0) period = BigInt(Math.round(1e9 / hz));
+    }
+    const series = (topic, msg, logTime) => {
+      for (const s of plots) {
+        if (s.topic !== topic) continue;
+        let v = msg;
+        for (const f of s.fields) v = v === undefined || v === null ? undefined : v[f];
+        if (typeof v !== "number" || !Number.isFinite(v)) s.bad++;
+        else s.points++;
+        if (s.last !== null && period !== null && logTime - s.last !== period) s.gaps++;
+        s.last = logTime;
+      }
+    };
     const counts = new Map();
     for await (const m of reader.readMessages({ validateCrcs: true })) {
       counts.set(m.channelId, (counts.get(m.channelId) ?? 0) + 1);
@@ -144,6 +203,7 @@ async function main(path) {
           fail(`${ch.topic} #${m.sequence}: protobuf decode: ${e.message}`);
           continue;
         }
+        if (plots.some((p) => p.topic === ch.topic)) series(ch.topic, namedTypes.get(m.channelId).decode(m.data), m.logTime);
         finiteDoubles(type, msg, `${ch.topic} #${m.sequence}`, fail);
         // Re-encoded (protobufjs writes field-number order), it decodes to the same message.
         const again = type.decode(type.encode(msg).finish());
@@ -162,6 +222,7 @@ async function main(path) {
         fail(`${ch.topic} #${m.sequence}: not a JSON object`);
         continue;
       }
+      series(ch.topic, obj, m.logTime);
       for (const v of validators.get(m.channelId) ?? []) {
         if (!v(obj)) fail(`${ch.topic} #${m.sequence}: ${ajv.errorsText(v.errors)}`);
       }
@@ -173,6 +234,23 @@ async function main(path) {
         if ((counts.get(id) ?? 0) !== Number(n))
           fail(`channel ${id}: read ${counts.get(id) ?? 0} messages, statistics say ${n}`);
       }
+    // A batched run (`--layout batched`) holds arrays: the layout's paths are for per-sample runs.
+    const batched = [...reader.schemasById.values()].some((s) => s.name.endsWith("Batch"));
+    let layoutNote;
+    if (batched) layoutNote = `layout ${layoutFile}: not checked (batched run: the plot paths are for per-sample runs)`;
+    else {
+      for (const s of plots) {
+        const topic = [...reader.channelsById].find(([, c]) => c.topic === s.topic);
+        const n = topic ? counts.get(topic[0]) ?? 0 : 0;
+        if (!topic) fail(`layout ${s.panel} ${s.path}: no topic ${s.topic}`);
+        else if (s.bad || s.points !== n || n < 2)
+          fail(`layout ${s.panel} ${s.path}: ${s.points} numbers in ${n} messages (${s.bad} without a finite number)`);
+        else if (period === null || s.gaps)
+          fail(`layout ${s.panel} ${s.path}: ${s.gaps} steps other than the sample period ${period} ns`);
+      }
+      const points = [...new Set(plots.map((s) => s.points))].join("/");
+      layoutNote = `layout ${nodePath.basename(layoutFile)}: ${plots.length} plot paths resolve to series at the sample rate (${points} points, ${period} ns apart)`;
+    }
     let metadata = 0;
     for await (const _ of reader.readMetadata()) metadata++;
     let attachments = 0;
@@ -192,7 +270,7 @@ async function main(path) {
     console.log(
       `@mcap/core ${path}: ok — ${total} messages on ${counts.size} channels, all decoded and` +
         ` schema-valid (foxglove.* against @foxglove/schemas); ${metadata} metadata, ${attachments} attachments,` +
-        ` ${records} records streamed`,
+        ` ${records} records streamed; ${layoutNote}`,
     );
     return 0;
   } finally {

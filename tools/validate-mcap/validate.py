@@ -34,6 +34,7 @@ WBV_FIELDS = {
     "wbv.Measured": {"t", "a_base_z", "a_seat_z", "a_head_z", "f_seat_z", "a_seat_x", "a_head_x"},
     "wbv.MassState": {"x", "v", "a", "x_abs", "v_abs", "a_abs"},
     "wbv.LinkState": {"deflection", "force"},
+    "wbv.LinkForce": {"force"},
 }
 # The batched layout (`--layout batched`): the same fields as packed arrays, `t` in every topic.
 WBV_FIELDS.update({f"{k}Batch": v for k, v in WBV_FIELDS.items()})

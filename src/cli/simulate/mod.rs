@@ -37,9 +37,9 @@ pub struct Args {
     /// Lichtblick, PlotJuggler and Rerun) or json (text).
     #[arg(long, default_value = "protobuf")]
     pub encoding: String,
-    /// Message layout of the time series: batched (one message per topic per 1024 samples, packed
-    /// arrays; the protobuf default, a full-rate hour in seconds) or per-sample (one message per
-    /// sample: every field a time series in every viewer; the JSON layout). See the README.
+    /// Message layout of the time series: per-sample (the default: one message per sample, every
+    /// field a time series in every viewer) or batched (protobuf only: one message per topic per
+    /// 1024 samples, packed arrays; the smallest file). See the README.
     #[arg(long)]
     pub layout: Option<String>,
     /// MCAP chunk compression: zstd, lz4 or none.
@@ -158,14 +158,32 @@ fn execute_as(
     Ok(outcome)
 }
 
+/// How to open the recording `run` in each viewer, with the set-up files written beside it.
+pub fn viewer_hint(run: &Path) -> String {
+    let [layout, blueprint] = [
+        wbv::record::viewer::LAYOUT_FILE,
+        wbv::record::viewer::BLUEPRINT_FILE,
+    ]
+    .map(|f| run.with_file_name(f).display().to_string());
+    let rrd = run.with_extension("rrd");
+    format!(
+        "Open {run} in Foxglove or Lichtblick (import the layout {layout}) or PlotJuggler; in \
+         Rerun: rerun mcap convert {run} --application-id {id} --timeline-type duration -o {rrd} && \
+         rerun {rrd} {blueprint}",
+        run = run.display(),
+        id = wbv::record::viewer::RERUN_APPLICATION_ID,
+        rrd = rrd.display(),
+    )
+}
+
 /// The files a run into `dir` (with `csv`) wrote.
 pub fn written(
     dir: Option<&Path>,
     csv: Option<&Path>,
 ) -> wbv::Result<Vec<wbv::report::json::Written>> {
-    let files: Vec<PathBuf> = dir
-        .map(|d| d.join(RUN_FILE))
-        .into_iter()
+    let run = dir.map(|d| d.join(RUN_FILE));
+    let files: Vec<PathBuf> = (run.iter())
+        .flat_map(|r| std::iter::once(r.clone()).chain(wbv::record::viewer::paths(r)))
         .chain(csv.map(Path::to_path_buf))
         .collect();
     wbv::report::json::Written::existing(&files)

@@ -190,8 +190,9 @@ mod tests {
     #[test]
     fn template_bytes_equal_the_prost_derive_encoding() {
         let masses = vec!["head".to_string(), "seat_1".to_string()];
-        let links = vec!["k1".to_string()];
-        let fds = run_descriptor(&masses, &links).unwrap();
+        let links = vec![("k1".to_string(), false)];
+        let measured = ["a_base_z", "a_seat_z", "a_seat_x", "a_head_z", "f_seat_z"];
+        let fds = run_descriptor(&measured, &masses, &links).unwrap();
         let v = [-0.0, 1e-300, -2.5, f64::MAX, 3.0, 0.1];
         // Measured in a fore-and-aft run's leaf order (not field-number order)
         let leaves: Vec<Leaf> = [
@@ -299,7 +300,7 @@ mod tests {
     #[test]
     fn batched_state_equals_the_prost_encoding_and_reads_back() {
         let masses = vec!["head".to_string(), "seat_1".to_string()];
-        let fds = run_descriptor(&masses, &[]).unwrap();
+        let fds = run_descriptor(&[], &masses, &[]).unwrap();
         let fields = ["x", "v", "a", "x_abs", "v_abs", "a_abs"];
         let mut leaves = vec![Leaf::new(&["t"], "")];
         leaves.extend(

@@ -113,25 +113,59 @@ fn is_identifier(s: &str) -> bool {
 }
 
 /// The descriptor set of a run: `proto/wbv.proto` with `wbv.State` given one `MassState` field
-/// per entry of `masses` and `wbv.Links` one `LinkState` field per entry of `links` (plot keys,
-/// model order, numbered from 1).
-pub fn run_descriptor(masses: &[String], links: &[String]) -> Result<FileDescriptorSet> {
+/// per entry of `masses` and `wbv.Links` one field per entry of `links` (plot keys, model order,
+/// numbered from 1): a `LinkState` where the link's deflection is recorded (`links[i].1`), else a
+/// `LinkForce`; and `wbv.Measured` (and its batch) cut to `t` and the `measured` channels of the
+/// model. Viewers list every field a schema declares (PlotJuggler draws an absent optional field
+/// as zeros), so a run's schema declares only what it records; the kept fields keep their
+/// numbers, so a reader of the full `.proto` still reads every run.
+pub fn run_descriptor(
+    measured: &[&str],
+    masses: &[String],
+    links: &[(String, bool)],
+) -> Result<FileDescriptorSet> {
     let mut fds = base_descriptor();
     let file = (fds.file.iter_mut())
         .find(|f| f.package() == "wbv")
         .expect("wbv.proto declares package wbv");
-    for (shell, item, keys) in [
-        ("State", ".wbv.MassState", masses),
-        ("Links", ".wbv.LinkState", links),
-        ("StateBatch", ".wbv.MassStateBatch", masses),
-        ("LinksBatch", ".wbv.LinkStateBatch", links),
+    for m in (file.message_type.iter_mut()).filter(|m| m.name().starts_with("Measured")) {
+        m.field
+            .retain(|f| f.name() == "t" || measured.contains(&f.name()));
+        // Each proto3 `optional` field has its synthetic oneof (`_a_seat_x`): keep those of the
+        // kept fields, renumbered (protobuf runtimes refuse a oneof without fields).
+        let oneofs = std::mem::take(&mut m.oneof_decl);
+        for f in &mut m.field {
+            if let Some(i) = f.oneof_index {
+                m.oneof_decl.push(oneofs[i as usize].clone());
+                f.oneof_index = Some(m.oneof_decl.len() as i32 - 1);
+            }
+        }
+    }
+    let masses: Vec<(&str, &str)> = masses.iter().map(|k| (k.as_str(), "MassState")).collect();
+    let links: Vec<(&str, &str)> = (links.iter())
+        .map(|(k, deflection)| {
+            (
+                k.as_str(),
+                if *deflection {
+                    "LinkState"
+                } else {
+                    "LinkForce"
+                },
+            )
+        })
+        .collect();
+    for (shell, batch, keys) in [
+        ("State", "", &masses),
+        ("Links", "", &links),
+        ("StateBatch", "Batch", &masses),
+        ("LinksBatch", "Batch", &links),
     ] {
         let m = (file.message_type.iter_mut())
             .find(|m| m.name() == shell)
             .expect("wbv.proto declares the shells");
         // After the shell's own fields (the batches' `t = 1`).
         let first = m.field.len() as i32 + 1;
-        for (i, key) in keys.iter().enumerate() {
+        for (i, (key, item)) in keys.iter().enumerate() {
             if !is_identifier(key) {
                 return Err(Error::parameter(
                     format!(
@@ -147,12 +181,12 @@ pub fn run_descriptor(masses: &[String], links: &[String]) -> Result<FileDescrip
                 ));
             }
             m.field.push(FieldDescriptorProto {
-                name: Some(key.clone()),
+                name: Some(key.to_string()),
                 number: Some(first + i as i32),
                 label: Some(Label::Optional as i32),
                 r#type: Some(Type::Message as i32),
-                type_name: Some(item.to_string()),
-                json_name: Some(key.clone()),
+                type_name: Some(format!(".wbv.{item}{batch}")),
+                json_name: Some(key.to_string()),
                 ..Default::default()
             });
         }
@@ -236,8 +270,41 @@ mod tests {
     }
 
     #[test]
+    fn measured_declares_only_the_model_channels_under_their_numbers() {
+        let fds = run_descriptor(&["a_base_z", "a_seat_z", "f_seat_z"], &[], &[]).unwrap();
+        for name in ["wbv.Measured", "wbv.MeasuredBatch"] {
+            let got: Vec<(String, i32)> = (fields(&fds, name).into_iter())
+                .map(|(n, k, _, _)| (n, k))
+                .collect();
+            let want = [("t", 1), ("a_base_z", 2), ("a_seat_z", 3), ("f_seat_z", 5)];
+            assert_eq!(got, want.map(|(n, k)| (n.to_string(), k)), "{name}");
+        }
+        let m = message(&fds, "wbv.Measured").unwrap();
+        let oneofs: Vec<&str> = m.oneof_decl.iter().map(|o| o.name()).collect();
+        assert_eq!(oneofs, ["_t", "_a_base_z", "_a_seat_z", "_f_seat_z"]);
+        prost_reflect::DescriptorPool::from_file_descriptor_set(fds).unwrap();
+    }
+
+    #[test]
+    fn a_link_without_recorded_deflection_declares_only_its_force() {
+        let links = [("k1".to_string(), false), ("cushion".to_string(), true)];
+        let fds = run_descriptor(&[], &[], &links).unwrap();
+        let types: Vec<String> = (message(&fds, "wbv.Links").unwrap().field.iter())
+            .map(|f| format!("{} {}", f.name(), f.type_name()))
+            .collect();
+        assert_eq!(types, ["k1 .wbv.LinkForce", "cushion .wbv.LinkState"]);
+        let batch = message(&fds, "wbv.LinksBatch").unwrap();
+        assert_eq!(batch.field[1].type_name(), ".wbv.LinkForceBatch");
+        assert_eq!(
+            fields(&fds, "wbv.LinkForce")[0].1,
+            2,
+            "force keeps its number"
+        );
+    }
+
+    #[test]
     fn a_name_that_is_no_protobuf_identifier_is_refused() {
-        let e = run_descriptor(&["1st".to_string()], &[]).unwrap_err();
+        let e = run_descriptor(&[], &["1st".to_string()], &[]).unwrap_err();
         assert!(e.to_string().contains("mass name `1st`"), "{e}");
     }
 }
