@@ -1,0 +1,26 @@
+//! Writes the `wbv gap --json` result of each case of a seeded truth-form bench into a directory
+//! (`case-NNN.json`, pretty-printed), for comparing a refactor's diagnoses with a baseline's.
+//! Usage: `cargo run --release --example gap_dump -- DIR [CASES [SEED]]` (default 28 cases, seed
+//! 7: the CI subset of `tests/gap_truth_bench.rs`).
+
+use rayon::prelude::*;
+use wbv::diagnosis::truth::case::make_case;
+
+fn main() -> wbv::Result<()> {
+    let mut args = std::env::args().skip(1);
+    let dir = std::path::PathBuf::from(args.next().expect("usage: gap_dump DIR [CASES [SEED]]"));
+    let cases: usize = args.next().map_or(28, |s| s.parse().expect("CASES"));
+    let seed: u64 = args.next().map_or(7, |s| s.parse().expect("SEED"));
+    std::fs::create_dir_all(&dir).map_err(|e| wbv::Error::io(&dir, e))?;
+    let model = wbv::model::catalog::resolve("reference")?;
+    (0..cases).into_par_iter().try_for_each(|i| {
+        let case = make_case(i, seed)?;
+        let json = match wbv::diagnosis::diagnose(&model, &case.train, &case.check) {
+            Ok(d) => wbv::diagnosis::report::json(&d),
+            Err(e) => serde_json::json!({ "error": e.to_string() }),
+        };
+        let text = serde_json::to_string_pretty(&json).expect("JSON") + "\n";
+        let p = dir.join(format!("case-{i:03}.json"));
+        std::fs::write(&p, text).map_err(|e| wbv::Error::io(&p, e))
+    })
+}
