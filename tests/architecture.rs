@@ -30,7 +30,12 @@ fn modules() -> BTreeMap<Module, String> {
                 if parts.last().is_some_and(|l| l == "mod") {
                     parts.pop();
                 }
-                if parts == ["lib"] || parts == ["main"] {
+                // A `tests.rs` file is a `#[cfg(test)] mod tests;` split out of its parent: test
+                // code, like the `#[cfg(test)]` part of a file.
+                if parts == ["lib"]
+                    || parts == ["main"]
+                    || parts.last().is_some_and(|l| l == "tests")
+                {
                     continue;
                 }
                 out.insert(parts, std::fs::read_to_string(&p).unwrap());

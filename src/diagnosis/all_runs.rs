@@ -14,7 +14,9 @@ use super::fitting::{Base, Fitted, estimates, fit_candidate};
 use super::measure::RunSpectra;
 use super::*;
 
-/// The amplitude-dependent effect that explains all runs together.
+/// The amplitude-dependent effect that explains all runs together: its all-run figures (the
+/// verdict's evidence; the fit itself is returned beside it by [`judge`]).
+#[derive(Debug, Clone)]
 pub(super) struct AllRuns {
     pub(super) candidate: Candidate,
     /// BIC over all runs minus that of the null re-fitted on all runs.
@@ -22,8 +24,6 @@ pub(super) struct AllRuns {
     /// Reduced χ² over all runs of the null and of the effect, each fitted on all runs.
     pub(super) null_chi2_red: f64,
     pub(super) chi2_red: f64,
-    /// The effect fitted on all runs.
-    pub(super) fitted: Fitted,
 }
 
 impl AllRuns {
@@ -36,21 +36,22 @@ impl AllRuns {
         )
     }
 
-    /// Puts the all-run fit into the named candidate's entry of `cands` (parameters, all-run ΔBIC
+    /// Puts the all-run fit `fitted` into the named candidate's entry of `cands` (parameters, all-run ΔBIC
     /// and fraction closed, the check run's stage and sizes against the null) and its parameter
     /// vector into `fits`, the forward selection's warm start.
     pub(super) fn adopt(
         &self,
+        fitted: &Fitted,
         base: &Base,
         null: &Ranked,
         check: &RunSpectra,
         cands: &mut [Ranked],
         fits: &mut [(Candidate, Vec<f64>)],
     ) -> Result<()> {
-        let st = stage(&self.fitted.variant, check)?;
+        let st = stage(&fitted.variant, check)?;
         let (aw, seat, db) = sizes(&st, &null.check);
         if let Some(r) = cands.iter_mut().find(|r| r.id == self.candidate.id()) {
-            r.params = estimates(base, &[self.candidate], &self.fitted.fit);
+            r.params = estimates(base, &[self.candidate], &fitted.fit);
             r.delta_bic_all = self.delta_bic;
             r.fraction_closed = self.fraction_closed();
             r.aw_change_percent = aw;
@@ -59,7 +60,7 @@ impl AllRuns {
             r.check = st;
         }
         if let Some(f) = fits.iter_mut().find(|(c, _)| *c == self.candidate) {
-            f.1 = self.fitted.fit.u.clone();
+            f.1 = fitted.fit.u.clone();
         }
         Ok(())
     }
@@ -77,7 +78,7 @@ pub(super) fn judge(
     train: &[RunSpectra],
     check: &RunSpectra,
     warm: &[f64],
-) -> Result<Option<AllRuns>> {
+) -> Result<Option<(AllRuns, Fitted)>> {
     let all: Vec<RunSpectra> = train
         .iter()
         .chain(std::iter::once(check))
@@ -123,8 +124,8 @@ pub(super) fn judge(
             delta_bic,
             null_chi2_red: null.fit.cost / n,
             chi2_red: fitted.fit.cost / n,
-            fitted,
         };
-        (delta_bic <= ACCEPT_DELTA_BIC && found.fraction_closed() >= MIN_CLOSED).then_some(found)
+        (delta_bic <= ACCEPT_DELTA_BIC && found.fraction_closed() >= MIN_CLOSED)
+            .then_some((found, fitted))
     }))
 }

@@ -16,6 +16,7 @@ pub use crate::numeric::lm as fit;
 mod fitting;
 pub mod gapmap;
 mod inputs;
+mod json;
 mod leakage;
 pub mod measure;
 mod outcome;
@@ -25,10 +26,13 @@ pub mod predict;
 pub mod replay;
 pub mod report;
 pub mod score;
+mod text;
 pub mod truth;
 mod verdict;
 
-pub use outcome::{BandCoverage, ChannelError, Diagnosis, Estimate, Ranked, RunSummary, Stage};
+pub use outcome::{
+    BandCoverage, ChannelError, Diagnosis, Estimate, Ranked, RunSummary, Stage, VerdictId,
+};
 pub use verdict::separating_measurement;
 
 use crate::error::{Error, Result};
@@ -40,7 +44,8 @@ use inputs::{check_inputs, mask_incoherent};
 use measure::{Path, RunSpectra};
 use predict::Variant;
 use rayon::prelude::*;
-use verdict::{decide, iso_figures_move_away};
+use verdict::iso_figures_move_away;
+pub use verdict::{Basis, Verdict};
 
 /// ΔBIC (held-out) an effect must reach against the null re-fit to be *detected* (gap.md §3.6:
 /// "strong evidence", Kass & Raftery, JASA 90 (1995) 773–795).
@@ -345,26 +350,28 @@ pub fn diagnose(model: &Model, train: &[Signals], check: &Signals) -> Result<Dia
     } else {
         None
     };
-    if let Some(a) = &all_runs {
-        a.adopt(&base, &null, &ck, &mut cands, &mut fits)?;
+    if let Some((a, fitted)) = &all_runs {
+        a.adopt(fitted, &base, &null, &ck, &mut cands, &mut fits)?;
     }
-    let (verdict, verdict_text, separating) = decide(&null, &cands, accepted, all_runs.as_ref());
-    let (verdict, verdict_text, separating) = match distortion
-        .as_ref()
-        .and_then(|d| verdict::located(d, &null, &cands, &verdict))
-    {
-        Some((v, t)) => (v, t, None),
-        None => (verdict, verdict_text, separating),
+    let evidence = verdict::Evidence {
+        null: &null,
+        cands: &cands,
+        accepted,
+        all_runs: all_runs.as_ref().map(|(a, _)| a),
+        distortion: distortion.as_ref(),
     };
+    let mut decided = verdict::conclude(&evidence);
+    let mut text = text::verdict(&decided, &evidence);
 
     // Forward selection: a second effect from another family when the named one leaves a
     // structural residual; tried for the four best others, accepted by the same rule against the
     // best alone.
     let mut second: Option<Ranked> = None;
     let mut named = Vec::new();
-    if let Some(best) = cands.iter().find(|b| b.id == verdict) {
+    if let Some(bc) = decided.effect()
+        && let Some(best) = cands.iter().find(|b| b.id == bc.id())
+    {
         named.push(best.id.clone());
-        let bc = Candidate::from_id(&best.id).expect("ranked ids are candidates");
         if best.check.chi2_red > GAP_CHI2 {
             let warm = &fits.iter().find(|(c, _)| *c == bc).expect("fitted").1;
             let best_bic = bic(&best.check, warm.len());
@@ -384,6 +391,7 @@ pub fn diagnose(model: &Model, train: &[Signals], check: &Signals) -> Result<Dia
                 })
                 .collect::<Result<_>>()?;
             let floor = score::gap_floor(best.check.chi2_red);
+            let mut second_effect = None;
             for (other, ft, st) in pairs {
                 let pair = [bc, other];
                 let p = warm.len() + other.params().len();
@@ -394,6 +402,7 @@ pub fn diagnose(model: &Model, train: &[Signals], check: &Signals) -> Result<Dia
                     && second.as_ref().is_none_or(|s| d < s.delta_bic)
                 {
                     let (aw, seat, db) = sizes(&st, &best.check);
+                    second_effect = Some(other);
                     second = Some(Ranked {
                         id: format!("{}+{}", bc.id(), other.id()),
                         params: estimates(&base, &pair, &ft.fit),
@@ -409,70 +418,31 @@ pub fn diagnose(model: &Model, train: &[Signals], check: &Signals) -> Result<Dia
                     });
                 }
             }
-        }
-        if let Some(s) = &second {
-            named.push(s.id.split('+').nth(1).unwrap_or_default().to_string());
+            if let (Some(s), Some(o), Verdict::Named { second: slot, .. }) =
+                (&second, second_effect, &mut decided)
+            {
+                *slot = Some(o);
+                named.push(o.id().to_string());
+                text += &text::second(bc.id(), o.id(), s);
+            }
         }
     }
-    let verdict_text = match &second {
-        Some(s) => format!(
-            "{verdict_text}; a second effect, {}, closes a further {:.0} % of what remains (ΔBIC {:.1} against {} alone)",
-            named[1],
-            100.0 * s.fraction_closed,
-            s.delta_bic,
-            verdict
-        ),
-        None => verdict_text,
-    };
     // How close a_w and SEAT come on the check run once the named effect(s) are added.
     let last = outcome::named_stage(&named, &cands, second.as_ref());
-    let verdict_text = match last {
-        Some(st) => format!(
-            "{verdict_text}. On the check run the seat a_w gap goes {:+.1} % (nominal) → {:+.1} % (re-fitted) → {:+.1} % (with the effect), SEAT {:.1} → {:.1} → {:.1} % against {:.1} % measured",
-            nominal.weighted.aw_gap_percent,
-            null.check.weighted.aw_gap_percent,
-            st.weighted.aw_gap_percent,
-            nominal.weighted.seat_model,
-            null.check.weighted.seat_model,
-            st.weighted.seat_model,
-            st.weighted.seat_meas
-        ),
-        None => verdict_text,
-    };
-    if let Some(st) = last
-        && let Some(w) = iso_figures_move_away(&null.check, st)
-    {
-        warnings.push(w);
+    if let Some(st) = last {
+        text += &text::iso(&nominal, &null.check, st);
+        if let Some(w) = iso_figures_move_away(&null.check, st) {
+            warnings.push(w);
+        }
     }
     // A channel's calibration error (catalogue E14: an inverted sign, a unit slip) is named first
     // when nothing structural is detected, after the structural effect otherwise.
-    let (verdict, verdict_text) = if channel_errors.is_empty() {
-        (verdict, verdict_text)
-    } else {
-        let what = channel_errors
-            .iter()
-            .map(|f| format!("{} {} in {}", f.channels, f.error, f.runs.join(", ")))
-            .collect::<Vec<_>>()
-            .join("; ");
-        if !named.iter().any(|n| n == "sensor-gain") {
-            named.push("sensor-gain".into());
-        }
-        if verdict == "none" {
-            (
-                "sensor-gain".to_string(),
-                format!(
-                    "a channel's calibration is wrong: {what}; with it corrected, {verdict_text}"
-                ),
-            )
-        } else {
-            (
-                verdict,
-                format!(
-                    "{verdict_text}. Also a channel's calibration is wrong: {what}; the diagnosis above uses it corrected"
-                ),
-            )
-        }
-    };
+    if !channel_errors.is_empty() && !named.iter().any(|n| n == Candidate::SensorGain.id()) {
+        named.push(Candidate::SensorGain.id().into());
+    }
+    let verdict_text = text::calibration(text, &channel_errors, decided == Verdict::None);
+    let verdict = verdict::reported_id(&decided, !channel_errors.is_empty());
+    let separating = decided.separating().map(str::to_string);
     Ok(Diagnosis {
         channel_errors,
         named,
