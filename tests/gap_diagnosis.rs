@@ -406,7 +406,12 @@ fn a_preloaded_foam_is_named_by_its_distortion_and_a_linear_foam_is_not() {
                 assert_eq!(dist.site, None, "{dist:?}");
                 // The fixed floor lowers the ratio at high magnitude (it falls, −3 dB here).
                 assert!(seat.rise_db < 1.0 && !seat.distorts(), "{dist:?}");
-                assert_eq!(d.verdict.effect(), Some("cushion-viscoelastic"), "{}", d.verdict_text);
+                assert_eq!(
+                    d.verdict.effect(),
+                    Some("cushion-viscoelastic"),
+                    "{}",
+                    d.verdict_text
+                );
             }
         }
     }
@@ -428,7 +433,12 @@ fn an_upside_down_seat_accelerometer_is_named_and_the_seat_still_judged() {
     let check = inverted(&case.check, "a_seat_z");
     let d = diagnose(&model, &train, &check).unwrap();
     let upright = diagnose(&model, &case.train, &case.check).unwrap();
-    assert_eq!(d.verdict.effect(), Some("sensor-gain"), "{}", d.verdict_text);
+    assert_eq!(
+        d.verdict.effect(),
+        Some("sensor-gain"),
+        "{}",
+        d.verdict_text
+    );
     assert_eq!(
         d.null.check.weighted.aw_gap_percent,
         upright.null.check.weighted.aw_gap_percent
@@ -448,7 +458,12 @@ fn an_upside_down_seat_accelerometer_is_named_and_the_seat_still_judged() {
     let slip = |s: &Signals| with_channel(s, "a_seat_z", |d| d.iter().map(|v| v / g).collect());
     let slipped: Vec<Signals> = case.train.iter().map(slip).collect();
     let d = diagnose(&model, &slipped, &slip(&case.check)).unwrap();
-    assert_eq!(d.verdict.effect(), Some("sensor-gain"), "{}", d.verdict_text);
+    assert_eq!(
+        d.verdict.effect(),
+        Some("sensor-gain"),
+        "{}",
+        d.verdict_text
+    );
     assert!(
         d.verdict_text.contains("g read as m/s²"),
         "{}",
@@ -495,7 +510,12 @@ fn an_ac_coupled_seat_accelerometer_is_named_a_sensor_high_pass() {
     let ac = |s: &Signals| with_channel(s, "a_seat_z", |d| rc_highpass(d, s.sample_rate_hz, 0.8));
     let train: Vec<Signals> = case.train.iter().map(ac).collect();
     let d = diagnose(&model, &train, &ac(&case.check)).unwrap();
-    assert_eq!(d.verdict.effect(), Some("sensor-highpass"), "{}", d.verdict_text);
+    assert_eq!(
+        d.verdict.effect(),
+        Some("sensor-highpass"),
+        "{}",
+        d.verdict_text
+    );
     let hp = d
         .candidates
         .iter()

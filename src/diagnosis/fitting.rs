@@ -4,10 +4,12 @@
 
 use super::candidate::{BASE_BOUND, Candidate, Param, base_params, prior_sigma, scaled};
 use super::measure::RunSpectra;
+use super::outcome::Estimate;
 use super::predict::Variant;
-use super::*;
+use super::score;
 use crate::error::Result;
 use crate::model::{Model, Quantity};
+use crate::numeric::lm as fit;
 use rayon::prelude::*;
 
 pub(super) struct Fitted {
@@ -154,12 +156,12 @@ pub(super) fn refine_null<S>(
     base: &Base,
     train: &[RunSpectra],
     null: Fitted,
-    fitted: &[(Candidate, Fitted, S)],
+    fitted: &[(Fitted, S)],
 ) -> Result<Fitted> {
     let nb = base.params.len();
     let mut order: Vec<&Fitted> = fitted
         .iter()
-        .map(|(_, f, _)| f)
+        .map(|(f, _)| f)
         .filter(|f| f.fit.cost < null.fit.cost)
         .collect();
     order.sort_by(|a, b| a.fit.cost.total_cmp(&b.fit.cost));

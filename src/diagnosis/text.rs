@@ -3,8 +3,9 @@
 //! any calibration finding.
 
 use super::outcome::{ChannelError, Ranked, Stage};
+use super::score;
+use super::thresholds::{ACCEPT_DELTA_BIC, MIN_CLOSED};
 use super::verdict::{Basis, Evidence, Verdict, practically_small, training_closed};
-use super::{ACCEPT_DELTA_BIC, MIN_CLOSED, score};
 
 /// The verdict's sentence (before the second effect, the ISO figures and calibration).
 pub(super) fn verdict(v: &Verdict, e: &Evidence) -> String {

@@ -7,12 +7,13 @@
 
 pub(super) mod rules;
 
-use super::VISIBLE_SIZE;
 use super::all_runs::AllRuns;
 use super::candidate::Candidate;
 use super::distortion::Distortion;
+pub(super) use super::evidence::training_closed;
 use super::outcome::{Ranked, Stage, VerdictId};
 use super::score;
+use super::thresholds::VISIBLE_SIZE;
 
 /// What the diagnosis concludes. Calibration findings (an inverted channel, a unit slip) stand
 /// beside it in [`super::Diagnosis::channel_errors`].
@@ -187,14 +188,6 @@ pub fn separating_measurement(a: &str, b: &str) -> String {
     }
 }
 
-/// Fraction of the training runs' structural gap that `c` closes against the null re-fit,
-/// FGC = (D₀ − D)/(D₀ − 1) on the training runs' reduced χ² (docs/gap.md §6), measured down to 1
-/// even when the null fits within σ (not [`score::gap_floor`]): on the training runs every
-/// candidate fits in sample, so a residue at the noise level is not a gap any candidate closes.
-pub(super) fn training_closed(null: &Ranked, c: &Ranked) -> f64 {
-    score::fraction_closed(null.train_chi2_red, c.train_chi2_red, 1.0)
-}
-
 /// Overdispersion ĉ = max(1, χ²/ν) of a fit (QAIC, Burnham & Anderson 2002, §2.5): when even the
 /// better of two models leaves residuals ĉ times the noise estimate's variance, every
 /// log-likelihood difference between them is ĉ times too large, so a BIC margin between
@@ -208,21 +201,22 @@ pub(super) fn overdispersion(chi2_red: f64) -> f64 {
 }
 
 /// The best candidate if the held-out run accepts it: detected (ΔBIC ≤
-/// [`super::ACCEPT_DELTA_BIC`]), and closing at least [`super::MIN_CLOSED`] of the structural gap
+/// [`super::thresholds::ACCEPT_DELTA_BIC`]), and closing at least [`super::thresholds::MIN_CLOSED`] of the structural gap
 /// when there is one. When the null already fits within the noise estimate (reduced χ² ≤ 1) there
 /// is no structural gap to close, and detection alone names the effect, with its size however
 /// small: `none` means nothing significant (docs/gap.md §7).
 pub(super) fn held_out_accepted<'a>(null: &Ranked, cands: &'a [Ranked]) -> Option<&'a Ranked> {
     cands.first().filter(|b| {
-        b.delta_bic <= super::ACCEPT_DELTA_BIC
-            && (b.fraction_closed >= super::MIN_CLOSED || score::within_noise(null.check.chi2_red))
+        b.delta_bic <= super::thresholds::ACCEPT_DELTA_BIC
+            && (b.fraction_closed >= super::thresholds::MIN_CLOSED
+                || score::within_noise(null.check.chi2_red))
     })
 }
 
 /// Whether a candidate's size on the check run is practically small: below
-/// [`super::PRACTICAL_SIZE`] in seat a_w, SEAT and band-gap RMS.
+/// [`super::thresholds::PRACTICAL_SIZE`] in seat a_w, SEAT and band-gap RMS.
 pub(super) fn practically_small(b: &Ranked) -> bool {
-    let (aw, seat, db) = super::PRACTICAL_SIZE;
+    let (aw, seat, db) = super::thresholds::PRACTICAL_SIZE;
     b.aw_change_percent.abs() < aw
         && b.seat_change_points.abs() < seat
         && b.band_gap_change_db.abs() < db

@@ -6,7 +6,7 @@ use super::{
     Basis, Evidence, Verdict, candidate, overdispersion, separating_measurement, training_closed,
 };
 use crate::diagnosis::outcome::Ranked;
-use crate::diagnosis::{
+use crate::diagnosis::thresholds::{
     ACCEPT_DELTA_BIC, GAP_CHI2, IDENTIFIABLE_MARGIN, MIN_CLOSED, PRACTICAL_GAP,
 };
 
