@@ -4,7 +4,7 @@
 //! 7: the CI subset of `tests/gap_truth_bench.rs`).
 
 use rayon::prelude::*;
-use wbv::diagnosis::truth::case::make_case;
+use wbv::gap_bench::case::make_case;
 
 fn main() -> wbv::Result<()> {
     let mut args = std::env::args().skip(1);

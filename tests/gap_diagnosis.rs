@@ -1,13 +1,13 @@
 //! `wbv gap` core: the replayed model matches its analytic FRF, a run with no structural gap is
 //! reported as `none`, realistic data (short runs, road-like spectra) are diagnosed with warnings
 //! instead of refused, and bad input gives a clear error or warning. Runs come from the truth
-//! bench's case generator (`wbv::diagnosis::truth::case`), which shares no code with the candidates.
+//! bench's case generator (`wbv::gap_bench::case`), which shares no code with the candidates.
 
 use wbv::diagnosis::measure::{Path, estimate, h1_sigma};
 use wbv::diagnosis::predict::{Variant, predict};
 use wbv::diagnosis::replay::replay;
-use wbv::diagnosis::truth::case::{Case, CaseOptions, make_case_with};
 use wbv::diagnosis::{VerdictId, diagnose};
+use wbv::gap_bench::case::{Case, CaseOptions, make_case_with};
 use wbv::model::catalog;
 use wbv::signals::Signals;
 
@@ -261,8 +261,8 @@ fn the_force_plates_own_response_is_named_a_force_sensor_effect() {
     // 25 Hz (not the candidate's Butterworth), and an uncancelled 4 kg top plate on load cells
     // resonating at 200 Hz. Only the apparent mass changes; the transmissibilities do not, so
     // naming a body or cushion effect (which would move them) is wrong.
-    use wbv::diagnosis::truth::forms::Sensor;
-    use wbv::diagnosis::truth::sensor::apply;
+    use wbv::gap_bench::forms::Sensor;
+    use wbv::gap_bench::sensor::apply;
     let case = null_case();
     let model = catalog::resolve("reference").unwrap();
     let fs = case.check.sample_rate_hz;
@@ -362,7 +362,7 @@ fn a_preloaded_foam_is_named_by_its_distortion_and_a_linear_foam_is_not() {
     // solid foam at the same settings distorts nothing and keeps its name. Both with a fixed lab
     // noise floor on top of the bench's proportional noise.
     use wbv::diagnosis::distortion::Site;
-    use wbv::diagnosis::truth::forms::Form;
+    use wbv::gap_bench::forms::Form;
     let model = catalog::resolve("reference").unwrap();
     for (form, strength) in [(Form::PreloadExp, 0.35), (Form::Sls, 0.6)] {
         let case = make_case_with(

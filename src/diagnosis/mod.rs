@@ -32,7 +32,6 @@ pub mod score;
 mod select;
 mod text;
 mod thresholds;
-pub mod truth;
 mod verdict;
 
 pub use outcome::{

@@ -12,7 +12,7 @@ mod table;
 
 pub use table::{Row, Summary, summary};
 
-use super::{VerdictId, diagnose};
+use crate::diagnosis::{VerdictId, diagnose};
 use crate::error::Result;
 use crate::model::catalog;
 use case::{Label, make_case};

@@ -263,7 +263,7 @@ impl Summary {
         out
     }
 
-    /// A Markdown table (the README's).
+    /// A Markdown table (docs/gap-validation.md's).
     pub fn markdown(&self) -> String {
         let f = |x: Option<f64>| x.map_or("–".to_string(), |v| format!("{v:.2}"));
         let mut out = format!(

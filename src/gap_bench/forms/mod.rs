@@ -1,5 +1,5 @@
 //! Truth forms: each unmodelled effect in several functional forms that are *not* the diagnosis
-//! candidates' families (gap.md §4.1; issue 15). This module never calls the candidate code: frame
+//! candidates' families (docs/gap-validation.md). This module never calls the candidate code: frame
 //! and viscera insertion, Prony fits and strength targets are written here on their own.
 //!
 //! Strength `u ∈ [0, 1]` maps to a physical size: for the amplitude-dependent forms the change of the
