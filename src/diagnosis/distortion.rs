@@ -1,4 +1,4 @@
-//! Nonlinear distortion located by its growth with magnitude (gap.md §2 rows 3–5 and 13, §3.8:
+//! Nonlinear distortion located by its growth with magnitude (docs/gap.md §2 rows 3–5 and 13, §4:
 //! "magnitude dependence for distortion").
 //!
 //! On a linear path the incoherent part of the output is noise: relative to the coherent response

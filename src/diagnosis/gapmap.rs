@@ -199,7 +199,7 @@ pub fn phase_delay_s(cells: &[BandCell], path: Path) -> Option<f64> {
     Some(-sxy / sxx / (2.0 * std::f64::consts::PI))
 }
 
-/// A verbal classification of the gap map (gap.md §3.3): which side, what shape.
+/// A verbal classification of the gap map (docs/gap.md §4): which side, what shape.
 pub fn classify(cells: &[BandCell]) -> Vec<String> {
     let mut out = Vec::new();
     let g = |p| rms_gap_db(cells, Some(p)).unwrap_or(0.0);

@@ -39,7 +39,7 @@ pub struct Args {
     pub encoding: String,
     /// Message layout of the time series: batched (one message per topic per 1024 samples, packed
     /// arrays; the protobuf default, a full-rate hour in seconds) or per-sample (one message per
-    /// sample: every field a time series in every viewer; the JSON layout). See the README.
+    /// sample: every field a time series in every viewer; the JSON layout). See docs/viewing.md.
     #[arg(long)]
     pub layout: Option<String>,
     /// MCAP chunk compression: zstd, lz4 or none.
