@@ -46,7 +46,7 @@ pub(in crate::diagnosis) const RULES: &[Rule] = &[
         apply: no_structural_gap,
     },
     Rule {
-        name: "unexplained",
+        name: "no-candidate-closes-the-gap",
         apply: unexplained,
     },
 ];

@@ -379,6 +379,9 @@ mod tests {
             Some(Family::SupportPath)
         );
         assert_eq!(Family::of_verdict("body-mode"), Some(Family::MissingDof));
-        assert_eq!(Family::of_verdict("none"), None);
+        assert_eq!(
+            Family::of_verdict(crate::diagnosis::VerdictId::None.as_str()),
+            None
+        );
     }
 }

@@ -66,7 +66,7 @@ fn the_rule_list_ends_in_a_rule_that_always_applies() {
     let null = ranked("null", 1.0, 1.0, 0.0, 0.0, 1.0);
     let e = evidence(&null, &[]);
     let last = RULES.last().expect("rules");
-    assert_eq!(last.name, "unexplained");
+    assert_eq!(last.name, "no-candidate-closes-the-gap");
     assert_eq!((last.apply)(&e), Some(Verdict::Unexplained));
 }
 
@@ -469,4 +469,17 @@ fn a_friction_named_on_the_responses_stands_against_a_body_site() {
     e.distortion = Some(&dist);
     let v = located(&e, &held(Candidate::SuspensionFriction)).expect("renamed");
     assert!(named(Candidate::BodySoftening)(&v));
+}
+
+#[test]
+fn docs_gap_md_lists_the_rules_in_their_order() {
+    let doc = std::fs::read_to_string("docs/gap.md").expect("docs/gap.md");
+    let section = &doc[doc.find("## 7 The verdict rules").expect("§7")..];
+    let mut at = 0;
+    for r in RULES {
+        let i = section[at..]
+            .find(&format!("**{}**", r.name))
+            .unwrap_or_else(|| panic!("docs/gap.md §7 lacks rule {} after position {at}", r.name));
+        at += i + r.name.len();
+    }
 }
