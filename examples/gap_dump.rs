@@ -1,7 +1,8 @@
 //! Writes the `wbv gap --json` result of each case of a seeded truth-form bench into a directory
 //! (`case-NNN.json`, pretty-printed), for comparing a refactor's diagnoses with a baseline's.
 //! Usage: `cargo run --release --example gap_dump -- DIR [CASES [SEED]]` (default 28 cases, seed
-//! 7: the CI subset of `tests/gap_truth_bench.rs`).
+//! 7: the CI subset of `tests/gap_truth_bench.rs`). Each diagnosis is also read back from its JSON
+//! and must write the same JSON again.
 
 use rayon::prelude::*;
 use wbv::gap_bench::case::make_case;
@@ -16,7 +17,14 @@ fn main() -> wbv::Result<()> {
     (0..cases).into_par_iter().try_for_each(|i| {
         let case = make_case(i, seed)?;
         let json = match wbv::diagnosis::diagnose(&model, &case.train, &case.check) {
-            Ok(d) => wbv::diagnosis::report::json(&d),
+            Ok(d) => {
+                let json = wbv::diagnosis::report::json(&d);
+                // The report reads the JSON back (`wbv report --gap`): it must give the same JSON.
+                let back: wbv::diagnosis::Diagnosis =
+                    serde_json::from_value(json.clone()).expect("reads back");
+                assert_eq!(wbv::diagnosis::report::json(&back), json, "case {i}");
+                json
+            }
             Err(e) => serde_json::json!({ "error": e.to_string() }),
         };
         let text = serde_json::to_string_pretty(&json).expect("JSON") + "\n";

@@ -1,5 +1,6 @@
 //! Weighted spectral residuals between a model variant and measured runs, and the statistics built
-//! on them (χ², reduced χ², BIC).
+//! on them (χ², the fraction of the gap closed); the BIC forms built on χ² are in
+//! [`super::evidence`].
 //!
 //! A cell is one (run, path, bin) with coherence ≥ [`MIN_COHERENCE`]; it contributes the real and
 //! imaginary part of ln(H_model/H_meas) — the log-magnitude ratio and the phase difference in rad —
