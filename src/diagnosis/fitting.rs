@@ -65,10 +65,8 @@ pub(super) const FIT_ITERATIONS: usize = 40;
 /// ([`fit::Settings::active_set`]), so a base parameter on its ±30 % bound with the gradient
 /// pushing out is held while the others are solved for. Projection alone stalled there: the
 /// projected step of a parameter pressed against its bound gives no decrease, λ grows and the fit
-/// stops short of the optimum (CI subset case 14, seed 7: null χ² 0.228 with projection, 0.197
-/// with the active set, 0.179 started from the truth's parameters; a candidate, started at the
-/// null's optimum, then gained from the optimiser alone and was detected at ΔBIC −23.6 on a clean
-/// seat).
+/// stops short of the optimum; a candidate started at that point then gains from the optimiser
+/// alone, and on a clean seat is "detected" (docs/gap.md §6.2, docs/gap-validation.md).
 fn settings(max_iter: usize) -> fit::Settings {
     fit::Settings {
         max_iter,
