@@ -5,8 +5,8 @@
 use criterion::{Criterion, criterion_group, criterion_main};
 use std::time::Duration;
 use wbv::diagnosis::diagnose;
-use wbv::diagnosis::truth::case::{CaseOptions, make_case_with};
-use wbv::diagnosis::truth::forms::Form;
+use wbv::gap_bench::case::{CaseOptions, make_case_with};
+use wbv::gap_bench::forms::Form;
 use wbv::model::catalog;
 
 fn gap(c: &mut Criterion) {

@@ -8,6 +8,7 @@ pub mod analysis;
 pub mod diagnosis;
 pub mod error;
 pub mod excitation;
+pub mod gap_bench;
 pub mod integrator;
 pub mod io;
 pub mod measurement;

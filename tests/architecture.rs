@@ -1,10 +1,14 @@
 //! The dependency graph of `src/` is one-way: no import cycle between modules at any depth, and no
 //! top-level import that points up the layer table of `docs/architecture.md`.
 //!
-//! Edges come from the `crate::…` and `super::…` paths of each file (outside its `#[cfg(test)]`
-//! part and comments). An edge between two modules is lifted to the children of their lowest
-//! common ancestor (`analysis::report → analysis::stream` is an edge between siblings); a module
-//! using its own ancestor's items is containment, not an edge.
+//! Edges come from the `crate::…` and `super::…` paths of each file and a module file's paths into
+//! its own child modules (outside its `#[cfg(test)]` part and comments). An edge between two
+//! modules is lifted to the children of their lowest common ancestor
+//! (`analysis::report → analysis::stream` is an edge between siblings). A module file is itself a
+//! sibling of its children, [`OWN`]: a child using an item *defined* in its parent's file (or all
+//! of it, `super::*`) depends on that file, and the file using the child depends on the child, so
+//! an orchestrator and a stage that call each other are a cycle. An item the parent only
+//! re-exports (`pub use outcome::Ranked`) is followed to the module that defines it.
 
 use std::collections::{BTreeMap, BTreeSet};
 use std::path::Path;
@@ -30,7 +34,12 @@ fn modules() -> BTreeMap<Module, String> {
                 if parts.last().is_some_and(|l| l == "mod") {
                     parts.pop();
                 }
-                if parts == ["lib"] || parts == ["main"] {
+                // A `tests.rs` file is a `#[cfg(test)] mod tests;` split out of its parent: test
+                // code, like the `#[cfg(test)]` part of a file.
+                if parts == ["lib"]
+                    || parts == ["main"]
+                    || parts.last().is_some_and(|l| l == "tests")
+                {
                     continue;
                 }
                 out.insert(parts, std::fs::read_to_string(&p).unwrap());
@@ -104,7 +113,115 @@ fn paths(code: &str) -> Vec<(String, Vec<String>)> {
                 }
             } else if !segs.is_empty() {
                 out.push((root.to_string(), segs));
+            } else if root == "super" && tail.starts_with("::*") {
+                out.push((root.to_string(), vec!["*".to_string()]));
             }
+        }
+    }
+    out
+}
+
+/// The name of a module file's own node among its children's.
+const OWN: &str = "(mod)";
+
+/// Modules whose own file is an orchestrator of its child files (stages called in order): there
+/// the file counts as a sibling of its children, so a child calling back into it is a cycle.
+/// Elsewhere a parent file defining the types its children implement is containment.
+const ORCHESTRATORS: [&[&str]; 1] = [&["diagnosis"]];
+
+fn orchestrator(m: &[String]) -> bool {
+    ORCHESTRATORS
+        .iter()
+        .any(|o| o.len() == m.len() && o.iter().zip(m).all(|(a, b)| a == b))
+}
+
+/// The child modules a module file declares (`mod x;`, `pub mod x;`).
+fn children(code: &str) -> Vec<String> {
+    code.split(';')
+        .filter_map(|stmt| {
+            let words: Vec<&str> = stmt.split_whitespace().collect();
+            let i = words.iter().position(|w| *w == "mod")?;
+            (i + 2 == words.len()).then(|| words[i + 1].to_string())
+        })
+        .collect()
+}
+
+/// Paths from a module file into its own children (`measure::Path`), relative to the module;
+/// re-exports (`pub use child::Item;`) only name the child's items and are left out.
+fn child_paths(code: &str) -> Vec<Vec<String>> {
+    let code: String = code
+        .split(';')
+        .filter(|stmt| {
+            let Some(i) = stmt.find("use ") else {
+                return true;
+            };
+            let before = stmt[..i].split_whitespace().last().unwrap_or("");
+            !(before == "pub" || before.starts_with("pub("))
+        })
+        .collect::<Vec<_>>()
+        .join(";");
+    let code = code.as_str();
+    let mut out = Vec::new();
+    for child in children(code) {
+        let pat = format!("{child}::");
+        let mut rest = code;
+        while let Some(i) = rest.find(&pat) {
+            let before = rest[..i].chars().last();
+            rest = &rest[i + pat.len()..];
+            if before.is_some_and(|c| c.is_alphanumeric() || c == '_' || c == ':') {
+                continue;
+            }
+            let item: String = rest
+                .chars()
+                .take_while(|c| c.is_alphanumeric() || *c == '_')
+                .collect();
+            out.push(vec![child.clone(), item]);
+        }
+    }
+    out
+}
+
+/// The items a module file re-exports (`pub use a::b::{C, D as E};`): name → full path.
+fn reexports(m: &Module, code: &str) -> BTreeMap<String, Vec<String>> {
+    let mut out = BTreeMap::new();
+    for stmt in code.split(';') {
+        let Some(i) = stmt.find("use ") else { continue };
+        let before = stmt[..i].split_whitespace().last().unwrap_or("");
+        if !(before == "pub" || before.starts_with("pub(")) {
+            continue;
+        }
+        let body: String = stmt[i + 4..]
+            .split_whitespace()
+            .collect::<Vec<_>>()
+            .join(" ");
+        let (prefix, items) = match body.split_once("::{") {
+            Some((p, g)) => (p.to_string(), g.trim_end_matches('}').to_string()),
+            None => match body.rsplit_once("::") {
+                Some((p, it)) => (p.to_string(), it.to_string()),
+                None => continue,
+            },
+        };
+        let mut base: Vec<String> = prefix.split("::").map(str::to_string).collect();
+        match base[0].as_str() {
+            "crate" => {
+                base.remove(0);
+            }
+            "super" => {
+                base.remove(0);
+                base.splice(0..0, m[..m.len() - 1].iter().cloned());
+            }
+            _ => base.splice(0..0, m.iter().cloned()).for_each(drop),
+        }
+        for item in items.split(',') {
+            let words: Vec<&str> = item.split_whitespace().collect();
+            let Some(first) = words.first() else { continue };
+            let path: Vec<String> = first.split("::").map(str::to_string).collect();
+            let name = if words.len() == 3 {
+                words[2]
+            } else {
+                path.last().unwrap()
+            };
+            out.insert(name.to_string(), base.iter().cloned().chain(path).collect());
         }
     }
     out
@@ -117,20 +234,60 @@ fn edges(mods: &BTreeMap<Module, String>) -> BTreeSet<(Module, Module)> {
             .map(|k| parts[..k].to_vec())
             .find(|m| mods.contains_key(m))
     };
+    let codes: BTreeMap<&Module, String> = mods.iter().map(|(m, t)| (m, code(t))).collect();
+    let own = |m: &[String]| -> Module { m.iter().cloned().chain([OWN.to_string()]).collect() };
     let mut out = BTreeSet::new();
-    for (m, text) in mods {
-        for (root, segs) in paths(&code(text)) {
-            let full: Vec<String> = if root == "crate" {
-                segs
-            } else {
-                m[..m.len() - 1].iter().cloned().chain(segs).collect()
+    for (m, code) in &codes {
+        let m: &Module = m;
+        let mut found: Vec<Vec<String>> = paths(code)
+            .into_iter()
+            .map(|(root, segs)| {
+                if root == "crate" {
+                    segs
+                } else {
+                    m[..m.len() - 1].iter().cloned().chain(segs).collect()
+                }
+            })
+            .collect();
+        found.extend(
+            child_paths(code)
+                .into_iter()
+                .map(|p| m.iter().cloned().chain(p).collect()),
+        );
+        for mut full in found {
+            let Some(mut t) = resolve(&full) else {
+                continue;
             };
-            let Some(t) = resolve(&full) else { continue };
+            // An item a parent re-exports: the module that defines it.
+            if m.starts_with(&t)
+                && let Some(src) = full
+                    .get(t.len())
+                    .and_then(|name| reexports(&t, &codes[&t]).get(name).cloned())
+                && let Some(s) = resolve(&src)
+            {
+                full = src;
+                t = s;
+            }
             let common = m.iter().zip(&t).take_while(|(a, b)| a == b).count();
-            if common == m.len() || common == t.len() {
+            if common == m.len() && common == t.len() {
                 continue;
             }
-            out.insert((m[..=common].to_vec(), t[..=common].to_vec()));
+            let (from, to) = if common == t.len() {
+                // A child uses an item of its ancestor `t`'s own file.
+                if full.len() == t.len() || !orchestrator(&t) {
+                    continue;
+                }
+                (m[..=common].to_vec(), own(&t))
+            } else if common == m.len() {
+                // A module file uses its descendant.
+                if !orchestrator(m) {
+                    continue;
+                }
+                (own(m), t[..=common].to_vec())
+            } else {
+                (m[..=common].to_vec(), t[..=common].to_vec())
+            };
+            out.insert((from, to));
         }
     }
     out
@@ -291,4 +448,37 @@ fn the_cycle_finder_finds_a_planted_cycle() {
     assert_eq!(parsed.len(), 4);
     assert_eq!(parsed[0].1, ["model", "catalog", "Model"]);
     assert_eq!(parsed[3].1, ["c"]);
+}
+
+#[test]
+fn a_stage_calling_back_into_its_orchestrator_is_a_cycle() {
+    let m = |s: &str| -> Module { s.split("::").map(String::from).collect() };
+    let mods = BTreeMap::from([
+        (
+            m("diagnosis"),
+            "mod stage;\nmod outcome;\npub use outcome::Out;\npub const K: f64 = 1.0;\n\
+             pub fn run() { stage::go(); }"
+                .to_string(),
+        ),
+        (m("diagnosis::outcome"), "pub struct Out;".to_string()),
+        (
+            m("diagnosis::stage"),
+            "use super::Out;\npub fn go() -> Out { Out }".to_string(),
+        ),
+    ]);
+    // The stage uses only a re-export: no cycle.
+    assert!(cycles(&edges(&mods)).is_empty(), "{:?}", edges(&mods));
+    // The stage uses a constant defined in the orchestrator's file: a cycle.
+    let mut back = mods.clone();
+    back.insert(
+        m("diagnosis::stage"),
+        "use super::{Out, K};\npub fn go() -> Out { let _ = K; Out }".to_string(),
+    );
+    assert_eq!(cycles(&edges(&back)).len(), 1, "{:?}", edges(&back));
+    // A glob of the parent counts as its file.
+    back.insert(
+        m("diagnosis::stage"),
+        "use super::*;\npub fn go() {}".to_string(),
+    );
+    assert_eq!(cycles(&edges(&back)).len(), 1, "{:?}", edges(&back));
 }

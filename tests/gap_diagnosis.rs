@@ -1,13 +1,13 @@
 //! `wbv gap` core: the replayed model matches its analytic FRF, a run with no structural gap is
 //! reported as `none`, realistic data (short runs, road-like spectra) are diagnosed with warnings
 //! instead of refused, and bad input gives a clear error or warning. Runs come from the truth
-//! bench's case generator (`wbv::diagnosis::truth::case`), which shares no code with the candidates.
+//! bench's case generator (`wbv::gap_bench::case`), which shares no code with the candidates.
 
-use wbv::diagnosis::diagnose;
 use wbv::diagnosis::measure::{Path, estimate, h1_sigma};
 use wbv::diagnosis::predict::{Variant, predict};
 use wbv::diagnosis::replay::replay;
-use wbv::diagnosis::truth::case::{Case, CaseOptions, make_case_with};
+use wbv::diagnosis::{VerdictId, diagnose};
+use wbv::gap_bench::case::{Case, CaseOptions, make_case_with};
 use wbv::model::catalog;
 use wbv::signals::Signals;
 
@@ -67,7 +67,7 @@ fn no_structural_gap_is_reported_as_none_despite_a_different_occupant() {
     assert!(case.label.nuisance.mass_error_percent > 3.0);
     let model = catalog::resolve("reference").unwrap();
     let d = diagnose(&model, &case.train, &case.check).unwrap();
-    assert_eq!(d.verdict, "none", "{}", d.verdict_text);
+    assert_eq!(d.verdict, VerdictId::None, "{}", d.verdict_text);
     assert!(d.named.is_empty());
     assert!(
         d.null.params.iter().any(|p| p.name.starts_with("mass.")),
@@ -101,7 +101,7 @@ fn a_path_missing_from_one_run_is_left_out_of_all_with_a_warning() {
         .count();
     assert_eq!(lost, case.train.len(), "{:?}", d.warnings);
     assert!(d.bands.iter().all(|b| b.path != "seat-head"));
-    assert_eq!(d.verdict, "none", "{}", d.verdict_text);
+    assert_eq!(d.verdict, VerdictId::None, "{}", d.verdict_text);
 }
 
 #[test]
@@ -152,7 +152,12 @@ fn a_road_spectrum_is_diagnosed_on_its_coherent_bands() {
     let d = diagnose(&model, &case.train, &case.check).unwrap();
     assert!(!d.bands.is_empty());
     assert!(d.bands.iter().all(|b| !b.judged_hz.is_empty()));
-    assert!(d.verdict == "none", "{}: {}", d.verdict, d.verdict_text);
+    assert!(
+        d.verdict == VerdictId::None,
+        "{}: {}",
+        d.verdict,
+        d.verdict_text
+    );
 }
 
 #[test]
@@ -256,8 +261,8 @@ fn the_force_plates_own_response_is_named_a_force_sensor_effect() {
     // 25 Hz (not the candidate's Butterworth), and an uncancelled 4 kg top plate on load cells
     // resonating at 200 Hz. Only the apparent mass changes; the transmissibilities do not, so
     // naming a body or cushion effect (which would move them) is wrong.
-    use wbv::diagnosis::truth::forms::Sensor;
-    use wbv::diagnosis::truth::sensor::apply;
+    use wbv::gap_bench::forms::Sensor;
+    use wbv::gap_bench::sensor::apply;
     let case = null_case();
     let model = catalog::resolve("reference").unwrap();
     let fs = case.check.sample_rate_hz;
@@ -284,7 +289,7 @@ fn the_force_plates_own_response_is_named_a_force_sensor_effect() {
         let train: Vec<Signals> = case.train.iter().map(|s| with_force(s, edit)).collect();
         let d = diagnose(&model, &train, &with_force(&case.check, edit)).unwrap();
         assert!(
-            d.verdict.starts_with("sensor-") && d.verdict.contains("force"),
+            d.verdict.as_str().starts_with("sensor-") && d.verdict.as_str().contains("force"),
             "{what}: {} — {}",
             d.verdict,
             d.verdict_text
@@ -316,7 +321,7 @@ fn fore_aft_channels_under_a_vertical_model_are_left_out_with_a_warning() {
     };
     let train: Vec<Signals> = case.train.iter().map(add_x).collect();
     let d = diagnose(&model, &train, &add_x(&case.check)).unwrap();
-    assert_eq!(d.verdict, "none", "{}", d.verdict_text);
+    assert_eq!(d.verdict, VerdictId::None, "{}", d.verdict_text);
     assert!(
         d.warnings.iter().any(|w| w.contains("a_seat_x, a_head_x")
             && w.contains("not an output of model `reference`")),
@@ -357,7 +362,7 @@ fn a_preloaded_foam_is_named_by_its_distortion_and_a_linear_foam_is_not() {
     // solid foam at the same settings distorts nothing and keeps its name. Both with a fixed lab
     // noise floor on top of the bench's proportional noise.
     use wbv::diagnosis::distortion::Site;
-    use wbv::diagnosis::truth::forms::Form;
+    use wbv::gap_bench::forms::Form;
     let model = catalog::resolve("reference").unwrap();
     for (form, strength) in [(Form::PreloadExp, 0.35), (Form::Sls, 0.6)] {
         let case = make_case_with(
@@ -401,7 +406,12 @@ fn a_preloaded_foam_is_named_by_its_distortion_and_a_linear_foam_is_not() {
                 assert_eq!(dist.site, None, "{dist:?}");
                 // The fixed floor lowers the ratio at high magnitude (it falls, −3 dB here).
                 assert!(seat.rise_db < 1.0 && !seat.distorts(), "{dist:?}");
-                assert_eq!(d.verdict, "cushion-viscoelastic", "{}", d.verdict_text);
+                assert_eq!(
+                    d.verdict.effect(),
+                    Some("cushion-viscoelastic"),
+                    "{}",
+                    d.verdict_text
+                );
             }
         }
     }
@@ -423,7 +433,12 @@ fn an_upside_down_seat_accelerometer_is_named_and_the_seat_still_judged() {
     let check = inverted(&case.check, "a_seat_z");
     let d = diagnose(&model, &train, &check).unwrap();
     let upright = diagnose(&model, &case.train, &case.check).unwrap();
-    assert_eq!(d.verdict, "sensor-gain", "{}", d.verdict_text);
+    assert_eq!(
+        d.verdict.effect(),
+        Some("sensor-gain"),
+        "{}",
+        d.verdict_text
+    );
     assert_eq!(
         d.null.check.weighted.aw_gap_percent,
         upright.null.check.weighted.aw_gap_percent
@@ -443,7 +458,12 @@ fn an_upside_down_seat_accelerometer_is_named_and_the_seat_still_judged() {
     let slip = |s: &Signals| with_channel(s, "a_seat_z", |d| d.iter().map(|v| v / g).collect());
     let slipped: Vec<Signals> = case.train.iter().map(slip).collect();
     let d = diagnose(&model, &slipped, &slip(&case.check)).unwrap();
-    assert_eq!(d.verdict, "sensor-gain", "{}", d.verdict_text);
+    assert_eq!(
+        d.verdict.effect(),
+        Some("sensor-gain"),
+        "{}",
+        d.verdict_text
+    );
     assert!(
         d.verdict_text.contains("g read as m/s²"),
         "{}",
@@ -490,7 +510,12 @@ fn an_ac_coupled_seat_accelerometer_is_named_a_sensor_high_pass() {
     let ac = |s: &Signals| with_channel(s, "a_seat_z", |d| rc_highpass(d, s.sample_rate_hz, 0.8));
     let train: Vec<Signals> = case.train.iter().map(ac).collect();
     let d = diagnose(&model, &train, &ac(&case.check)).unwrap();
-    assert_eq!(d.verdict, "sensor-highpass", "{}", d.verdict_text);
+    assert_eq!(
+        d.verdict.effect(),
+        Some("sensor-highpass"),
+        "{}",
+        d.verdict_text
+    );
     let hp = d
         .candidates
         .iter()

@@ -13,7 +13,7 @@
 use rand::{RngExt, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use rand_distr::StandardNormal;
-use wbv::diagnosis::diagnose;
+use wbv::diagnosis::{VerdictId, diagnose};
 use wbv::excitation::{ExcitationSpec, Kind};
 use wbv::integrator::Method;
 use wbv::model::{Model, catalog};
@@ -208,7 +208,7 @@ fn planar_clean_seat_with_another_subject_is_none() {
     let (train, check) = runs(&truth);
     let d = diagnose(&model, &train, &check).unwrap();
     eprintln!("{}", wbv::diagnosis::report::text(&d));
-    assert_eq!(d.verdict, "none", "{}", d.verdict_text);
+    assert_eq!(d.verdict, VerdictId::None, "{}", d.verdict_text);
 }
 
 #[test]

@@ -15,7 +15,7 @@ use rayon::prelude::*;
 /// candidate's law) was named cushion-viscoelastic; since the distortion trend it is named a
 /// cushion stiffening (4 of 4).
 const OPEN: [&str; 0] = [];
-use wbv::diagnosis::truth::{run_case, summary};
+use wbv::gap_bench::{run_case, summary};
 
 #[test]
 fn seeded_truth_form_subset_meets_the_acceptance_rule() {

@@ -1,5 +1,5 @@
 use rayon::prelude::*;
-use wbv::diagnosis::truth::{run_case, summary};
+use wbv::gap_bench::{run_case, summary};
 
 /// Arguments of `wbv gap-bench`.
 #[derive(Debug, clap::Args)]
@@ -15,7 +15,7 @@ pub struct Args {
     /// Print every case and the summary as JSON (with the Markdown table as `markdown`).
     #[arg(long)]
     json: bool,
-    /// Print only the summary as a Markdown table (the README's).
+    /// Print only the summary as a Markdown table (docs/gap-validation.md's).
     #[arg(long, conflicts_with = "json")]
     markdown: bool,
 }

@@ -1,4 +1,4 @@
-//! Amplitude-dependent effects judged on all runs together (gap.md §3.6, E1–E3).
+//! Amplitude-dependent effects judged on all runs together (docs/gap.md §6.4).
 //!
 //! With two training magnitudes every two-parameter magnitude law passes through both, so the law's
 //! *form* is not identified by the training runs; a held-out run between them then tests the form
@@ -10,11 +10,18 @@
 //! closes part of the all-run structural gap.
 
 use super::candidate::Candidate;
+use super::evidence::{delta_bic_refit, fit_each, sizes, stage, training_closed};
 use super::fitting::{Base, Fitted, estimates, fit_candidate};
 use super::measure::RunSpectra;
-use super::*;
+use super::outcome::Ranked;
+use super::score;
+use super::select::Ranking;
+use super::thresholds::{ACCEPT_DELTA_BIC, GAP_CHI2, MIN_CLOSED};
+use crate::error::Result;
 
-/// The amplitude-dependent effect that explains all runs together.
+/// The amplitude-dependent effect that explains all runs together: its all-run figures (the
+/// verdict's evidence; the fit itself is returned beside it by [`judge`]).
+#[derive(Debug, Clone)]
 pub(super) struct AllRuns {
     pub(super) candidate: Candidate,
     /// BIC over all runs minus that of the null re-fitted on all runs.
@@ -22,8 +29,6 @@ pub(super) struct AllRuns {
     /// Reduced χ² over all runs of the null and of the effect, each fitted on all runs.
     pub(super) null_chi2_red: f64,
     pub(super) chi2_red: f64,
-    /// The effect fitted on all runs.
-    pub(super) fitted: Fitted,
 }
 
 impl AllRuns {
@@ -36,21 +41,24 @@ impl AllRuns {
         )
     }
 
-    /// Puts the all-run fit into the named candidate's entry of `cands` (parameters, all-run ΔBIC
-    /// and fraction closed, the check run's stage and sizes against the null) and its parameter
-    /// vector into `fits`, the forward selection's warm start.
+    /// Puts the all-run fit `fitted` into the named candidate's entry of the ranking (parameters,
+    /// all-run ΔBIC and fraction closed, the check run's stage and sizes against the null) and its
+    /// parameter vector into the ranking's fits, the forward selection's warm start.
     pub(super) fn adopt(
         &self,
+        fitted: &Fitted,
         base: &Base,
-        null: &Ranked,
         check: &RunSpectra,
-        cands: &mut [Ranked],
-        fits: &mut [(Candidate, Vec<f64>)],
+        ranking: &mut Ranking,
     ) -> Result<()> {
-        let st = stage(&self.fitted.variant, check)?;
-        let (aw, seat, db) = sizes(&st, &null.check);
-        if let Some(r) = cands.iter_mut().find(|r| r.id == self.candidate.id()) {
-            r.params = estimates(base, &[self.candidate], &self.fitted.fit);
+        let st = stage(&fitted.variant, check)?;
+        let (aw, seat, db) = sizes(&st, &ranking.null.check);
+        if let Some(r) = ranking
+            .cands
+            .iter_mut()
+            .find(|r| r.id == self.candidate.id())
+        {
+            r.params = estimates(base, &[self.candidate], &fitted.fit);
             r.delta_bic_all = self.delta_bic;
             r.fraction_closed = self.fraction_closed();
             r.aw_change_percent = aw;
@@ -58,11 +66,35 @@ impl AllRuns {
             r.band_gap_change_db = db;
             r.check = st;
         }
-        if let Some(f) = fits.iter_mut().find(|(c, _)| *c == self.candidate) {
-            f.1 = self.fitted.fit.u.clone();
+        if let Some(f) = ranking.fits.iter_mut().find(|(c, _)| *c == self.candidate) {
+            f.1 = fitted.fit.u.clone();
         }
         Ok(())
     }
+}
+
+/// The all-run judgement when it is needed: the training runs leave a structural residue (null
+/// reduced χ² > [`GAP_CHI2`]) that the held-out run's `accepted` best, if any, leaves nearly whole
+/// (closes < [`MIN_CLOSED`] of the training gap). A check run between the training magnitudes is
+/// fitted by the null's compromise, and a small linear effect then wins there; the
+/// amplitude-dependent effects are judged on all runs together instead, against that best
+/// re-fitted on all runs too when it is not amplitude-dependent itself.
+pub(super) fn judge_if_needed(
+    base: &Base,
+    candidates: &[Candidate],
+    null: &Ranked,
+    accepted: Option<&Ranked>,
+    (train, check): (&[RunSpectra], &RunSpectra),
+    warm: &[f64],
+) -> Result<Option<(AllRuns, Fitted)>> {
+    let explains_training = |b: &Ranked| training_closed(null, b) >= MIN_CLOSED;
+    if null.train_chi2_red <= GAP_CHI2 || accepted.is_some_and(explains_training) {
+        return Ok(None);
+    }
+    let rival = accepted
+        .and_then(|b| Candidate::from_id(&b.id))
+        .filter(|c| !c.amplitude_dependent());
+    judge(base, candidates, rival, train, check, warm)
 }
 
 /// Re-fits the null and the amplitude-dependent `candidates` on the training runs and the check
@@ -70,14 +102,14 @@ impl AllRuns {
 /// if it is detected (ΔBIC ≤ [`ACCEPT_DELTA_BIC`]) and closes at least [`MIN_CLOSED`] of the
 /// all-run structural gap. A `rival` (the held-out run's linear best) is re-fitted on all runs
 /// too; when it fits them better, nothing is returned and the held-out verdict stands.
-pub(super) fn judge(
+fn judge(
     base: &Base,
     candidates: &[Candidate],
     rival: Option<Candidate>,
     train: &[RunSpectra],
     check: &RunSpectra,
     warm: &[f64],
-) -> Result<Option<AllRuns>> {
+) -> Result<Option<(AllRuns, Fitted)>> {
     let all: Vec<RunSpectra> = train
         .iter()
         .chain(std::iter::once(check))
@@ -91,21 +123,20 @@ pub(super) fn judge(
         .filter(|c| c.amplitude_dependent())
         .chain(rival)
         .collect();
-    let fitted: Vec<(Candidate, Fitted)> = amplitude
-        .par_iter()
-        .map(|&c| Ok((c, fit_candidate(base, &[c], &all, &null.fit.u)?)))
-        .collect::<Result<_>>()?;
-    let scored: Vec<(Candidate, Fitted, f64)> = fitted
+    let stacks: Vec<Vec<Candidate>> = amplitude.iter().map(|&c| vec![c]).collect();
+    let fitted = fit_each(base, &stacks, &all, &null.fit.u, None)?;
+    let scored: Vec<(Candidate, Fitted, f64)> = amplitude
         .into_iter()
-        .map(|(c, f)| {
-            let d = f.fit.cost - null.fit.cost + c.params().len() as f64 * n.ln();
+        .zip(fitted)
+        .map(|(c, (f, _))| {
+            let d = delta_bic_refit(&f, &null, c.params().len(), n);
             (c, f, d)
         })
         .collect();
     // A magnitude schedule fitted with alpha_k < 0 says the support stiffens as magnitude rises
     // (the resonance rises): that is not body softening, so it is left out and the best of the
-    // others — the cushion-stiffening forms among them — is judged (issue 15: a preloaded
-    // cushion stiffens between runs, which a negative body exponent could otherwise absorb).
+    // others — the cushion-stiffening forms among them — is judged (a preloaded cushion stiffens
+    // between runs, which a negative body exponent could otherwise absorb).
     let nb = base.params.len();
     let stiffening = |c: Candidate, f: &Fitted| {
         c == Candidate::BodySofteningMagnitude && f.fit.u.get(nb).is_some_and(|&a| a < 0.0)
@@ -123,8 +154,8 @@ pub(super) fn judge(
             delta_bic,
             null_chi2_red: null.fit.cost / n,
             chi2_red: fitted.fit.cost / n,
-            fitted,
         };
-        (delta_bic <= ACCEPT_DELTA_BIC && found.fraction_closed() >= MIN_CLOSED).then_some(found)
+        (delta_bic <= ACCEPT_DELTA_BIC && found.fraction_closed() >= MIN_CLOSED)
+            .then_some((found, fitted))
     }))
 }

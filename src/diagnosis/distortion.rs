@@ -1,4 +1,4 @@
-//! Nonlinear distortion located by its growth with magnitude (gap.md §2 rows 3–5 and 13, §3.8:
+//! Nonlinear distortion located by its growth with magnitude (docs/gap.md §2 rows 3–5 and 13, §4:
 //! "magnitude dependence for distortion").
 //!
 //! On a linear path the incoherent part of the output is noise: relative to the coherent response
@@ -41,14 +41,17 @@ pub const BODY_SHARE: (f64, f64) = (0.3, 1.5);
 pub const BAND_HZ: (f64, f64) = (1.0, 40.0);
 
 /// One path's distortion trend.
-#[derive(Debug, Clone, Serialize)]
+#[derive(Debug, Clone, Serialize, Deserialize)]
 pub struct PathDistortion {
     /// Path name.
-    pub path: &'static str,
+    #[serde(deserialize_with = "super::json::path")]
+    pub path: super::json::Name,
     /// Median over the bins in [`BAND_HZ`] of the rise of the noise-to-signal ratio (1 − γ²)/γ²
     /// from the lowest- to the highest-magnitude run, dB.
+    #[serde(deserialize_with = "super::json::f64")]
     pub rise_db: f64,
     /// Exponent e of NSR ∝ A^(2e) between those runs: `rise_db / (20·log10(A_hi/A_lo))`.
+    #[serde(deserialize_with = "super::json::f64")]
     pub exponent: f64,
     /// Whether the ratio rises at every step of magnitude (with three or more runs, one drifting
     /// run cannot make a trend).
@@ -105,9 +108,10 @@ impl Site {
 }
 
 /// The distortion trend of every path over the runs.
-#[derive(Debug, Clone, Serialize)]
+#[derive(Debug, Clone, Serialize, Deserialize)]
 pub struct Distortion {
     /// Lowest and highest run magnitude compared, m/s² r.m.s.
+    #[serde(deserialize_with = "super::json::f64_pair")]
     pub magnitudes: (f64, f64),
     /// Per path measured in every run.
     pub paths: Vec<PathDistortion>,

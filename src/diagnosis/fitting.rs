@@ -4,10 +4,12 @@
 
 use super::candidate::{BASE_BOUND, Candidate, Param, base_params, prior_sigma, scaled};
 use super::measure::RunSpectra;
+use super::outcome::Estimate;
 use super::predict::Variant;
-use super::*;
+use super::score;
 use crate::error::Result;
 use crate::model::{Model, Quantity};
+use crate::numeric::lm as fit;
 use rayon::prelude::*;
 
 pub(super) struct Fitted {
@@ -63,10 +65,8 @@ pub(super) const FIT_ITERATIONS: usize = 40;
 /// ([`fit::Settings::active_set`]), so a base parameter on its ±30 % bound with the gradient
 /// pushing out is held while the others are solved for. Projection alone stalled there: the
 /// projected step of a parameter pressed against its bound gives no decrease, λ grows and the fit
-/// stops short of the optimum (CI subset case 14, seed 7: null χ² 0.228 with projection, 0.197
-/// with the active set, 0.179 started from the truth's parameters; a candidate, started at the
-/// null's optimum, then gained from the optimiser alone and was detected at ΔBIC −23.6 on a clean
-/// seat).
+/// stops short of the optimum; a candidate started at that point then gains from the optimiser
+/// alone, and on a clean seat is "detected" (docs/gap.md §6.2, docs/gap-validation.md).
 fn settings(max_iter: usize) -> fit::Settings {
     fit::Settings {
         max_iter,
@@ -154,12 +154,12 @@ pub(super) fn refine_null<S>(
     base: &Base,
     train: &[RunSpectra],
     null: Fitted,
-    fitted: &[(Candidate, Fitted, S)],
+    fitted: &[(Fitted, S)],
 ) -> Result<Fitted> {
     let nb = base.params.len();
     let mut order: Vec<&Fitted> = fitted
         .iter()
-        .map(|(_, f, _)| f)
+        .map(|(f, _)| f)
         .filter(|f| f.fit.cost < null.fit.cost)
         .collect();
     order.sort_by(|a, b| a.fit.cost.total_cmp(&b.fit.cost));

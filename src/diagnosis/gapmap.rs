@@ -7,26 +7,32 @@ use super::score::trusted;
 use crate::analysis::octave::{centre, nominal};
 use crate::analysis::weighting::Weighting;
 use num_complex::Complex64;
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 
 /// dB per neper (20/ln 10).
 const DB: f64 = 8.685_889_638_065_035;
 
 /// One cell of the gap map: measured relative to model, so +3 dB means the seat transmits more
 /// than the model says.
-#[derive(Debug, Clone, Serialize)]
+#[derive(Debug, Clone, Serialize, Deserialize)]
 pub struct BandCell {
     /// Path name.
-    pub path: &'static str,
+    #[serde(deserialize_with = "super::json::path")]
+    pub path: super::json::Name,
     /// Nominal band centre in Hz (IEC 61260-1).
+    #[serde(deserialize_with = "super::json::f64")]
     pub band_hz: f64,
     /// Mean of 20 log10 |H_meas/H_model| over the trusted bins, dB.
+    #[serde(deserialize_with = "super::json::f64")]
     pub gap_db: f64,
     /// Mean phase of H_meas/H_model, degrees.
+    #[serde(deserialize_with = "super::json::f64")]
     pub phase_deg: f64,
     /// Mean coherence of the band's bins.
+    #[serde(deserialize_with = "super::json::f64")]
     pub coherence: f64,
     /// 1-σ error of `gap_db` from σ/|H| = √((1−γ²)/(2γ²L)) averaged over the bins, dB.
+    #[serde(deserialize_with = "super::json::f64")]
     pub sigma_db: f64,
     /// False when the band's mean coherence is below 0.8 or it has no bins (greyed, not scored).
     pub trusted: bool,
@@ -96,19 +102,25 @@ pub fn rms_phase_deg(cells: &[BandCell], path: Path) -> Option<f64> {
 }
 
 /// Weighted r.m.s. and SEAT figures of a run, measured and predicted, over the analysed band.
-#[derive(Debug, Clone, Serialize)]
+#[derive(Debug, Clone, Serialize, Deserialize)]
 pub struct Weighted {
     /// Measured Wk-weighted seat r.m.s., m/s² (ISO 2631-1 §6.4.2, from the PSD).
+    #[serde(deserialize_with = "super::json::f64")]
     pub aw_seat_meas: f64,
     /// Predicted Wk-weighted seat r.m.s., m/s² (Σ Wk²|H_bs|² G_base Δf).
+    #[serde(deserialize_with = "super::json::f64")]
     pub aw_seat_model: f64,
     /// (model/measured − 1)·100, %.
+    #[serde(deserialize_with = "super::json::f64")]
     pub aw_gap_percent: f64,
     /// Measured SEAT = a_w,seat / a_w,base · 100, %.
+    #[serde(deserialize_with = "super::json::f64")]
     pub seat_meas: f64,
     /// Predicted SEAT, %.
+    #[serde(deserialize_with = "super::json::f64")]
     pub seat_model: f64,
     /// Bands contributing most to the a_w² gap: (band Hz, share of |Δa_w²| in %).
+    #[serde(deserialize_with = "super::json::f64_pairs")]
     pub driving_bands: Vec<(f64, f64)>,
 }
 
@@ -187,7 +199,7 @@ pub fn phase_delay_s(cells: &[BandCell], path: Path) -> Option<f64> {
     Some(-sxy / sxx / (2.0 * std::f64::consts::PI))
 }
 
-/// A verbal classification of the gap map (gap.md §3.3): which side, what shape.
+/// A verbal classification of the gap map (docs/gap.md §4): which side, what shape.
 pub fn classify(cells: &[BandCell]) -> Vec<String> {
     let mut out = Vec::new();
     let g = |p| rms_gap_db(cells, Some(p)).unwrap_or(0.0);

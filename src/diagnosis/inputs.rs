@@ -164,7 +164,7 @@ pub(super) fn mask_incoherent(r: &mut RunSpectra) {
 pub const CLIPPED_SAMPLES: usize = 10;
 
 /// The channels of `s` that look clipped, with the number of samples at their extreme value and
-/// that value (gap.md §3.5 item 1: quality gates). Clipping is a distortion of the sensor chain
+/// that value (docs/gap.md §3, quality gates). Clipping is a distortion of the sensor chain
 /// that grows with magnitude, which the distortion trend would otherwise put in the structure.
 pub(super) fn clipped(s: &Signals) -> Vec<(String, usize, f64)> {
     s.names

@@ -16,7 +16,7 @@ pub const RESOLUTION_HZ: f64 = 0.25;
 pub const MIN_DURATION_S: f64 = 20.0;
 /// Lowest and highest analysed frequency in Hz (one-third-octave bands 0.5–31.5 Hz, n = −3…15).
 pub const BAND_N: (i32, i32) = (-3, 15);
-/// Coherence below which a cell is untrustworthy and never scored (gap.md §3.2).
+/// Coherence below which a cell is untrustworthy and never scored (docs/gap.md §3).
 pub const MIN_COHERENCE: f64 = 0.8;
 
 /// A transfer path between two measured channels.

@@ -2,16 +2,18 @@
 //! the ranked candidates, per-run summaries and the band coverage.
 
 use super::gapmap::{BandCell, Weighted};
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 
 /// A fitted parameter.
-#[derive(Debug, Clone, Serialize)]
+#[derive(Debug, Clone, Serialize, Deserialize)]
 pub struct Estimate {
     /// Name (with unit suffix).
     pub name: String,
     /// Fitted value.
+    #[serde(deserialize_with = "super::json::f64")]
     pub value: f64,
     /// 1-σ uncertainty from the curvature of the objective (delta method for log parameters).
+    #[serde(deserialize_with = "super::json::f64")]
     pub sigma: f64,
     /// Relative change from nominal, for base parameters.
     pub change_percent: Option<f64>,
@@ -20,13 +22,16 @@ pub struct Estimate {
 }
 
 /// A model evaluated on the held-out run.
-#[derive(Debug, Clone, Serialize)]
+#[derive(Debug, Clone, Serialize, Deserialize)]
 pub struct Stage {
     /// Reduced χ² on the held-out run.
+    #[serde(deserialize_with = "super::json::f64")]
     pub chi2_red: f64,
     /// RMS of the trusted band gaps, all paths, dB.
+    #[serde(deserialize_with = "super::json::f64")]
     pub gap_db_rms: f64,
     /// RMS of the trusted band phase gaps, all paths, degrees.
+    #[serde(deserialize_with = "super::json::f64")]
     pub phase_deg_rms: f64,
     /// Weighted r.m.s. and SEAT gap.
     pub weighted: Weighted,
@@ -35,59 +40,133 @@ pub struct Stage {
 }
 
 /// One fitted candidate.
-#[derive(Debug, Clone, Serialize)]
+#[derive(Debug, Clone, Serialize, Deserialize)]
 pub struct Ranked {
     /// Candidate id (`null` for the re-fit base model).
     pub id: String,
     /// Effect parameters (for `null`: the base parameters).
     pub params: Vec<Estimate>,
     /// Reduced χ² on the training runs.
+    #[serde(deserialize_with = "super::json::f64")]
     pub train_chi2_red: f64,
     /// BIC on the held-out run minus that of the null re-fit.
+    #[serde(deserialize_with = "super::json::f64")]
     pub delta_bic: f64,
     /// BIC on the training and held-out runs together minus that of the null re-fit: the
     /// evidence for an amplitude-dependent effect, which a held-out run between the training
     /// magnitudes barely shows.
+    #[serde(deserialize_with = "super::json::f64")]
     pub delta_bic_all: f64,
     /// BIC weight among the null and all candidates.
+    #[serde(deserialize_with = "super::json::f64")]
     pub probability: f64,
     /// Fraction of the structural gap closed on the held-out run.
+    #[serde(deserialize_with = "super::json::f64")]
     pub fraction_closed: f64,
     /// The held-out evaluation.
     pub check: Stage,
     /// Size of the effect on the check run (effect minus null re-fit): change of the seat a_w, %.
+    #[serde(deserialize_with = "super::json::f64")]
     pub aw_change_percent: f64,
     /// Change of the SEAT value, percentage points.
+    #[serde(deserialize_with = "super::json::f64")]
     pub seat_change_points: f64,
     /// Change of the band-gap RMS, dB (negative: the gap shrinks).
+    #[serde(deserialize_with = "super::json::f64")]
     pub band_gap_change_db: f64,
 }
 
 /// One run's summary for the homogeneity view.
-#[derive(Debug, Clone, Serialize)]
+#[derive(Debug, Clone, Serialize, Deserialize)]
 pub struct RunSummary {
     /// File or source name.
     pub source: String,
     /// Role: `train` or `check`.
-    pub role: &'static str,
+    #[serde(deserialize_with = "super::json::role")]
+    pub role: super::json::Name,
     /// Unweighted r.m.s. of the base acceleration's fluctuation (mean removed), m/s².
+    #[serde(deserialize_with = "super::json::f64")]
     pub base_rms: f64,
     /// Measured body-mode peak of base→head (or base→seat), Hz.
     pub peak_hz: Option<f64>,
     /// Nominal-model gap (replay) RMS per path, dB.
+    #[serde(deserialize_with = "super::json::path_values")]
     pub gap_db_rms: Vec<(&'static str, f64)>,
 }
 
+/// The verdict's identifier as the JSON carries it: a named effect's candidate id, or one of
+/// `none`, `unexplained`, `not-identifiable`. The rich verdict is [`super::Verdict`].
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub enum VerdictId {
+    /// Nothing significant.
+    None,
+    /// A structural gap no candidate closes.
+    Unexplained,
+    /// Two look-alike candidates.
+    NotIdentifiable,
+    /// The named effect (a candidate id, `sensor-gain` for a calibration finding).
+    Effect(String),
+}
+
+impl VerdictId {
+    /// The JSON string.
+    pub fn as_str(&self) -> &str {
+        match self {
+            VerdictId::None => "none",
+            VerdictId::Unexplained => "unexplained",
+            VerdictId::NotIdentifiable => "not-identifiable",
+            VerdictId::Effect(id) => id,
+        }
+    }
+
+    /// The identifier the JSON string `s` stands for.
+    pub fn parse(s: &str) -> Self {
+        match s {
+            "none" => VerdictId::None,
+            "unexplained" => VerdictId::Unexplained,
+            "not-identifiable" => VerdictId::NotIdentifiable,
+            id => VerdictId::Effect(id.to_string()),
+        }
+    }
+
+    /// The named effect's id, if an effect is named.
+    pub fn effect(&self) -> Option<&str> {
+        match self {
+            VerdictId::Effect(id) => Some(id),
+            _ => None,
+        }
+    }
+}
+
+impl std::fmt::Display for VerdictId {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.as_str())
+    }
+}
+
+impl Serialize for VerdictId {
+    fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        s.serialize_str(self.as_str())
+    }
+}
+
+impl<'de> Deserialize<'de> for VerdictId {
+    fn deserialize<D: serde::Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        Ok(VerdictId::parse(&String::deserialize(d)?))
+    }
+}
+
 /// The whole diagnosis.
-#[derive(Debug, Clone, Serialize)]
+#[derive(Debug, Clone, Serialize, Deserialize)]
 pub struct Diagnosis {
     /// Winning candidate id, `none`, `unexplained` or `not-identifiable`.
-    pub verdict: String,
+    pub verdict: VerdictId,
     /// The effects named (detected and closing part of the gap), best first; empty for `none`,
     /// `unexplained` and `not-identifiable`.
     pub named: Vec<String>,
     /// Channels found inverted or in the wrong unit and corrected before the fit; see
     /// `inputs::calibration`.
+    #[serde(default)]
     pub channel_errors: Vec<ChannelError>,
     /// Per path, the one-third-octave bands judged (coherent on the check run) and those that
     /// could not be.
@@ -102,6 +181,7 @@ pub struct Diagnosis {
     pub peak_shift_percent_per_doubling: Option<f64>,
     /// Growth of each path's incoherent power with magnitude and the nonlinearity's site it
     /// points to (`None` with one run or runs of nearly the same magnitude).
+    #[serde(default)]
     pub distortion: Option<super::distortion::Distortion>,
     /// Gap map of the nominal model replayed with the check run's measured base.
     pub gap_map: Vec<BandCell>,
@@ -141,10 +221,11 @@ pub(super) fn named_stage<'a>(
 }
 
 /// Which bands of a path were judged.
-#[derive(Debug, Clone, Serialize)]
+#[derive(Debug, Clone, Serialize, Deserialize)]
 pub struct BandCoverage {
     /// Path name.
-    pub path: &'static str,
+    #[serde(deserialize_with = "super::json::path")]
+    pub path: super::json::Name,
     /// Band centres (Hz) with coherent bins on the check run.
     pub judged_hz: Vec<f64>,
     /// Band centres (Hz) that could not be judged (coherence < 0.8, or no bin at this resolution).
@@ -153,7 +234,7 @@ pub struct BandCoverage {
 
 /// A calibration error of a channel found before the fit (see `inputs::calibration`): an inverted
 /// sign or a unit slip.
-#[derive(Debug, Clone, Serialize, serde::Deserialize)]
+#[derive(Debug, Clone, Serialize, Deserialize)]
 pub struct ChannelError {
     /// The channel, or the channels of which one is (`a_base_z or a_seat_z` when only base→seat
     /// is measured).

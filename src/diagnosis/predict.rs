@@ -79,7 +79,7 @@ pub fn solve_point(system: &System, f: f64) -> Result<(Vec<Complex64>, Vec<Compl
     Ok((channels, x.as_slice().to_vec()))
 }
 
-/// Body stiffness and damping scheduled with a run's magnitude (gap.md §3.4 E1): linear within a
+/// Body stiffness and damping scheduled with a run's magnitude (docs/gap.md §5, E1): linear within a
 /// run, softer between runs, as the seated body's apparent-mass resonance falls with magnitude
 /// (Mansfield & Griffin, J. Biomech. 33 (2000) 933–941; Matsumoto & Griffin, JSV 215 (1998) 743–762).
 /// Every Kelvin–Voigt body link's `k` is multiplied by `(A/A_ref)^(−alpha_k)` and its `c` by

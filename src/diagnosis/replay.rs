@@ -1,5 +1,5 @@
 //! Replay: drive a model with a run's measured base acceleration, sample by sample, so measured and
-//! simulated outputs are the same realisation (gap.md §3.1, replay rule) and the input variance
+//! simulated outputs are the same realisation (docs/gap.md §1, replay rule) and the input variance
 //! cancels from the comparison.
 
 use crate::error::Result;

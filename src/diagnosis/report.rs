@@ -64,6 +64,14 @@ pub fn text(d: &Diagnosis) -> String {
             list(&b.not_judged_hz)
         );
     }
+    where_(&mut out, d);
+    which(&mut out, d);
+    shrinks(&mut out, d);
+    out
+}
+
+/// Section 1: where the gap lies (runs, magnitude and distortion trends, gap map).
+fn where_(out: &mut String, d: &Diagnosis) {
     let _ = writeln!(
         out,
         "\n1. Where the gap lies (nominal model replayed with the measured base)"
@@ -149,7 +157,10 @@ pub fn text(d: &Diagnosis) -> String {
         .map(|(b, s)| format!("{b} Hz ({s:.0} %)"))
         .collect();
     let _ = writeln!(out, "  bands driving the a_w gap: {}", bands.join(", "));
+}
 
+/// Section 2: which unmodelled effect (null re-fit, best candidates, forward selection).
+fn which(out: &mut String, d: &Diagnosis) {
     let _ = writeln!(
         out,
         "\n2. Which unmodelled effect (fitted on training runs, scored on the check run)"
@@ -174,7 +185,7 @@ pub fn text(d: &Diagnosis) -> String {
         );
     }
     for r in d.candidates.iter().take(2) {
-        candidate_block(&mut out, r);
+        candidate_block(out, r);
     }
     let rest: Vec<String> = d
         .candidates
@@ -187,12 +198,15 @@ pub fn text(d: &Diagnosis) -> String {
     }
     if let Some(s) = &d.second {
         let _ = writeln!(out, "  forward selection (against the best alone):");
-        candidate_block(&mut out, s);
+        candidate_block(out, s);
     }
     if let Some(m) = &d.separating_measurement {
         let _ = writeln!(out, "  to separate the two best: {m}");
     }
+}
 
+/// Section 3: how far the gap shrinks on the check run.
+fn shrinks(out: &mut String, d: &Diagnosis) {
     let _ = writeln!(out, "\n3. How far the gap shrinks on the check run");
     let _ = writeln!(out, "{}", stage_line("nominal", &d.nominal));
     let _ = writeln!(out, "{}", stage_line("re-fitted (null)", &d.null.check));
@@ -202,7 +216,6 @@ pub fn text(d: &Diagnosis) -> String {
     if let Some(s) = &d.second {
         let _ = writeln!(out, "{}", stage_line(&format!("+ {}", s.id), &s.check));
     }
-    out
 }
 
 /// The JSON report: top-level `verdict` plus every figure of the text report.

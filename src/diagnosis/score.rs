@@ -1,10 +1,11 @@
 //! Weighted spectral residuals between a model variant and measured runs, and the statistics built
-//! on them (χ², reduced χ², BIC).
+//! on them (χ², the fraction of the gap closed); the BIC forms built on χ² are in
+//! [`super::evidence`].
 //!
 //! A cell is one (run, path, bin) with coherence ≥ [`MIN_COHERENCE`]; it contributes the real and
 //! imaginary part of ln(H_model/H_meas) — the log-magnitude ratio and the phase difference in rad —
 //! each divided by σ = √(σ_H1² + σ_floor²), σ_H1 from [`h1_sigma`]. A right model then gives a
-//! reduced χ² near 1 (gap.md §3.6).
+//! reduced χ² near 1 (docs/gap.md §6.3).
 
 use super::measure::{MIN_COHERENCE, RunSpectra, h1_sigma};
 use super::predict::{Variant, predict};
@@ -68,7 +69,7 @@ pub fn chi2(v: &Variant, runs: &[RunSpectra]) -> Result<f64> {
 }
 
 /// Fraction of the structural gap closed, FGC = (D₀ − D)/(D₀ − D_f) with D the reduced χ² after the
-/// null re-fit (D₀) and after the effect, D_f the noise floor; clipped to [0, 1] (gap.md §3.7).
+/// null re-fit (D₀) and after the effect, D_f the noise floor; clipped to [0, 1] (docs/gap.md §6.3).
 pub fn fraction_closed(d_null: f64, d_new: f64, floor: f64) -> f64 {
     if d_null <= floor {
         return 0.0;

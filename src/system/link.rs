@@ -110,7 +110,7 @@ pub enum Law {
     /// Bottoming (compression-only stop): past a free travel `gap` (m) of compression beyond the
     /// static equilibrium a second, stiffer layer `k_stop` (N/m) touches: extra force
     /// `k_stop·(d + gap)` for `d < −gap`, none in extension. A seat foam that bottoms out on its
-    /// pan or a denser layer under the occupant's preload stiffens on one side only (gap.md E3).
+    /// pan or a denser layer under the occupant's preload stiffens on one side only (docs/gap.md §5).
     Bottoming { gap: f64, k_stop: f64 },
     /// Preloaded exponential foam about its static sag: the spring force `k·d` becomes
     /// `k·d_e·(1 − e^(−d/d_e))`, `d_e` in m (tangent `k·e^(−d/d_e)`): the deviation about the sag of

@@ -39,7 +39,7 @@ pub struct Args {
     pub encoding: String,
     /// Message layout of the time series: per-sample (the default: one message per sample, every
     /// field a time series in every viewer) or batched (protobuf only: one message per topic per
-    /// 1024 samples, packed arrays; the smallest file). See the README.
+    /// 1024 samples, packed arrays; the smallest file). See docs/viewing.md.
     #[arg(long)]
     pub layout: Option<String>,
     /// MCAP chunk compression: zstd, lz4 or none.

@@ -16,9 +16,6 @@ impl Candidate {
     /// law: k3 is stated for the first such link and scaled by each link's stiffness, so every
     /// link stiffens at the same deflection.
     pub fn apply_to(self, v: &mut Variant, p: &[f64]) -> Result<()> {
-        let need = |i: Option<usize>, what: &str| {
-            i.ok_or_else(|| Error::parameter(self.id(), format!("the model has no {what} link")))
-        };
         let s = &mut v.system;
         let cushion = cushion_links(s);
         if cushion.is_empty()
@@ -33,40 +30,47 @@ impl Candidate {
         {
             return Err(Error::parameter(self.id(), "the model has no cushion link"));
         }
+        match self.family() {
+            "sensor" => self.apply_sensor(v, p),
+            "cushion stiffening" | "cushion viscoelasticity" => self.apply_cushion(s, &cushion, p),
+            _ => match self {
+                Candidate::BodySofteningMagnitude => {
+                    v.schedule = Some(MagnitudeSchedule {
+                        alpha_k: p[0],
+                        alpha_c: p[1],
+                        rms_ref: v.rms_ref,
+                    });
+                }
+                _ => self.apply_structure(s, p)?,
+            },
+        }
+        Ok(())
+    }
+    /// A cushion effect on every Kelvin–Voigt cushion link `cushion` of `s` (docs/gap.md §5).
+    fn apply_cushion(self, s: &mut System, cushion: &[usize], p: &[f64]) {
         match self {
-            Candidate::BodySoftening => {
-                let i = need(interface_link(s), "body–seat interface")?;
-                s.links[i].law = Some(Law::Softening { d_ref: p[0] });
-            }
-            Candidate::BodySofteningMagnitude => {
-                v.schedule = Some(MagnitudeSchedule {
-                    alpha_k: p[0],
-                    alpha_c: p[1],
-                    rms_ref: v.rms_ref,
-                });
-            }
             Candidate::CushionStiffening => {
                 let k_first = s.links[cushion[0]].element.static_stiffness();
-                for &i in &cushion {
+                for &i in cushion {
                     let k3 = p[0] * s.links[i].element.static_stiffness() / k_first;
                     s.links[i].law = Some(Law::Cubic { k3 });
                 }
             }
             Candidate::CushionContact => {
-                for &i in &cushion {
+                for &i in cushion {
                     s.links[i].law = Some(Law::Contact { d0: p[0] });
                 }
             }
             // One gap for every cushion link (they share the seat's deflection); each link's stop
             // in proportion to its own stiffness.
             Candidate::CushionBottoming => {
-                for &i in &cushion {
+                for &i in cushion {
                     let k_stop = p[1] * s.links[i].element.static_stiffness();
                     s.links[i].law = Some(Law::Bottoming { gap: p[0], k_stop });
                 }
             }
             Candidate::CushionViscoelastic => {
-                for &i in &cushion {
+                for &i in cushion {
                     let arm = maxwell_arm(&s.links[i], p[0], p[1]);
                     s.links.push(arm);
                 }
@@ -75,7 +79,7 @@ impl Candidate {
             // dashpot's at the reference frequency: α = 1 is the Kelvin–Voigt cushion again.
             Candidate::CushionFractional => {
                 let arms = fractional_arms(p[1]);
-                for &i in &cushion {
+                for &i in cushion {
                     let l = s.links[i].clone();
                     let Element::KelvinVoigt { k, c } = l.element else {
                         continue;
@@ -96,6 +100,13 @@ impl Candidate {
                     }
                 }
             }
+            _ => unreachable!("not a cushion candidate"),
+        }
+    }
+
+    /// A sensor effect on the measuring chain of `v` (docs/gap.md §5).
+    fn apply_sensor(self, v: &mut Variant, p: &[f64]) {
+        match self {
             Candidate::SensorDelay => {
                 v.seat.delay_s += p[0];
                 v.head.delay_s += p[1];
@@ -123,6 +134,21 @@ impl Candidate {
                 v.force_mass_kg += p[2];
             }
             Candidate::SensorMountForce => v.force.mount = Some((p[0], p[1])),
+            _ => unreachable!("not a sensor candidate"),
+        }
+    }
+
+    /// A structural effect on `s`: the body–seat interface, the suspension, a missing degree of
+    /// freedom or a second support path (docs/gap.md §5).
+    fn apply_structure(self, s: &mut System, p: &[f64]) -> Result<()> {
+        let need = |i: Option<usize>, what: &str| {
+            i.ok_or_else(|| Error::parameter(self.id(), format!("the model has no {what} link")))
+        };
+        match self {
+            Candidate::BodySoftening => {
+                let i = need(interface_link(s), "body–seat interface")?;
+                s.links[i].law = Some(Law::Softening { d_ref: p[0] });
+            }
             Candidate::SuspensionFriction => {
                 let i = need(role_link(s, Role::Suspension), "suspension")?;
                 s.links[i].law = Some(Law::Friction {
@@ -200,6 +226,7 @@ impl Candidate {
                     });
                 }
             }
+            _ => unreachable!("a cushion, sensor or magnitude-schedule candidate"),
         }
         Ok(())
     }

@@ -1,5 +1,5 @@
 //! The candidate unmodelled effects: each a small physical extension of the base model with one or
-//! two parameters (gap.md §3.4), plus the null candidate (the base model's own parameters re-fitted).
+//! two parameters (docs/gap.md §5), plus the null candidate (the base model's own parameters re-fitted).
 
 use super::predict::{MagnitudeSchedule, Variant};
 use crate::error::{Error, Result};
@@ -72,7 +72,7 @@ pub enum Candidate {
     /// form, so that the report names the form that fits better.
     CushionContact,
     /// Bottoming of the cushion under the occupant's preload: a compression-only stop, a second
-    /// layer of stiffness k_stop = ratio·k that touches `gap` (m) past the static sag (gap.md E3,
+    /// layer of stiffness k_stop = ratio·k that touches `gap` (m) past the static sag (docs/gap.md §5,
     /// `Law::Bottoming`). Unlike the symmetric laws it stiffens on one side only, so its
     /// equivalent stiffness k + k_stop·P(compression > gap) grows with the run's r.m.s. and the
     /// pad motion turns asymmetric — the signature of foam loaded by the body's weight.
@@ -80,7 +80,7 @@ pub enum Candidate {
     /// Viscoelastic cushion: a Maxwell arm (k_m in series with c_m = k_m·τ) in parallel with the
     /// Kelvin–Voigt cushion, with free stiffness ratio and relaxation time τ.
     CushionViscoelastic,
-    /// Fractional Kelvin–Voigt cushion (gap.md E3): the foam's dashpot is a fractional one,
+    /// Fractional Kelvin–Voigt cushion (docs/gap.md §5): the foam's dashpot is a fractional one,
     /// F = k·d + c_α·D^α d, whose loss spreads over decades (a broad relaxation spectrum that one
     /// Maxwell arm cannot follow); c_α from a loss scale at 5 Hz against the viscous dashpot, so
     /// α = 1, scale 1 is the plain cushion. Realised as a power-law spectrum of Maxwell arms
@@ -103,7 +103,7 @@ pub enum Candidate {
     /// anti-alias low-pass of another acquisition module): the measured base is the input, so it
     /// divides base→seat and base→head alike and leaves seat→head alone.
     SensorMountBase,
-    /// The seat-pan force plate's own response (one channel, gap.md E11/E13 and the ISO 5982 mass
+    /// The seat-pan force plate's own response (one channel, docs/gap.md §5, E11/E13 and the ISO 5982 mass
     /// cancellation): a delay and a 4-pole low-pass of the load cells, and the top plate's
     /// uncancelled mass, AM_meas = l_f(f)·(AM + m_plate). Its gain is not a parameter: a force
     /// gain is the same as scaling every body mass, which the null re-fit already does.
@@ -113,7 +113,7 @@ pub enum Candidate {
     /// Coulomb friction on the suspension, F_c tanh(v/v_ref).
     SuspensionFriction,
     /// End-stops on the suspension beyond ±gap: a stop of stiffness k_stop = ratio·k_s (both
-    /// free) adds to the suspension spring past the free travel (gap.md E6, `Law::EndStop`), so its
+    /// free) adds to the suspension spring past the free travel (docs/gap.md §5, E6, `Law::EndStop`), so its
     /// equivalent stiffness k_s + k_stop·erfc(gap/(σ√2)) grows with the stroke r.m.s. σ. The ratio
     /// is free because a real bump stop is progressive rubber: its Gaussian-equivalent stiffness
     /// ratio is anywhere from ~0.3 to 30 depending on how far the stroke penetrates, and a fixed
@@ -123,17 +123,17 @@ pub enum Candidate {
     MissingDof,
     /// A second body mode: part of the heaviest body mass (viscera) on its own spring–damper.
     BodyMode,
-    /// A backrest (gap.md E7): the upper torso (heaviest body mass) leans on the seat frame through
+    /// A backrest (docs/gap.md §5, E7): the upper torso (heaviest body mass) leans on the seat frame through
     /// a foam — a spring–damper tuned to `f_support_hz` with a relaxing Maxwell arm (k_m/k, τ; the
     /// standard linear solid of a backrest pad, stiffer and lossier above 1/(2πτ); k_m → 0 is the
     /// plain spring–damper) — a load path that bypasses the seat pan, so seat→head is no longer
     /// body-only.
     Backrest,
-    /// Feet on the floor (gap.md E9): a legs mass joined to the lowest body mass (pelvis and
+    /// Feet on the floor (docs/gap.md §5, E9): a legs mass joined to the lowest body mass (pelvis and
     /// thighs) by a knee spring–damper and to the base by a heel pad (ζ 0.3 each): a load path
     /// past the seat pan that the seat-pan force does not see.
     FeetSupport,
-    /// A thigh path (gap.md E9 as a spring–damper): the lowest body mass (pelvis and thighs)
+    /// A thigh path (docs/gap.md §5, E9 as a spring–damper): the lowest body mass (pelvis and thighs)
     /// joined to the base directly, past the seat pan — the thighs on the front edge of the
     /// seat. Without `f_seat_z` it is a stiffer, more damped cushion; the seat-pan force misses it.
     ThighSupport,

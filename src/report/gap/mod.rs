@@ -3,24 +3,29 @@
 //! effects, the check run's a_w and SEAT for the nominal, re-fitted and effect-added models against
 //! the measurement, and the gap-map and before/after charts of [`crate::diagnosis::plot`].
 //!
-//! [`Diagnosis`] is written by `serde::Serialize` only, so this module reads the JSON into plain
-//! structures and rebuilds the diagnosis from them (field by field: a field added to the diagnosis
-//! fails to compile here instead of being dropped silently). A number the writer could not
-//! represent (`NaN` → `null`) reads back as NaN, which the charts draw as a gap.
+//! [`Diagnosis`] reads back with `serde::Deserialize`: a number the writer could not represent
+//! (`NaN` → `null`) reads back as NaN, which the charts draw as a gap.
 
-use crate::diagnosis::gapmap::{BandCell, Weighted};
-use crate::diagnosis::{BandCoverage, Diagnosis, Estimate, Ranked, RunSummary, Stage};
+use crate::diagnosis::{Diagnosis, Ranked, Stage};
 use crate::error::{Error, Result};
-use serde::{Deserialize, Serialize};
+use serde::Serialize;
 use std::fmt::Write as _;
 use std::path::Path;
 
 /// The file name under which a run directory holds its gap diagnosis.
 pub const FILE: &str = "gap.json";
 
-mod read;
-
-pub use read::read;
+/// Reads a diagnosis from the JSON `wbv gap --json` printed into `file`.
+pub fn read(file: &Path) -> Result<Diagnosis> {
+    let text = std::fs::read_to_string(file).map_err(|e| Error::io(file, e))?;
+    serde_json::from_str(&text).map_err(|e| {
+        Error::data(
+            file,
+            Some(e.line()),
+            format!("not the JSON of `wbv gap --json` ({e})"),
+        )
+    })
+}
 
 /// The gap section's verdict in the report's JSON summary.
 #[derive(Debug, Clone, PartialEq, Serialize)]
@@ -94,7 +99,7 @@ pub fn section(out: &mut String, d: &Diagnosis, source: &str) -> Result<Summary>
     let _ = writeln!(
         out,
         "<p class=\"verdict\">Verdict: <b>{}</b> ({}). {}</p>",
-        super::esc(&d.verdict),
+        super::esc(d.verdict.as_str()),
         super::esc(&named),
         super::esc(&d.verdict_text)
     );
@@ -184,7 +189,7 @@ pub fn section(out: &mut String, d: &Diagnosis, source: &str) -> Result<Summary>
         );
     }
     Ok(Summary {
-        verdict: d.verdict.clone(),
+        verdict: d.verdict.to_string(),
         named: d.named.clone(),
         source: source.into(),
     })

@@ -1,5 +1,5 @@
 //! The model file format (TOML). Units: masses in kg, stiffnesses in N/m, damping in N·s/m,
-//! deflections in m. See `models/*.toml` for commented examples and the README for the reference.
+//! deflections in m. See `models/*.toml` for commented examples and docs/models.md for the reference.
 //!
 //! ```toml
 //! name = "example"

@@ -12,7 +12,7 @@ mod table;
 
 pub use table::{Row, Summary, summary};
 
-use super::diagnose;
+use crate::diagnosis::{VerdictId, diagnose};
 use crate::error::Result;
 use crate::model::catalog;
 use case::{Label, make_case};
@@ -116,7 +116,7 @@ pub fn run_case(index: usize, seed: u64) -> Result<CaseScore> {
             let top2: Vec<String> = d.candidates.iter().take(2).map(|c| c.id.clone()).collect();
             let named = d.named.clone();
             let (top1, top2_hit) = if fams.is_empty() {
-                (d.verdict == "none", d.verdict == "none")
+                (d.verdict == VerdictId::None, d.verdict == VerdictId::None)
             } else {
                 (
                     named.iter().any(|n| hit(n)),
@@ -130,7 +130,7 @@ pub fn run_case(index: usize, seed: u64) -> Result<CaseScore> {
                 .map(|c| c.fraction_closed);
             CaseScore {
                 index,
-                verdict: d.verdict.clone(),
+                verdict: d.verdict.to_string(),
                 named,
                 top2,
                 error: None,

@@ -1,5 +1,5 @@
 //! Truth forms: each unmodelled effect in several functional forms that are *not* the diagnosis
-//! candidates' families (gap.md §4.1; issue 15). This module never calls the candidate code: frame
+//! candidates' families (docs/gap-validation.md). This module never calls the candidate code: frame
 //! and viscera insertion, Prony fits and strength targets are written here on their own.
 //!
 //! Strength `u ∈ [0, 1]` maps to a physical size: for the amplitude-dependent forms the change of the
@@ -379,6 +379,9 @@ mod tests {
             Some(Family::SupportPath)
         );
         assert_eq!(Family::of_verdict("body-mode"), Some(Family::MissingDof));
-        assert_eq!(Family::of_verdict("none"), None);
+        assert_eq!(
+            Family::of_verdict(crate::diagnosis::VerdictId::None.as_str()),
+            None
+        );
     }
 }

@@ -227,9 +227,8 @@ pub fn summary(scores: &[CaseScore], seed: u64, wall_s: f64) -> Summary {
         seed,
         wall_s,
         detectable_threshold: DETECTABLE,
-        none_false_positive_rate: (!nulls.is_empty()).then(|| {
-            nulls.iter().filter(|s| s.verdict != "none").count() as f64 / nulls.len() as f64
-        }),
+        none_false_positive_rate: (!nulls.is_empty())
+            .then(|| nulls.iter().filter(|s| !s.top1).count() as f64 / nulls.len() as f64),
         null_cases: nulls.len(),
         errors: scores.iter().filter(|s| s.error.is_some()).count(),
         rows,
@@ -264,7 +263,7 @@ impl Summary {
         out
     }
 
-    /// A Markdown table (the README's).
+    /// A Markdown table (docs/gap-validation.md's).
     pub fn markdown(&self) -> String {
         let f = |x: Option<f64>| x.map_or("–".to_string(), |v| format!("{v:.2}"));
         let mut out = format!(

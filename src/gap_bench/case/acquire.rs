@@ -35,7 +35,7 @@ pub(super) fn simulate(
                 x.iter_mut().zip(a_seat).for_each(|(f, a)| *f += m_kg * a);
             }
             if ch == name {
-                crate::diagnosis::truth::sensor::apply(s, &mut x, fs_sim);
+                crate::gap_bench::sensor::apply(s, &mut x, fs_sim);
             }
         }
         out.push(name.clone(), x.iter().step_by(step).copied().collect())?;

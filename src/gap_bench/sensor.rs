@@ -87,7 +87,7 @@ fn prototype(bessel: bool) -> [Complex64; 2] {
     [up[0] * s, up[1] * s]
 }
 
-/// Frequency response of the analog 4-pole low-pass at `f` Hz (for tests and the README).
+/// Frequency response of the analog 4-pole low-pass at `f` Hz (for tests and docs/gap-validation.md).
 pub fn lowpass_response(fc_hz: f64, bessel: bool, f: f64) -> Complex64 {
     let s = Complex64::new(0.0, f / fc_hz);
     prototype(bessel)

@@ -1,0 +1,164 @@
+//! The select stage: the null re-fit and every applicable candidate fitted on the training runs
+//! and ranked by ΔBIC on the held-out run (docs/gap.md §6), and the forward selection of a second
+//! effect. The all-run judgement of amplitude-dependent effects is [`super::all_runs`].
+
+use super::candidate::Candidate;
+use super::evidence::{Counts, Figures, bic_check, delta_bic_all, fit_each, ranked, stage, weigh};
+use super::fitting::{Base, Fitted, estimates, fit_candidate, refine_null};
+use super::measure::RunSpectra;
+use super::outcome::{Ranked, Stage};
+use super::score;
+use super::thresholds::{ACCEPT_DELTA_BIC, GAP_CHI2, MIN_CLOSED};
+use crate::error::Result;
+
+/// The null re-fit and the candidates ranked against it.
+pub(super) struct Ranking {
+    /// The null's fit on the training runs.
+    pub null_fit: Fitted,
+    /// The null's entry.
+    pub null: Ranked,
+    /// The candidates, best held-out ΔBIC first.
+    pub cands: Vec<Ranked>,
+    /// Each candidate's fitted parameter vector: the forward selection's warm start.
+    pub fits: Vec<(Candidate, Vec<f64>)>,
+}
+
+/// Fits the null and each of `applicable` on the training runs `tr` (the candidates start at the
+/// null's optimum; the null is then re-fitted from the best candidates' base parameters,
+/// [`refine_null`]), evaluates each on the check run `ck` and ranks them by ΔBIC against the
+/// null. `nominal` is the nominal model's stage: the null's fraction closed is measured from it.
+pub(super) fn rank(
+    base: &Base,
+    applicable: &[Candidate],
+    tr: &[RunSpectra],
+    ck: &RunSpectra,
+    nominal: &Stage,
+    n: Counts,
+) -> Result<Ranking> {
+    let nb = base.params.len();
+    let null_fit = fit_candidate(base, &[], tr, &vec![0.0; nb])?;
+    let stacks: Vec<Vec<Candidate>> = applicable.iter().map(|&c| vec![c]).collect();
+    let fitted = fit_each(base, &stacks, tr, &null_fit.fit.u, Some(ck))?;
+    // The null re-fit from the base parameters the best candidates settled at: their fits start
+    // at the null's optimum and carry the base parameters further, so a null stuck in a shallow
+    // valley would hand every candidate a gain that is only the optimiser's (masses trade against
+    // stiffnesses, so the base has several valleys).
+    let null_fit = refine_null(base, tr, null_fit, &fitted)?;
+    let null_stage = stage(&null_fit.variant, ck)?;
+    let null_bic = bic_check(&null_stage, nb, n);
+    let nominal_floor = score::gap_floor(nominal.chi2_red);
+    let mut null = ranked(
+        "null".into(),
+        estimates(base, &[], &null_fit.fit),
+        null_fit.fit.cost / n.train,
+        Figures {
+            delta_bic: 0.0,
+            delta_bic_all: 0.0,
+            fraction_closed: score::fraction_closed(
+                nominal.chi2_red,
+                null_stage.chi2_red,
+                nominal_floor,
+            ),
+        },
+        null_stage,
+        None,
+    );
+    let floor = score::gap_floor(null.check.chi2_red);
+    let mut cands = Vec::new();
+    let mut fits = Vec::new();
+    for (&c, (ft, st)) in applicable.iter().zip(fitted) {
+        let st = st.expect("evaluated on the check run");
+        let k = c.params().len();
+        let figures = Figures {
+            delta_bic: bic_check(&st, nb + k, n) - null_bic,
+            delta_bic_all: delta_bic_all((&ft, &st), (&null_fit, &null.check), k, n),
+            fraction_closed: score::fraction_closed(null.check.chi2_red, st.chi2_red, floor),
+        };
+        let params = estimates(base, &[c], &ft.fit);
+        let r = ranked(
+            c.id().into(),
+            params,
+            ft.fit.cost / n.train,
+            figures,
+            st,
+            Some(&null.check),
+        );
+        cands.push(r);
+        fits.push((c, ft.fit.u));
+    }
+    cands.sort_by(|a, b| a.delta_bic.total_cmp(&b.delta_bic));
+    weigh(&mut null, &mut cands);
+    Ok(Ranking {
+        null_fit,
+        null,
+        cands,
+        fits,
+    })
+}
+
+/// Forward selection: when the named effect `bc` leaves a structural residual on the check run
+/// (reduced χ² > [`GAP_CHI2`]), the four best candidates of other families are fitted jointly
+/// with it (from its optimum) and the pair with the lowest BIC is kept if it is detected against
+/// `bc` alone (ΔBIC ≤ [`ACCEPT_DELTA_BIC`]) and closes ≥ [`MIN_CLOSED`] of what `bc` leaves — the
+/// held-out rule, with `bc` as the reference. Returns the second effect and the pair's entry.
+pub(super) fn second_effect(
+    base: &Base,
+    ranking: &Ranking,
+    bc: Candidate,
+    tr: &[RunSpectra],
+    ck: &RunSpectra,
+    n: Counts,
+) -> Result<Option<(Candidate, Ranked)>> {
+    let cands = &ranking.cands;
+    let Some(best) = cands.iter().find(|b| b.id == bc.id()) else {
+        return Ok(None);
+    };
+    if best.check.chi2_red <= GAP_CHI2 {
+        return Ok(None);
+    }
+    let warm = &ranking
+        .fits
+        .iter()
+        .find(|(c, _)| *c == bc)
+        .expect("fitted")
+        .1;
+    let best_bic = bic_check(&best.check, warm.len(), n);
+    let others: Vec<Candidate> = cands
+        .iter()
+        .filter(|r| r.id != best.id)
+        .filter_map(|r| Candidate::from_id(&r.id))
+        .filter(|c| c.family() != bc.family())
+        .take(4)
+        .collect();
+    let stacks: Vec<Vec<Candidate>> = others.iter().map(|&o| vec![bc, o]).collect();
+    let pairs = fit_each(base, &stacks, tr, warm, Some(ck))?;
+    let floor = score::gap_floor(best.check.chi2_red);
+    let mut second: Option<(Candidate, Ranked)> = None;
+    for (pair, (ft, st)) in stacks.iter().zip(pairs) {
+        let st = st.expect("evaluated on the check run");
+        let d = bic_check(&st, warm.len() + pair[1].params().len(), n) - best_bic;
+        let closed = score::fraction_closed(best.check.chi2_red, st.chi2_red, floor);
+        if d <= ACCEPT_DELTA_BIC
+            && closed >= MIN_CLOSED
+            && second.as_ref().is_none_or(|(_, s)| d < s.delta_bic)
+        {
+            let figures = Figures {
+                delta_bic: d,
+                delta_bic_all: d,
+                fraction_closed: closed,
+            };
+            let id = format!("{}+{}", bc.id(), pair[1].id());
+            let params = estimates(base, pair, &ft.fit);
+            let r = ranked(
+                id,
+                params,
+                ft.fit.cost / n.train,
+                figures,
+                st,
+                Some(&best.check),
+            );
+            second = Some((pair[1], r));
+        }
+    }
+    Ok(second)
+}

@@ -1,0 +1,225 @@
+//! The text stage: the verdict's sentence, rendered in one place from the [`Verdict`] value and
+//! the evidence it was chosen on, followed by the second effect, the check run's ISO figures and
+//! any calibration finding.
+
+use super::outcome::{ChannelError, Ranked, Stage};
+use super::score;
+use super::thresholds::{ACCEPT_DELTA_BIC, MIN_CLOSED};
+use super::verdict::{Basis, Evidence, Verdict, practically_small, training_closed};
+
+/// The verdict's sentence (before the second effect, the ISO figures and calibration).
+pub(super) fn verdict(v: &Verdict, e: &Evidence) -> String {
+    let d0 = e.null.check.chi2_red;
+    match v {
+        Verdict::Named { effect, basis, .. } => match basis {
+            Basis::AllRuns { refitted: true } => refitted(e, e.entry(*effect).expect("ranked")),
+            Basis::AllRuns { refitted: false } => on_all_runs(e, e.entry(*effect).expect("ranked")),
+            Basis::HeldOut { tie, alternative } => held_out(e, *effect, *tie, *alternative),
+            Basis::Distortion { responses } => distortion(e, e.entry(*effect).expect("ranked"), responses),
+        },
+        Verdict::NotIdentifiable { a, b, separating } => {
+            let (a, b) = (
+                e.held_out_entry(*a).expect("ranked"),
+                e.held_out_entry(*b).expect("ranked"),
+            );
+            format!(
+                "{} and {} explain the held-out run equally well (ΔBIC {:.1} vs {:.1}); to separate them, measure {separating}",
+                a.id, b.id, a.delta_bic, b.delta_bic
+            )
+        }
+        Verdict::Unexplained => match e.best().filter(|b| b.delta_bic <= ACCEPT_DELTA_BIC) {
+            Some(b) => format!(
+                "a structural gap remains (reduced χ² {d0:.2} after the re-fit); {} is detected (ΔBIC {:.1}) but closes only {:.0} % of it",
+                b.id,
+                b.delta_bic,
+                100.0 * b.fraction_closed
+            ),
+            None => format!(
+                "a structural gap remains (reduced χ² {d0:.2} after the re-fit) that no candidate closes{}",
+                e.best().map_or(String::new(), |b| format!(
+                    "; best {} closes {:.0} %",
+                    b.id,
+                    100.0 * b.fraction_closed
+                ))
+            ),
+        },
+        Verdict::None => format!(
+            "no effect is detected: the re-fitted base parameters explain the held-out run (reduced χ² {d0:.2}, band gap {:.2} dB RMS, phase {:.2}° RMS){}",
+            e.null.check.gap_db_rms,
+            e.null.check.phase_deg_rms,
+            e.best()
+                .filter(|b| b.delta_bic <= ACCEPT_DELTA_BIC)
+                .map_or(String::new(), |b| format!(
+                    "; {} is statistically detected (ΔBIC {:.1}) but closes only {:.0} % of a residue below the structural threshold",
+                    b.id,
+                    b.delta_bic,
+                    100.0 * b.fraction_closed
+                ))
+        ),
+    }
+}
+
+/// The effect's size on the check run: seat a_w, SEAT and band-gap change against the null.
+fn size(b: &Ranked) -> String {
+    format!(
+        "seat a_w {:+.1} %, SEAT {:+.1} points, band gap {:+.2} dB RMS",
+        b.aw_change_percent, b.seat_change_points, b.band_gap_change_db
+    )
+}
+
+/// Named on the all-run re-fit ([`Basis::AllRuns`] `refitted`).
+fn refitted(e: &Evidence, b: &Ranked) -> String {
+    let a = e.all_runs.expect("the all-run judgement named it");
+    format!(
+        "{} is detected on all runs together: re-fitted on the training and check runs it lowers the BIC by {:.1} against the base model re-fitted on the same runs and closes {:.0} % of their structural gap (reduced χ² {:.2} → {:.2}). An effect that changes with magnitude, whose form two training magnitudes cannot fix, so the check run is not held out for it; its size on the check run: {}",
+        b.id,
+        -a.delta_bic,
+        100.0 * a.fraction_closed(),
+        a.null_chi2_red,
+        a.chi2_red,
+        size(b)
+    ) + &e.accepted.filter(|h| h.id != b.id).map_or(String::new(), |h| {
+        format!(
+            "; the held-out run's best, {} (ΔBIC {:.1}), closes only {:.0} % of the training runs' gap",
+            h.id,
+            h.delta_bic,
+            100.0 * training_closed(e.null, h)
+        )
+    })
+}
+
+/// Named on the training fit's in-sample BIC plus the held-out one.
+fn on_all_runs(e: &Evidence, b: &Ranked) -> String {
+    format!(
+        "{} is detected on all runs together (ΔBIC {:.1} over training and check runs; {:.1} on the check run alone) and closes {:.0} % of the training runs' structural gap without making the check run structurally worse: an effect that changes with magnitude between the training runs; its size on the check run: {}",
+        b.id,
+        b.delta_bic_all,
+        b.delta_bic,
+        100.0 * training_closed(e.null, b),
+        size(b)
+    )
+}
+
+/// Named on the held-out run, with a same-family alternative and a tie all runs decided.
+fn held_out(
+    e: &Evidence,
+    effect: super::candidate::Candidate,
+    tie: Option<super::candidate::Candidate>,
+    alternative: Option<super::candidate::Candidate>,
+) -> String {
+    let b = e.held_out_entry(effect).expect("ranked");
+    let what = if score::within_noise(e.null.check.chi2_red) {
+        format!(
+            "lowers the held-out run's reduced χ², already within the noise after the re-fit, by {:.0} %",
+            100.0 * b.fraction_closed
+        )
+    } else {
+        format!(
+            "closes {:.0} % of the structural gap on the held-out run",
+            100.0 * b.fraction_closed
+        )
+    };
+    let alt = alternative.map_or(String::new(), |s| {
+        format!(" ({} fits almost as well: the form is uncertain)", s.id())
+    });
+    let tie_note = tie.map_or(String::new(), |l| {
+        let lose = e.held_out_entry(l).expect("ranked");
+        let fits = if e.accepted.is_some_and(|a| a.id == lose.id) {
+            "as well"
+        } else {
+            "almost as well"
+        };
+        format!(
+            "; on the held-out run alone {} fits {fits} (ΔBIC {:.1} vs {:.1}), on all runs together {} is ahead (ΔBIC {:.1} vs {:.1})",
+            lose.id, lose.delta_bic, b.delta_bic, b.id, b.delta_bic_all, lose.delta_bic_all
+        )
+    });
+    format!(
+        "{} (detected: ΔBIC {:.1}, probability {:.2}) {what}; its size: {}{}{alt}",
+        b.id,
+        b.delta_bic,
+        b.probability,
+        size(b),
+        if practically_small(b) {
+            " — detected but practically small"
+        } else {
+            ""
+        }
+    ) + &tie_note
+}
+
+/// Named on the distortion's evidence.
+fn distortion(e: &Evidence, b: &Ranked, responses: &super::outcome::VerdictId) -> String {
+    let dist = e.distortion.expect("located by the distortion");
+    let site = dist.site.expect("a located site");
+    let paths = dist
+        .paths
+        .iter()
+        .map(|p| format!("{} {:+.1} dB", p.path, p.rise_db))
+        .collect::<Vec<_>>()
+        .join(", ");
+    format!(
+        "a nonlinearity {} is detected by its distortion: the incoherent-to-coherent power ratio (1 − γ²)/γ² grows from the run at {:.2} to the one at {:.2} m/s² on {paths}, which no linear effect does (noise keeps it or lowers it); {} is the best nonlinear candidate there (ΔBIC {:.1} over all runs, {:.1} on the check run, closes {:.0} % of the check run's structural gap){}; the frequency-response fit alone pointed to {responses}. Its size on the check run: {}{}",
+        site.describe(),
+        dist.magnitudes.0,
+        dist.magnitudes.1,
+        b.id,
+        b.delta_bic_all,
+        b.delta_bic,
+        100.0 * b.fraction_closed,
+        if b.fraction_closed < MIN_CLOSED && b.check.chi2_red >= e.null.check.chi2_red - 1e-9 {
+            " — its statistically linearised form reproduces little of what the runs show (a one-sided foam's best linear approximation hardly changes: the distortion is the effect)"
+        } else {
+            ""
+        },
+        size(b),
+        if practically_small(b) {
+            " — practically small in the linear figures"
+        } else {
+            ""
+        }
+    )
+}
+
+/// The second effect's clause: what the forward-selected pair closes beyond the named effect.
+pub(super) fn second(first: &str, second: &str, pair: &Ranked) -> String {
+    format!(
+        "; a second effect, {second}, closes a further {:.0} % of what remains (ΔBIC {:.1} against {first} alone)",
+        100.0 * pair.fraction_closed,
+        pair.delta_bic,
+    )
+}
+
+/// How close a_w and SEAT come on the check run: nominal → re-fitted → with the effect(s).
+pub(super) fn iso(nominal: &Stage, null: &Stage, with: &Stage) -> String {
+    format!(
+        ". On the check run the seat a_w gap goes {:+.1} % (nominal) → {:+.1} % (re-fitted) → {:+.1} % (with the effect), SEAT {:.1} → {:.1} → {:.1} % against {:.1} % measured",
+        nominal.weighted.aw_gap_percent,
+        null.weighted.aw_gap_percent,
+        with.weighted.aw_gap_percent,
+        nominal.weighted.seat_model,
+        null.weighted.seat_model,
+        with.weighted.seat_model,
+        with.weighted.seat_meas
+    )
+}
+
+/// The text with the calibration findings: named first when the verdict is `none`
+/// (`nothing_else`), after the verdict otherwise.
+pub(super) fn calibration(text: String, errors: &[ChannelError], nothing_else: bool) -> String {
+    if errors.is_empty() {
+        return text;
+    }
+    let what = errors
+        .iter()
+        .map(|f| format!("{} {} in {}", f.channels, f.error, f.runs.join(", ")))
+        .collect::<Vec<_>>()
+        .join("; ");
+    if nothing_else {
+        format!("a channel's calibration is wrong: {what}; with it corrected, {text}")
+    } else {
+        format!(
+            "{text}. Also a channel's calibration is wrong: {what}; the diagnosis above uses it corrected"
+        )
+    }
+}

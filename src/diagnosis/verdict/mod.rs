@@ -1,0 +1,253 @@
+//! The verdict stage: a typed [`Verdict`] chosen from the evidence by the ordered, named
+//! [`rules::RULES`] (docs/gap.md §7), then the distortion's second opinion ([`located`]).
+//!
+//! The rules read only the [`Evidence`]: the null re-fit, the ranked candidates, the held-out best
+//! if the check run accepts it, the all-run judgement of amplitude-dependent effects and the
+//! distortion trend. The text is rendered from the verdict in [`super::text`].
+
+pub(super) mod rules;
+
+use super::all_runs::AllRuns;
+use super::candidate::Candidate;
+use super::distortion::Distortion;
+pub(super) use super::evidence::training_closed;
+use super::outcome::{Ranked, Stage, VerdictId};
+use super::score;
+use super::thresholds::VISIBLE_SIZE;
+
+/// What the diagnosis concludes. Calibration findings (an inverted channel, a unit slip) stand
+/// beside it in [`super::Diagnosis::channel_errors`].
+#[derive(Debug, Clone, PartialEq)]
+pub enum Verdict {
+    /// An unmodelled effect is named.
+    Named {
+        /// The effect.
+        effect: Candidate,
+        /// The evidence it is named on.
+        basis: Basis,
+        /// A second effect of another family found by forward selection.
+        second: Option<Candidate>,
+    },
+    /// Two candidates of different families explain the runs equally well.
+    NotIdentifiable {
+        /// The held-out run's best.
+        a: Candidate,
+        /// Its look-alike.
+        b: Candidate,
+        /// The measurement that would separate them.
+        separating: String,
+    },
+    /// A structural gap remains that no candidate closes.
+    Unexplained,
+    /// Nothing significant: the re-fitted base model explains the held-out run.
+    None,
+}
+
+/// The evidence a named effect rests on.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Basis {
+    /// Accepted on the held-out run.
+    HeldOut {
+        /// A look-alike of another family that fitted the held-out run within the margin and
+        /// that all runs together put behind (or ahead: then it is the named effect and this is
+        /// the held-out best).
+        tie: Option<Candidate>,
+        /// A form of the same family that fits the held-out run almost as well.
+        alternative: Option<Candidate>,
+    },
+    /// Detected on all runs together: `refitted` when the effect and the null were re-fitted on
+    /// all runs ([`super::all_runs::judge`]), else ranked by the training fit's in-sample BIC plus
+    /// the held-out one.
+    AllRuns {
+        /// Re-fitted on all runs.
+        refitted: bool,
+    },
+    /// Located by the growth of distortion with magnitude; `responses` is what the
+    /// frequency-response rules alone concluded.
+    Distortion {
+        /// The frequency-response verdict it replaces.
+        responses: VerdictId,
+    },
+}
+
+impl Verdict {
+    /// The verdict's identifier in the JSON: the named effect's id, or `none`, `unexplained`,
+    /// `not-identifiable`.
+    pub fn id(&self) -> VerdictId {
+        match self {
+            Verdict::Named { effect, .. } => VerdictId::Effect(effect.id().to_string()),
+            Verdict::NotIdentifiable { .. } => VerdictId::NotIdentifiable,
+            Verdict::Unexplained => VerdictId::Unexplained,
+            Verdict::None => VerdictId::None,
+        }
+    }
+
+    /// The named effect, if any.
+    pub fn effect(&self) -> Option<Candidate> {
+        match self {
+            Verdict::Named { effect, .. } => Some(*effect),
+            _ => None,
+        }
+    }
+
+    /// The separating measurement of a not-identifiable pair.
+    pub fn separating(&self) -> Option<&str> {
+        match self {
+            Verdict::NotIdentifiable { separating, .. } => Some(separating),
+            _ => None,
+        }
+    }
+}
+
+/// What the verdict rules read.
+pub(super) struct Evidence<'a> {
+    /// The null re-fit (base parameters re-fitted on the training runs).
+    pub null: &'a Ranked,
+    /// The candidates, best held-out ΔBIC first; the all-run winner's entry carries its all-run
+    /// fit.
+    pub cands: &'a [Ranked],
+    /// The held-out best if the check run accepts it ([`held_out_accepted`]), as ranked before the
+    /// all-run fit.
+    pub accepted: Option<&'a Ranked>,
+    /// The amplitude-dependent effect re-fitted on all runs, when it was judged there.
+    pub all_runs: Option<&'a AllRuns>,
+    /// The runs' distortion trend.
+    pub distortion: Option<&'a Distortion>,
+}
+
+impl Evidence<'_> {
+    /// The ranked entry of candidate `c`.
+    pub fn entry(&self, c: Candidate) -> Option<&Ranked> {
+        self.cands.iter().find(|r| r.id == c.id())
+    }
+
+    /// The entry of `c` as the held-out rules saw it: the accepted best's pre-all-run entry when
+    /// `c` is that best, else the ranked one.
+    pub fn held_out_entry(&self, c: Candidate) -> Option<&Ranked> {
+        self.accepted
+            .filter(|a| a.id == c.id())
+            .or_else(|| self.entry(c))
+    }
+
+    /// The best candidate on the held-out run.
+    pub fn best(&self) -> Option<&Ranked> {
+        self.cands.first()
+    }
+}
+
+/// The candidate a ranked entry stands for (`None` for the null).
+pub(super) fn candidate(r: &Ranked) -> Option<Candidate> {
+    Candidate::from_id(&r.id)
+}
+
+/// The frequency-response verdict: the first of [`rules::RULES`] that applies.
+pub(super) fn decide(e: &Evidence) -> Verdict {
+    rules::RULES
+        .iter()
+        .find_map(|r| (r.apply)(e))
+        .expect("the last rule always applies")
+}
+
+/// The verdict after the distortion's second opinion: [`rules::located`] replaces the
+/// frequency-response verdict when the distortion places a nonlinearity elsewhere.
+pub(super) fn conclude(e: &Evidence) -> Verdict {
+    let responses = decide(e);
+    rules::located(e, &responses).unwrap_or(responses)
+}
+
+/// Which measurement separates two look-alike candidates (docs/gap.md §8).
+pub fn separating_measurement(a: &str, b: &str) -> String {
+    let pair = |x: &str, y: &str| (a == x && b == y) || (a == y && b == x);
+    if pair("cushion-stiffening", "cushion-viscoelastic")
+        || pair("cushion-contact", "cushion-viscoelastic")
+    {
+        "a run at a clearly different magnitude (stiffening grows with amplitude, viscoelasticity does not)".into()
+    } else if pair("body-softening", "cushion-stiffening")
+        || pair("body-softening", "cushion-viscoelastic")
+        || pair("body-softening-magnitude", "cushion-stiffening")
+        || pair("body-softening-magnitude", "cushion-viscoelastic")
+    {
+        "the seat-head path or the seat force (body effects move apparent mass and seat-head, cushion effects only base-seat)".into()
+    } else if pair("cushion-viscoelastic", "missing-dof")
+        || pair("cushion-stiffening", "missing-dof")
+    {
+        "a base-seat measurement above 20 Hz or a frame accelerometer (a frame mode shows as a narrow peak)".into()
+    } else if a.starts_with("sensor-") || b.starts_with("sensor-") {
+        "a sensor calibration: a shaker run against a reference accelerometer gives each channel's gain, group delay and mount response".into()
+    } else if a == "backrest" || b == "backrest" {
+        "a run without backrest contact, or a backrest force (a backrest drives the torso past the seat pan)".into()
+    } else if a == "thigh-support" || b == "thigh-support" {
+        "the seat-pan force f_seat_z, or a run with the thighs clear of the seat's front edge (a thigh path carries weight past the seat pan; without the force it looks like a stiffer cushion)".into()
+    } else if a == "feet-support" || b == "feet-support" {
+        "a run with the feet on a fixed floor, or a footrest force (the feet carry part of the thighs past the seat pan)".into()
+    } else if pair("missing-dof", "body-mode") {
+        "a frame accelerometer (a frame mode moves base-seat and the frame, a body mode seat-head)"
+            .into()
+    } else {
+        "a repeat run and a run at a third magnitude".into()
+    }
+}
+
+/// Overdispersion ĉ = max(1, χ²/ν) of a fit (QAIC, Burnham & Anderson 2002, §2.5): when even the
+/// better of two models leaves residuals ĉ times the noise estimate's variance, every
+/// log-likelihood difference between them is ĉ times too large, so a BIC margin between
+/// candidates is read in units of ĉ. Detection against the null is not rescaled.
+pub(super) fn overdispersion(chi2_red: f64) -> f64 {
+    if chi2_red.is_finite() {
+        chi2_red.max(1.0)
+    } else {
+        1.0
+    }
+}
+
+/// The best candidate if the held-out run accepts it: detected (ΔBIC ≤
+/// [`super::thresholds::ACCEPT_DELTA_BIC`]), and closing at least [`super::thresholds::MIN_CLOSED`] of the structural gap
+/// when there is one. When the null already fits within the noise estimate (reduced χ² ≤ 1) there
+/// is no structural gap to close, and detection alone names the effect, with its size however
+/// small: `none` means nothing significant (docs/gap.md §7).
+pub(super) fn held_out_accepted<'a>(null: &Ranked, cands: &'a [Ranked]) -> Option<&'a Ranked> {
+    cands.first().filter(|b| {
+        b.delta_bic <= super::thresholds::ACCEPT_DELTA_BIC
+            && (b.fraction_closed >= super::thresholds::MIN_CLOSED
+                || score::within_noise(null.check.chi2_red))
+    })
+}
+
+/// Whether a candidate's size on the check run is practically small: below
+/// [`super::thresholds::PRACTICAL_SIZE`] in seat a_w, SEAT and band-gap RMS.
+pub(super) fn practically_small(b: &Ranked) -> bool {
+    let (aw, seat, db) = super::thresholds::PRACTICAL_SIZE;
+    b.aw_change_percent.abs() < aw
+        && b.seat_change_points.abs() < seat
+        && b.band_gap_change_db.abs() < db
+}
+
+/// A warning when the named effect(s) fit the frequency responses better but move the check
+/// run's ISO figures away from the measurement: the seat a_w gap and the SEAT gap both grow by
+/// more than [`VISIBLE_SIZE`]. The χ² is dominated by the many coherent bins above 10 Hz, a_w and
+/// SEAT by the 4–8 Hz band, so a form only close to the truth's (one Maxwell arm for a foam's
+/// power-law relaxation) can improve the one and worsen the other; the user judges by the ISO
+/// figures, so the report says which model to take them from.
+pub(super) fn iso_figures_move_away(null: &Stage, with: &Stage) -> Option<String> {
+    let (n, w) = (&null.weighted, &with.weighted);
+    let seat_gap = |s: f64| (s - w.seat_meas).abs();
+    let aw_worse = w.aw_gap_percent.abs() - n.aw_gap_percent.abs();
+    let seat_worse = seat_gap(w.seat_model) - seat_gap(n.seat_model);
+    (aw_worse > VISIBLE_SIZE.0 && seat_worse > VISIBLE_SIZE.1).then(|| {
+        format!(
+            "the named effect fits the frequency responses better but moves the check run's ISO figures away from the measurement (seat a_w gap {:+.1} % → {:+.1} %, SEAT {:.1} → {:.1} % against {:.1} %): its form is only close to the truth's; take a_w and SEAT from the re-fitted model",
+            n.aw_gap_percent, w.aw_gap_percent, n.seat_model, w.seat_model, w.seat_meas
+        )
+    })
+}
+
+/// The verdict's identifier in the JSON. A calibration error found when nothing structural is
+/// named is the finding: `sensor-gain` then stands for the corrected channel.
+pub(super) fn reported_id(v: &Verdict, calibration_errors: bool) -> VerdictId {
+    match v {
+        Verdict::None if calibration_errors => {
+            VerdictId::Effect(Candidate::SensorGain.id().to_string())
+        }
+        v => v.id(),
+    }
+}

@@ -1,0 +1,251 @@
+//! The verdict rules, in the order they are tried (docs/gap.md §7). Each is a small function of the
+//! [`Evidence`]; the first that applies decides. [`located`] then gives the distortion trend its
+//! say.
+
+use super::{
+    Basis, Evidence, Verdict, candidate, overdispersion, separating_measurement, training_closed,
+};
+use crate::diagnosis::outcome::Ranked;
+use crate::diagnosis::thresholds::{
+    ACCEPT_DELTA_BIC, GAP_CHI2, IDENTIFIABLE_MARGIN, MIN_CLOSED, PRACTICAL_GAP,
+};
+
+/// A named verdict rule.
+pub(in crate::diagnosis) struct Rule {
+    /// Short name (docs/gap.md §7 lists them in this order; the tests check it).
+    #[cfg_attr(not(test), expect(dead_code, reason = "read by the tests"))]
+    pub name: &'static str,
+    /// The verdict if the rule applies.
+    pub apply: fn(&Evidence) -> Option<Verdict>,
+}
+
+/// The rules in the order they are tried; the last always applies.
+pub(in crate::diagnosis) const RULES: &[Rule] = &[
+    Rule {
+        name: "refitted-on-all-runs",
+        apply: refitted_on_all_runs,
+    },
+    Rule {
+        name: "amplitude-effect-on-all-runs",
+        apply: amplitude_effect_on_all_runs,
+    },
+    Rule {
+        name: "look-alikes",
+        apply: look_alikes,
+    },
+    Rule {
+        name: "accepted-on-held-out",
+        apply: accepted_on_held_out,
+    },
+    Rule {
+        name: "detected-but-closes-little",
+        apply: detected_but_closes_little,
+    },
+    Rule {
+        name: "no-structural-gap",
+        apply: no_structural_gap,
+    },
+    Rule {
+        name: "no-candidate-closes-the-gap",
+        apply: unexplained,
+    },
+];
+
+/// An amplitude-dependent effect re-fitted on all runs together is named when the all-run
+/// judgement found one ([`crate::diagnosis::all_runs::judge`]: the training runs leave a
+/// structural residue that the held-out best does not explain, and the effect, re-fitted with the
+/// null on every run, lowers their BIC by ≥ 10 and closes ≥ 25 % of their gap). With two training
+/// magnitudes every two-parameter magnitude law passes through both, so a held-out run between
+/// them tests the law's form, not the effect; all runs together test the effect.
+fn refitted_on_all_runs(e: &Evidence) -> Option<Verdict> {
+    let a = e.all_runs?;
+    e.entry(a.candidate)?;
+    Some(Verdict::Named {
+        effect: a.candidate,
+        basis: Basis::AllRuns { refitted: true },
+        second: None,
+    })
+}
+
+/// With no effect accepted on the held-out run, an amplitude-dependent effect is named on all
+/// runs together when it is detected there (ΔBIC over training plus check ≤ −10), closes ≥ 25 %
+/// of the training runs' structural gap and does not make the check run worse — or, when the
+/// training runs leave a structural residue, keeps it within the noise (the null's compromise
+/// between two magnitudes fits a middle one that an effect whose form is only close to the
+/// truth's interpolates a little less well). Only amplitude-dependent effects: a sensor's response
+/// and a linear effect (foam, mode, support path) are the same at every magnitude, so the held-out
+/// run alone judges them; on all runs they would fit the two magnitudes' compromise.
+fn amplitude_effect_on_all_runs(e: &Evidence) -> Option<Verdict> {
+    if e.accepted.is_some() {
+        return None;
+    }
+    let null = e.null;
+    let b = e
+        .cands
+        .iter()
+        .filter(|c| candidate(c).is_some_and(|k| k.amplitude_dependent()))
+        .filter(|c| {
+            let check_ok = c.check.chi2_red <= null.check.chi2_red
+                || (null.train_chi2_red > GAP_CHI2 && c.check.chi2_red <= 1.0);
+            c.delta_bic_all <= ACCEPT_DELTA_BIC
+                && check_ok
+                && training_closed(null, c) >= MIN_CLOSED
+        })
+        .min_by(|a, b| a.delta_bic_all.total_cmp(&b.delta_bic_all))?;
+    Some(Verdict::Named {
+        effect: candidate(b)?,
+        basis: Basis::AllRuns { refitted: false },
+        second: None,
+    })
+}
+
+/// The held-out best, its closest rival of another family (if they stay tied) and the loser of a
+/// tie that all runs separate.
+struct HeldOutCall<'a> {
+    winner: &'a Ranked,
+    rival: Option<&'a Ranked>,
+    loser: Option<&'a Ranked>,
+}
+
+/// The held-out call. A candidate of another family within [`IDENTIFIABLE_MARGIN`] of the accepted
+/// best, closing ≥ 25 % of the gap, ties with it. Margins are read in units of the overdispersion
+/// ĉ ([`overdispersion`]) of the better candidate over the runs it was fitted and judged on: a
+/// misfit both share makes every log-likelihood difference ĉ times too large. All runs together
+/// (the training fit's in-sample BIC plus the held-out one) break a tie when they separate the
+/// pair by the same margin, in units of the smaller training ĉ.
+fn held_out_call<'a>(e: &Evidence<'a>) -> Option<HeldOutCall<'a>> {
+    let b = e.accepted?;
+    let family = |r: &Ranked| candidate(r).map(|c| c.family());
+    let check_c = overdispersion(b.check.chi2_red.max(b.train_chi2_red));
+    let rival = e.cands.iter().skip(1).find(|s| {
+        (s.delta_bic - b.delta_bic) / check_c < IDENTIFIABLE_MARGIN
+            && s.fraction_closed >= MIN_CLOSED
+            && family(s) != family(b)
+    });
+    let all_c = |s: &Ranked| overdispersion(b.train_chi2_red.min(s.train_chi2_red));
+    Some(match rival {
+        Some(s) if (b.delta_bic_all - s.delta_bic_all).abs() / all_c(s) >= IDENTIFIABLE_MARGIN => {
+            let (winner, loser) = if s.delta_bic_all < b.delta_bic_all {
+                (s, b)
+            } else {
+                (b, s)
+            };
+            HeldOutCall {
+                winner,
+                rival: None,
+                loser: Some(loser),
+            }
+        }
+        rival => HeldOutCall {
+            winner: b,
+            rival,
+            loser: None,
+        },
+    })
+}
+
+/// Two candidates of different families that explain the held-out run equally well, and that all
+/// runs together do not separate either, are not identifiable from these runs: the verdict names
+/// both and the measurement that would separate them (docs/gap.md §8).
+fn look_alikes(e: &Evidence) -> Option<Verdict> {
+    let call = held_out_call(e)?;
+    let (a, b) = (candidate(call.winner)?, candidate(call.rival?)?);
+    Some(Verdict::NotIdentifiable {
+        a,
+        b,
+        separating: separating_measurement(a.id(), b.id()),
+    })
+}
+
+/// The held-out best the check run accepts ([`super::held_out_accepted`]: detected at ΔBIC ≤ −10
+/// and closing ≥ 25 % of the structural gap, or any detection when the null already fits within
+/// the noise) is named — or the look-alike that all runs put ahead of it. A close second of the
+/// same family is another form of the same effect: noted, not a reason to abstain.
+fn accepted_on_held_out(e: &Evidence) -> Option<Verdict> {
+    let call = held_out_call(e)?;
+    if call.rival.is_some() {
+        return None;
+    }
+    let w = call.winner;
+    let family = |r: &Ranked| candidate(r).map(|c| c.family());
+    let alternative = e
+        .cands
+        .iter()
+        .skip(1)
+        .find(|s| s.delta_bic - w.delta_bic < IDENTIFIABLE_MARGIN && family(s) == family(w))
+        .and_then(candidate);
+    Some(Verdict::Named {
+        effect: candidate(w)?,
+        basis: Basis::HeldOut {
+            tie: call.loser.and_then(candidate),
+            alternative,
+        },
+        second: None,
+    })
+}
+
+/// A structural gap (null reduced χ² on the check run > [`GAP_CHI2`]) with a detected best that
+/// closes too little of it to be its explanation: the gap is reported unexplained, the detected
+/// candidate mentioned.
+fn detected_but_closes_little(e: &Evidence) -> Option<Verdict> {
+    let detected = e.best().is_some_and(|b| b.delta_bic <= ACCEPT_DELTA_BIC);
+    (e.accepted.is_none() && detected && e.null.check.chi2_red > GAP_CHI2)
+        .then_some(Verdict::Unexplained)
+}
+
+/// No effect accepted and no structural gap: the null re-fit's reduced χ² on the check run is at
+/// most [`GAP_CHI2`], or its band-gap and phase-gap RMS are below [`PRACTICAL_GAP`] (noise-free
+/// data make χ² arbitrarily large for a gap of no practical size). A subject whose masses differ
+/// from the nominal leaves such a residue after the re-fit; it is not an unmodelled effect.
+fn no_structural_gap(e: &Evidence) -> Option<Verdict> {
+    let c = &e.null.check;
+    let no_gap = c.chi2_red <= GAP_CHI2
+        || (c.gap_db_rms < PRACTICAL_GAP.0 && c.phase_deg_rms < PRACTICAL_GAP.1);
+    (e.accepted.is_none() && no_gap).then_some(Verdict::None)
+}
+
+/// Whatever remains: a structural gap that no candidate closes.
+fn unexplained(_: &Evidence) -> Option<Verdict> {
+    Some(Verdict::Unexplained)
+}
+
+/// The distortion's second opinion. When the runs' incoherent power grows with magnitude on the
+/// paths of one site ([`crate::diagnosis::distortion`]) and the frequency-response verdict is not
+/// an effect at that site, the site's candidate with the lowest BIC over all runs is named on the
+/// distortion's evidence. A linear effect cannot make a path's incoherent-to-coherent power ratio
+/// grow with magnitude, and a one-sided foam's statistical linearisation barely moves the FRFs
+/// (docs/gap.md §2), so the χ² alone can point to a linear effect or to nothing. Two exceptions
+/// keep the frequency-response verdict: a sensor effect (named on its own evidence, one channel's
+/// phase or gain, and compatible with any structural nonlinearity), and a nonlinearity whose
+/// distortion does not grow with magnitude (Coulomb friction's share of the force falls as the
+/// magnitude rises) unless the site's best fits all runs as well, within the margin in units of
+/// its training ĉ.
+pub(in crate::diagnosis) fn located(e: &Evidence, responses: &Verdict) -> Option<Verdict> {
+    let site = e.distortion?.site?;
+    let named = responses.effect();
+    if named.is_some_and(|c| site.admits(c) || c.family() == "sensor") {
+        return None;
+    }
+    let b = e
+        .cands
+        .iter()
+        .filter(|r| candidate(r).is_some_and(|c| site.admits(c)))
+        .min_by(|a, b| a.delta_bic_all.total_cmp(&b.delta_bic_all))?;
+    if let Some(c) = named.filter(|c| c.amplitude_dependent() && !c.distortion_grows())
+        && let Some(v) = e.entry(c)
+        && (b.delta_bic_all - v.delta_bic_all) / overdispersion(v.train_chi2_red)
+            >= IDENTIFIABLE_MARGIN
+    {
+        return None;
+    }
+    Some(Verdict::Named {
+        effect: candidate(b)?,
+        basis: Basis::Distortion {
+            responses: responses.id(),
+        },
+        second: None,
+    })
+}
+
+#[cfg(test)]
+mod tests;

@@ -1,0 +1,485 @@
+//! Each rule on a hand-made evidence fixture whose expected verdict follows from the rule's
+//! statement, and the rule list's order on the cases where two rules meet.
+
+use super::*;
+use crate::diagnosis::all_runs::AllRuns;
+use crate::diagnosis::candidate::Candidate;
+use crate::diagnosis::distortion::{Distortion, Site};
+use crate::diagnosis::gapmap::Weighted;
+use crate::diagnosis::outcome::{Stage, VerdictId};
+use crate::diagnosis::verdict::{decide, held_out_accepted};
+
+/// A ranked entry with the figures the rules read (sizes 2 % / 2 points).
+fn ranked(id: &str, train: f64, check: f64, dbic: f64, dbic_all: f64, closed: f64) -> Ranked {
+    Ranked {
+        id: id.into(),
+        params: Vec::new(),
+        train_chi2_red: train,
+        delta_bic: dbic,
+        delta_bic_all: dbic_all,
+        probability: 0.0,
+        fraction_closed: closed,
+        check: Stage {
+            chi2_red: check,
+            gap_db_rms: 0.3,
+            phase_deg_rms: 1.0,
+            weighted: Weighted {
+                aw_seat_meas: 1.0,
+                aw_seat_model: 1.0,
+                aw_gap_percent: 0.0,
+                seat_meas: 80.0,
+                seat_model: 80.0,
+                driving_bands: Vec::new(),
+            },
+            cells: Vec::new(),
+        },
+        aw_change_percent: 2.0,
+        seat_change_points: 2.0,
+        band_gap_change_db: -0.1,
+    }
+}
+
+/// The evidence of `null` and `cands` with the held-out acceptance the diagnosis computes.
+fn evidence<'a>(null: &'a Ranked, cands: &'a [Ranked]) -> Evidence<'a> {
+    Evidence {
+        null,
+        cands,
+        accepted: held_out_accepted(null, cands),
+        all_runs: None,
+        distortion: None,
+    }
+}
+
+/// The verdict and its text.
+fn judged(e: &Evidence) -> (Verdict, String) {
+    let v = decide(e);
+    let t = crate::diagnosis::text::verdict(&v, e);
+    (v, t)
+}
+
+fn named(c: Candidate) -> impl Fn(&Verdict) -> bool {
+    move |v| v.effect() == Some(c)
+}
+
+#[test]
+fn the_rule_list_ends_in_a_rule_that_always_applies() {
+    let null = ranked("null", 1.0, 1.0, 0.0, 0.0, 1.0);
+    let e = evidence(&null, &[]);
+    let last = RULES.last().expect("rules");
+    assert_eq!(last.name, "no-candidate-closes-the-gap");
+    assert_eq!((last.apply)(&e), Some(Verdict::Unexplained));
+}
+
+#[test]
+fn refitted_on_all_runs_names_the_all_run_judgement() {
+    // The all-run judgement found a cushion stiffening; the held-out best is a viscoelastic foam
+    // that the check run accepts. The re-fit on all runs is the stronger evidence for an effect
+    // that changes with magnitude: it is named, and the held-out best is mentioned.
+    let null = ranked("null", 5.0, 3.0, 0.0, 0.0, 1.0);
+    let cands = vec![
+        ranked("cushion-viscoelastic", 4.5, 1.5, -30.0, -40.0, 0.75),
+        ranked("cushion-stiffening", 1.2, 2.5, -12.0, -300.0, 0.25),
+    ];
+    let all = AllRuns {
+        candidate: Candidate::CushionStiffening,
+        delta_bic: -300.0,
+        null_chi2_red: 4.0,
+        chi2_red: 1.5,
+    };
+    let mut e = evidence(&null, &cands);
+    e.all_runs = Some(&all);
+    assert!(refitted_on_all_runs(&e).is_some_and(|v| named(Candidate::CushionStiffening)(&v)));
+    let (v, text) = judged(&e);
+    assert_eq!(
+        v,
+        Verdict::Named {
+            effect: Candidate::CushionStiffening,
+            basis: Basis::AllRuns { refitted: true },
+            second: None
+        }
+    );
+    // (4 − 1.5)/(4 − 1) = 83 %.
+    assert!(
+        text.contains("closes 83 % of their structural gap"),
+        "{text}"
+    );
+    assert!(
+        text.contains("the held-out run's best, cushion-viscoelastic"),
+        "{text}"
+    );
+    // Without an all-run judgement the rule does not apply.
+    assert_eq!(refitted_on_all_runs(&evidence(&null, &cands)), None);
+}
+
+#[test]
+fn amplitude_effect_on_all_runs_needs_detection_and_a_share_of_the_training_gap() {
+    // Nothing accepted on the check run (ΔBIC −5). A body softening detected on all runs (−80),
+    // closing (5 − 2)/(5 − 1) = 75 % of the training gap and no worse on the check run, is named.
+    let null = ranked("null", 5.0, 1.5, 0.0, 0.0, 1.0);
+    let cands = vec![ranked("body-softening", 2.0, 1.4, -5.0, -80.0, 0.2)];
+    let e = evidence(&null, &cands);
+    assert!(e.accepted.is_none());
+    assert_eq!(
+        amplitude_effect_on_all_runs(&e),
+        Some(Verdict::Named {
+            effect: Candidate::BodySoftening,
+            basis: Basis::AllRuns { refitted: false },
+            second: None
+        })
+    );
+    // Not detected on all runs (−8 > −10): the rule does not apply.
+    let weak = vec![ranked("body-softening", 2.0, 1.4, -5.0, -8.0, 0.2)];
+    assert_eq!(amplitude_effect_on_all_runs(&evidence(&null, &weak)), None);
+    // Worse on the check run (1.6 > 1.5, and above the noise): not named.
+    let worse = vec![ranked("body-softening", 2.0, 1.6, -5.0, -80.0, 0.0)];
+    assert_eq!(amplitude_effect_on_all_runs(&evidence(&null, &worse)), None);
+    // A linear effect with the same figures is the same at every magnitude: not named here.
+    let linear = vec![ranked("cushion-viscoelastic", 2.0, 1.4, -5.0, -80.0, 0.2)];
+    assert_eq!(
+        amplitude_effect_on_all_runs(&evidence(&null, &linear)),
+        None
+    );
+}
+
+#[test]
+fn a_sensor_effect_is_named_on_the_held_out_run_only() {
+    // Training residue 5 (structural), check run 1.5; the sensor gain closes a fifth of the
+    // check run's gap (not accepted there) but most of the training runs' and has the best
+    // all-run ΔBIC: the all-run evidence names the stiffening cushion, never the sensor.
+    let null = ranked("null", 5.0, 1.5, 0.0, 0.0, 1.0);
+    let cands = vec![
+        ranked("sensor-gain", 3.0, 1.40, -42.0, -173.0, 0.20),
+        ranked("cushion-stiffening", 3.5, 1.45, -38.0, -104.0, 0.20),
+    ];
+    let e = evidence(&null, &cands);
+    assert!(e.accepted.is_none());
+    let (v, text) = judged(&e);
+    assert!(named(Candidate::CushionStiffening)(&v), "{text}");
+    // A linear effect is the same at every magnitude: the held-out run's word stands.
+    let mut linear = cands.clone();
+    linear[1].id = "cushion-viscoelastic".into();
+    let (v, text) = judged(&evidence(&null, &linear));
+    assert!(!named(Candidate::CushionViscoelastic)(&v), "{text}");
+    // Accepted on the held-out run (closes 30 % there), the sensor gain is named.
+    let mut cands = cands;
+    cands[0].fraction_closed = 0.30;
+    let (v, text) = judged(&evidence(&null, &cands));
+    assert!(named(Candidate::SensorGain)(&v), "{text}");
+}
+
+#[test]
+fn look_alikes_of_two_families_are_not_identifiable() {
+    // Two families 0.3 apart on the held-out run (within 6) and 3 apart on all runs (within 6):
+    // neither run set separates them.
+    let null = ranked("null", 1.5, 1.2, 0.0, 0.0, 1.0);
+    let cands = vec![
+        ranked("sensor-delay", 1.1, 0.8, -24.0, -98.0, 0.33),
+        ranked("backrest", 0.9, 0.8, -23.7, -101.0, 0.44),
+    ];
+    let e = evidence(&null, &cands);
+    let v = look_alikes(&e).expect("a tie");
+    assert_eq!(v.id(), VerdictId::NotIdentifiable);
+    assert_eq!(
+        v,
+        Verdict::NotIdentifiable {
+            a: Candidate::SensorDelay,
+            b: Candidate::Backrest,
+            separating: separating_measurement("sensor-delay", "backrest"),
+        }
+    );
+    assert!(v.separating().is_some_and(|m| m.contains("shaker run")));
+    // The same family 0.3 apart is one effect in two forms: no tie.
+    let same = vec![
+        ranked("sensor-delay", 1.1, 0.8, -24.0, -98.0, 0.33),
+        ranked("sensor-lowpass", 0.9, 0.8, -23.7, -101.0, 0.44),
+    ];
+    assert_eq!(look_alikes(&evidence(&null, &same)), None);
+    let (v, text) = judged(&evidence(&null, &same));
+    assert!(named(Candidate::SensorDelay)(&v), "{text}");
+    assert!(
+        text.contains("sensor-lowpass fits almost as well"),
+        "{text}"
+    );
+}
+
+#[test]
+fn accepted_on_held_out_names_a_detected_effect_that_closes_a_quarter_of_the_gap() {
+    // Null 3.0 on the check run, best detected at −40 closing 60 %: named on the held-out run.
+    let null = ranked("null", 3.0, 3.0, 0.0, 0.0, 1.0);
+    let cands = vec![
+        ranked("missing-dof", 1.5, 1.8, -40.0, -60.0, 0.6),
+        ranked("backrest", 2.5, 2.8, -12.0, -20.0, 0.1),
+    ];
+    let e = evidence(&null, &cands);
+    let v = accepted_on_held_out(&e).expect("accepted");
+    assert_eq!(
+        v,
+        Verdict::Named {
+            effect: Candidate::MissingDof,
+            basis: Basis::HeldOut {
+                tie: None,
+                alternative: None
+            },
+            second: None
+        }
+    );
+    let text = crate::diagnosis::text::verdict(&v, &e);
+    assert!(
+        text.contains("closes 60 % of the structural gap on the held-out run"),
+        "{text}"
+    );
+    // Closing 20 % of a structural gap is not an explanation: the rule does not apply.
+    let mut little = cands.clone();
+    little[0].fraction_closed = 0.2;
+    assert_eq!(accepted_on_held_out(&evidence(&null, &little)), None);
+}
+
+#[test]
+fn detected_but_closes_little_reports_the_gap_unexplained() {
+    // A structural gap (3.0 > 2) and a best detected at −40 that closes 10 %: unexplained, the
+    // detected candidate mentioned.
+    let null = ranked("null", 3.0, 3.0, 0.0, 0.0, 1.0);
+    let cands = vec![ranked("body-mode", 2.9, 2.8, -40.0, -41.0, 0.1)];
+    let e = evidence(&null, &cands);
+    assert_eq!(detected_but_closes_little(&e), Some(Verdict::Unexplained));
+    let (v, text) = judged(&e);
+    assert_eq!(v, Verdict::Unexplained);
+    assert!(
+        text.contains("body-mode is detected (ΔBIC -40.0) but closes only 10 %"),
+        "{text}"
+    );
+    // Below the structural threshold (1.8 ≤ 2) it is not a gap to explain: the rule stands back.
+    let small = ranked("null", 1.8, 1.8, 0.0, 0.0, 1.0);
+    assert_eq!(detected_but_closes_little(&evidence(&small, &cands)), None);
+}
+
+#[test]
+fn no_structural_gap_is_none() {
+    // Null 1.5 on the check run (≤ 2) and nothing detected: none.
+    let null = ranked("null", 1.5, 1.5, 0.0, 0.0, 1.0);
+    let cands = vec![ranked("backrest", 1.4, 1.45, -3.0, -5.0, 0.1)];
+    let e = evidence(&null, &cands);
+    assert_eq!(no_structural_gap(&e), Some(Verdict::None));
+    // A reduced χ² of 40 on noise-free data with a 0.1 dB, 1° gap is of no practical size.
+    let mut clean = ranked("null", 40.0, 40.0, 0.0, 0.0, 1.0);
+    clean.check.gap_db_rms = 0.1;
+    clean.check.phase_deg_rms = 1.0;
+    assert_eq!(
+        no_structural_gap(&evidence(&clean, &cands)),
+        Some(Verdict::None)
+    );
+    // The same χ² with a 0.3 dB gap is a gap: the rule does not apply, the last one does.
+    let gap = ranked("null", 40.0, 40.0, 0.0, 0.0, 1.0);
+    assert_eq!(no_structural_gap(&evidence(&gap, &cands)), None);
+    assert_eq!(decide(&evidence(&gap, &cands)), Verdict::Unexplained);
+}
+
+#[test]
+fn within_the_noise_a_detected_effect_is_named_however_little_it_closes() {
+    // The null fits the check run within the noise (0.41); a backrest is detected at ΔBIC −27.4
+    // and lowers χ² by 23 %. There is no structural gap to close: detection names it.
+    let null = ranked("null", 0.42, 0.41, 0.0, 0.0, 1.0);
+    let mut cands = vec![ranked("backrest", 0.29, 0.31, -27.4, -167.8, 0.23)];
+    cands[0].aw_change_percent = 0.5;
+    cands[0].seat_change_points = 0.6;
+    cands[0].band_gap_change_db = -0.0;
+    let (v, text) = judged(&evidence(&null, &cands));
+    assert!(named(Candidate::Backrest)(&v), "{text}");
+    assert!(text.contains("practically small"), "{text}");
+    assert!(
+        text.contains("within the noise after the re-fit, by 23 %"),
+        "{text}"
+    );
+    // Not detected (ΔBIC −8): nothing significant, `none`.
+    cands[0].delta_bic = -8.0;
+    let e = evidence(&null, &cands);
+    assert!(e.accepted.is_none());
+    assert_eq!(decide(&e), Verdict::None);
+    // Above the noise the fraction of the gap still rules: 23 % of a gap of 1.6 is not named.
+    let gap = ranked("null", 1.7, 1.6, 0.0, 0.0, 1.0);
+    cands[0].delta_bic = -27.4;
+    assert!(held_out_accepted(&gap, &cands).is_none());
+}
+
+#[test]
+fn the_overdispersion_of_a_margin_counts_the_training_runs_misfit() {
+    // Both candidates close all of the check run's gap and leave χ²/ν 3.9 there but 24–25 on the
+    // training runs. 36 units apart on the check run is 1.4 ĉ of the training misfit: a tie that
+    // all runs (828 apart, 35 ĉ) decide.
+    let null = ranked("null", 13_154.0, 979.5, 0.0, 0.0, 1.0);
+    let cands = vec![
+        ranked(
+            "sensor-mount-base",
+            24.8,
+            3.86,
+            -524_892.3,
+            -13_102_329.0,
+            1.0,
+        ),
+        ranked(
+            "suspension-friction",
+            23.9,
+            3.93,
+            -524_856.5,
+            -13_103_157.3,
+            1.0,
+        ),
+    ];
+    let (v, text) = judged(&evidence(&null, &cands));
+    assert!(named(Candidate::SuspensionFriction)(&v), "{text}");
+    assert!(
+        text.contains("on all runs together suspension-friction is ahead"),
+        "{text}"
+    );
+}
+
+#[test]
+fn a_held_out_tie_is_decided_by_all_runs_only_when_they_separate_it() {
+    // Two families within the identifiability margin on the held-out run, 41 apart on all runs.
+    let null = ranked("null", 1.5, 1.2, 0.0, 0.0, 1.0);
+    let cands = vec![
+        ranked("sensor-delay", 1.1, 0.8, -24.0, -98.0, 0.33),
+        ranked("backrest", 0.9, 0.8, -23.7, -139.0, 0.44),
+    ];
+    let (v, text) = judged(&evidence(&null, &cands));
+    assert!(
+        matches!(
+            v,
+            Verdict::Named {
+                effect: Candidate::Backrest,
+                basis: Basis::HeldOut {
+                    tie: Some(Candidate::SensorDelay),
+                    ..
+                },
+                ..
+            }
+        ),
+        "{text}"
+    );
+    assert!(
+        text.contains("on all runs together backrest is ahead"),
+        "{text}"
+    );
+    // The held-out run's best ahead on all runs as well keeps its name, the rival noted.
+    let ahead = vec![
+        ranked("backrest", 0.9, 0.8, -24.0, -139.0, 0.44),
+        ranked("sensor-delay", 1.1, 0.8, -23.7, -98.0, 0.33),
+    ];
+    let (v, text) = judged(&evidence(&null, &ahead));
+    assert!(named(Candidate::Backrest)(&v), "{text}");
+    assert!(text.contains("sensor-delay fits almost as well"), "{text}");
+    // A misfit both share (χ²/ν 25 on the held-out run, 24 on training) makes a 15-unit
+    // held-out difference a tie that all runs, 870 apart (36 ĉ), decide.
+    let poor = ranked("null", 600.0, 500.0, 0.0, 0.0, 1.0);
+    let big = vec![
+        ranked("sensor-delay", 25.0, 25.0, -533_636.0, -14_203_707.0, 0.997),
+        ranked("backrest", 24.0, 25.1, -533_621.0, -14_204_576.0, 0.997),
+    ];
+    let (v, text) = judged(&evidence(&poor, &big));
+    assert!(named(Candidate::Backrest)(&v), "{text}");
+    // Unscaled, 15 units would have named the held-out run's best.
+    let mut fit = big.clone();
+    for c in &mut fit {
+        c.check.chi2_red = 1.0;
+        c.train_chi2_red = 1.0;
+    }
+    let (v, text) = judged(&evidence(&poor, &fit));
+    assert!(named(Candidate::SensorDelay)(&v), "{text}");
+}
+
+/// A distortion trend that locates a nonlinearity at `site`.
+fn located_at(site: Site) -> Distortion {
+    Distortion {
+        magnitudes: (0.4, 1.6),
+        paths: Vec::new(),
+        site: Some(site),
+    }
+}
+
+#[test]
+fn the_distortion_names_the_site_s_nonlinearity_over_a_linear_verdict() {
+    // The responses name a viscoelastic foam (linear), the distortion grows on the support: the
+    // support's nonlinear candidate with the lowest all-run BIC is named on the distortion.
+    let dist = located_at(Site::Support);
+    let null = ranked("null", 3.0, 3.0, 0.0, 0.0, 1.0);
+    let cands = vec![
+        ranked("cushion-viscoelastic", 1.5, 1.8, -40.0, -60.0, 0.6),
+        ranked("cushion-contact", 2.0, 2.5, -12.0, -50.0, 0.25),
+        ranked("cushion-stiffening", 2.0, 2.5, -11.0, -55.0, 0.25),
+    ];
+    let mut e = evidence(&null, &cands);
+    e.distortion = Some(&dist);
+    let responses = decide(&e);
+    assert!(named(Candidate::CushionViscoelastic)(&responses));
+    assert_eq!(
+        located(&e, &responses),
+        Some(Verdict::Named {
+            effect: Candidate::CushionStiffening,
+            basis: Basis::Distortion {
+                responses: VerdictId::Effect("cushion-viscoelastic".into())
+            },
+            second: None
+        })
+    );
+    // A sensor effect coexists with a structural nonlinearity: it stands.
+    let sensor = Verdict::Named {
+        effect: Candidate::SensorDelay,
+        basis: Basis::HeldOut {
+            tie: None,
+            alternative: None,
+        },
+        second: None,
+    };
+    assert_eq!(located(&e, &sensor), None);
+    // Without a located site there is no second opinion.
+    e.distortion = None;
+    assert_eq!(located(&e, &responses), None);
+}
+
+#[test]
+fn a_friction_named_on_the_responses_stands_against_a_body_site() {
+    let dist = located_at(Site::Body);
+    let null = ranked("null", 3.0, 1.6, 0.0, 0.0, 1.0);
+    let cands = vec![
+        ranked("suspension-friction", 1.3, 1.1, -44.0, -257.0, 0.34),
+        ranked("body-softening", 2.9, 1.6, 4.9, 6.3, 0.0),
+    ];
+    let held = |c| Verdict::Named {
+        effect: c,
+        basis: Basis::HeldOut {
+            tie: None,
+            alternative: None,
+        },
+        second: None,
+    };
+    let mut e = evidence(&null, &cands);
+    e.distortion = Some(&dist);
+    assert_eq!(located(&e, &held(Candidate::SuspensionFriction)), None);
+    // The same figures for a cushion stiffening: the body site renames it.
+    let mut stiff = cands.clone();
+    stiff[0].id = "cushion-stiffening".into();
+    let mut e = evidence(&null, &stiff);
+    e.distortion = Some(&dist);
+    let v = located(&e, &held(Candidate::CushionStiffening)).expect("renamed");
+    assert!(named(Candidate::BodySoftening)(&v));
+    // A friction the site's best fits as well as (within 6 ĉ over all runs) is renamed too.
+    let mut close = cands.clone();
+    close[1].delta_bic_all = -255.0;
+    let mut e = evidence(&null, &close);
+    e.distortion = Some(&dist);
+    let v = located(&e, &held(Candidate::SuspensionFriction)).expect("renamed");
+    assert!(named(Candidate::BodySoftening)(&v));
+}
+
+#[test]
+fn docs_gap_md_lists_the_rules_in_their_order() {
+    let doc = std::fs::read_to_string("docs/gap.md").expect("docs/gap.md");
+    let section = &doc[doc.find("## 7 The verdict rules").expect("§7")..];
+    let mut at = 0;
+    for r in RULES {
+        let i = section[at..]
+            .find(&format!("**{}**", r.name))
+            .unwrap_or_else(|| panic!("docs/gap.md §7 lacks rule {} after position {at}", r.name));
+        at += i + r.name.len();
+    }
+}
