@@ -8,6 +8,33 @@ use super::{
 use crate::error::{Error, Result};
 use crate::signals::Signals;
 
+/// The first sample of channel `ch` (column `c`, in SI units) that no measurement can hold, and
+/// why: a non-finite value, or one beyond [`MAX_ACCELERATION_M_S2`] / [`MAX_FORCE_N`].
+fn implausible_sample(c: &Column, ch: &str) -> Option<(usize, String)> {
+    if let Some(i) = c.data.iter().position(|v| !v.is_finite()) {
+        return Some((
+            i,
+            format!("column `{}`: sample {} is not finite", c.name, i + 1),
+        ));
+    }
+    let (bound, unit) = if ch.starts_with("f_") {
+        (MAX_FORCE_N, "N")
+    } else {
+        (MAX_ACCELERATION_M_S2, "m/s²")
+    };
+    let i = c.data.iter().position(|v| v.abs() > bound)?;
+    Some((
+        i,
+        format!(
+            "column `{}` ({ch}): sample {} is {:.3e} {unit}, beyond the {bound:.0e} {unit} no \
+             vibration reaches: a damaged file, or a wrong --units or --sensitivity",
+            c.name,
+            i + 1,
+            c.data[i]
+        ),
+    ))
+}
+
 /// Words that name a time column when no `--column t_s=…` is given (case-insensitive).
 pub(super) const TIME_NAMES: [&str; 6] = ["t_s", "t", "time", "timestamp", "zeit", "temps"];
 
@@ -267,30 +294,8 @@ pub(crate) fn assemble(raw: Raw, source: &str, opts: &Options) -> Result<Input> 
         if scale != 1.0 {
             c.data.iter_mut().for_each(|v| *v *= scale);
         }
-        if let Some(i) = c.data.iter().position(|v| !v.is_finite()) {
-            return Err(Error::data(
-                source,
-                line_of(i),
-                format!("column `{}`: sample {} is not finite", c.name, i + 1),
-            ));
-        }
-        let (bound, unit) = if ch.starts_with("f_") {
-            (MAX_FORCE_N, "N")
-        } else {
-            (MAX_ACCELERATION_M_S2, "m/s²")
-        };
-        if let Some(i) = c.data.iter().position(|v| v.abs() > bound) {
-            return Err(Error::data(
-                source,
-                line_of(i),
-                format!(
-                    "column `{}` ({ch}): sample {} is {:.3e} {unit}, beyond the {bound:.0e} {unit} \
-                     no vibration reaches: a damaged file, or a wrong --units or --sensitivity",
-                    c.name,
-                    i + 1,
-                    c.data[i]
-                ),
-            ));
+        if let Some((i, why)) = implausible_sample(&c, &ch) {
+            return Err(Error::data(source, line_of(i), why));
         }
         signals.push(ch, c.data)?;
     }
