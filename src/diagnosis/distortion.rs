@@ -16,7 +16,7 @@
 //! makes E[f′(d)] = k exactly — what the runs show is distortion, not a stiffer FRF. So the
 //! distortion is evidence of its own: it says which group of candidates may be named.
 
-use super::candidate::Candidate;
+use super::candidate::{Candidate, Place};
 use super::measure::{Path, RunSpectra};
 use crate::numeric::median;
 use serde::{Deserialize, Serialize};
@@ -81,18 +81,8 @@ impl Site {
     /// Whether candidate `c` is a nonlinearity at this site.
     pub fn admits(self, c: Candidate) -> bool {
         match self {
-            Site::Support => matches!(
-                c,
-                Candidate::CushionStiffening
-                    | Candidate::CushionContact
-                    | Candidate::CushionBottoming
-                    | Candidate::SuspensionFriction
-                    | Candidate::EndStop
-            ),
-            Site::Body => matches!(
-                c,
-                Candidate::BodySoftening | Candidate::BodySofteningMagnitude
-            ),
+            Site::Support => c.nonlinear_at() == Some(Place::Support),
+            Site::Body => c.nonlinear_at() == Some(Place::Body),
             Site::Unlocated => c.amplitude_dependent(),
         }
     }

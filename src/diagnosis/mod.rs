@@ -34,10 +34,10 @@ mod text;
 mod thresholds;
 mod verdict;
 
+pub use candidate::separating_measurement;
 pub use outcome::{
     BandCoverage, ChannelError, Diagnosis, Estimate, Ranked, RunSummary, Stage, VerdictId,
 };
-pub use verdict::separating_measurement;
 
 pub use evidence::stage;
 pub use thresholds::*;

@@ -45,39 +45,10 @@ pub(super) fn maxwell_arm(l: &Link, ratio: f64, tau_s: f64) -> Link {
     }
 }
 
-/// The body coordinate a support path acts on: the heaviest body point mass for a backrest (the
-/// upper torso), the lowest body point mass (the one joined by a body link to the seat or the base:
-/// pelvis and thighs) for the feet. `None` when the model has no such point mass of its own or
-/// already carries that body on a link to the base (a segment model's backrest and footrest).
-pub fn support_target(c: Candidate, system: &System) -> Option<usize> {
-    let is_body = |name: &str| {
-        system
-            .dofs
-            .iter()
-            .any(|d| d.name == name && d.role == Role::Body)
-    };
-    let target = match c {
-        Candidate::Backrest => heaviest_body_mass(system),
-        Candidate::FeetSupport | Candidate::ThighSupport => system
-            .links
-            .iter()
-            .filter(|l| l.role == Role::Body && !is_body(&l.nodes.1))
-            .find_map(|l| system.dofs.iter().position(|d| d.name == l.nodes.0))
-            .filter(|&i| body_point_mass(system, i)),
-        _ => None,
-    }?;
-    let name = &system.dofs[target].name;
-    let on_base_already = system
-        .links
-        .iter()
-        .any(|l| on_base(l) && (&l.nodes.0 == name || &l.nodes.1 == name));
-    (!on_base_already).then_some(target)
-}
-
 /// Index of the heaviest body coordinate that is a point mass of its own (a diagonal row of M, a
 /// translation): the upper torso in the reference body; `None` for a segment model, whose
 /// coordinates share inertia.
-pub fn heaviest_body_mass(system: &System) -> Option<usize> {
+pub(super) fn heaviest_body_mass(system: &System) -> Option<usize> {
     (0..system.dof())
         .filter(|&i| body_point_mass(system, i))
         .max_by(|&a, &b| system.m[(a, a)].total_cmp(&system.m[(b, b)]))
@@ -85,7 +56,7 @@ pub fn heaviest_body_mass(system: &System) -> Option<usize> {
 
 /// Whether coordinate `i` is a body translation with a point mass of its own (its row of M is
 /// diagonal), so a candidate can split it or hang a link on it.
-fn body_point_mass(system: &System, i: usize) -> bool {
+pub(super) fn body_point_mass(system: &System, i: usize) -> bool {
     system.dofs[i].role == Role::Body
         && system.dofs[i].unit == Unit::Metre
         && (0..system.dof()).all(|j| j == i || system.m[(i, j)] == 0.0)
@@ -127,49 +98,8 @@ pub(super) fn on_base(l: &Link) -> bool {
     l.nodes.0 == "base" || l.nodes.1 == "base"
 }
 
-/// Inserts a seat-frame mass of `mass_kg` under the cushion, tuned to `f_hz` (on a rigid base,
-/// cushion removed) with damping ratio `zeta`: a vertical coordinate z_f on its own spring–damper to
-/// the base, and every cushion link on the base now deflects by −(row·r)·z_f more (row·r is the
-/// link's deflection per unit vertical motion of the body relative to the base: 1 for a chain
-/// link to the base, the normal's vertical component for a contact axis).
-pub fn add_frame(s: &mut System, f_hz: f64, zeta: f64, mass_kg: f64) -> Result<()> {
-    let on: Vec<usize> = cushion_links(s)
-        .into_iter()
-        .filter(|&i| on_base(&s.links[i]))
-        .collect();
-    if on.is_empty() {
-        return Err(Error::parameter(
-            "missing-dof",
-            "the model has no cushion link on the base",
-        ));
-    }
-    let j = add_dof(s, "frame", Role::Frame, mass_kg, 1.0, 0.0);
-    for i in on {
-        let l = &mut s.links[i];
-        let vertical: f64 = l.row.iter().map(|&(q, c)| c * s.r[q]).sum();
-        if vertical != 0.0 {
-            l.row.push((j, -vertical));
-        }
-        if l.nodes.0 == "base" {
-            l.nodes.0 = "frame".into();
-        } else {
-            l.nodes.1 = "frame".into();
-        }
-    }
-    let frame = kv_link(
-        "frame",
-        ("frame", "base"),
-        vec![(j, 1.0)],
-        mass_kg,
-        f_hz,
-        zeta,
-    );
-    s.links.push(frame);
-    Ok(())
-}
-
 /// Every Kelvin–Voigt cushion link, in link order.
-pub fn cushion_links(system: &System) -> Vec<usize> {
+pub(super) fn cushion_links(system: &System) -> Vec<usize> {
     (0..system.links.len())
         .filter(|&i| {
             system.links[i].role == Role::Cushion
@@ -179,13 +109,13 @@ pub fn cushion_links(system: &System) -> Vec<usize> {
 }
 
 /// Index of the first link with `role`.
-pub fn role_link(system: &System, role: Role) -> Option<usize> {
+pub(super) fn role_link(system: &System, role: Role) -> Option<usize> {
     system.links.iter().position(|l| l.role == role)
 }
 
 /// Index of the first body link that carries the seat force (`f_seat_z`): the body–seat interface
 /// of a chain (a segment model's contacts are cushion links and have none).
-pub fn interface_link(system: &System) -> Option<usize> {
+pub(super) fn interface_link(system: &System) -> Option<usize> {
     let c = system.channel_index("f_seat_z")?;
     match &system.channels[c].rule {
         crate::system::Rule::Force { links } => links
@@ -194,4 +124,13 @@ pub fn interface_link(system: &System) -> Option<usize> {
             .filter(|&l| system.links[l].role == Role::Body),
         _ => None,
     }
+}
+
+/// The cushion links of `s`, or the error of a model without one, for candidate `id`.
+pub(super) fn cushion_or_err(id: &str, s: &System) -> Result<Vec<usize>> {
+    let c = cushion_links(s);
+    if c.is_empty() {
+        return Err(Error::parameter(id, "the model has no cushion link"));
+    }
+    Ok(c)
 }

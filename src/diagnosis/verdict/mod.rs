@@ -155,39 +155,6 @@ pub(super) fn conclude(e: &Evidence) -> Verdict {
     rules::located(e, &responses).unwrap_or(responses)
 }
 
-/// Which measurement separates two look-alike candidates (docs/gap.md §8).
-pub fn separating_measurement(a: &str, b: &str) -> String {
-    let pair = |x: &str, y: &str| (a == x && b == y) || (a == y && b == x);
-    if pair("cushion-stiffening", "cushion-viscoelastic")
-        || pair("cushion-contact", "cushion-viscoelastic")
-    {
-        "a run at a clearly different magnitude (stiffening grows with amplitude, viscoelasticity does not)".into()
-    } else if pair("body-softening", "cushion-stiffening")
-        || pair("body-softening", "cushion-viscoelastic")
-        || pair("body-softening-magnitude", "cushion-stiffening")
-        || pair("body-softening-magnitude", "cushion-viscoelastic")
-    {
-        "the seat-head path or the seat force (body effects move apparent mass and seat-head, cushion effects only base-seat)".into()
-    } else if pair("cushion-viscoelastic", "missing-dof")
-        || pair("cushion-stiffening", "missing-dof")
-    {
-        "a base-seat measurement above 20 Hz or a frame accelerometer (a frame mode shows as a narrow peak)".into()
-    } else if a.starts_with("sensor-") || b.starts_with("sensor-") {
-        "a sensor calibration: a shaker run against a reference accelerometer gives each channel's gain, group delay and mount response".into()
-    } else if a == "backrest" || b == "backrest" {
-        "a run without backrest contact, or a backrest force (a backrest drives the torso past the seat pan)".into()
-    } else if a == "thigh-support" || b == "thigh-support" {
-        "the seat-pan force f_seat_z, or a run with the thighs clear of the seat's front edge (a thigh path carries weight past the seat pan; without the force it looks like a stiffer cushion)".into()
-    } else if a == "feet-support" || b == "feet-support" {
-        "a run with the feet on a fixed floor, or a footrest force (the feet carry part of the thighs past the seat pan)".into()
-    } else if pair("missing-dof", "body-mode") {
-        "a frame accelerometer (a frame mode moves base-seat and the frame, a body mode seat-head)"
-            .into()
-    } else {
-        "a repeat run and a run at a third magnitude".into()
-    }
-}
-
 /// Overdispersion ĉ = max(1, χ²/ν) of a fit (QAIC, Burnham & Anderson 2002, §2.5): when even the
 /// better of two models leaves residuals ĉ times the noise estimate's variance, every
 /// log-likelihood difference between them is ĉ times too large, so a BIC margin between

@@ -2,9 +2,8 @@
 //! [`Evidence`]; the first that applies decides. [`located`] then gives the distortion trend its
 //! say.
 
-use super::{
-    Basis, Evidence, Verdict, candidate, overdispersion, separating_measurement, training_closed,
-};
+use super::{Basis, Evidence, Verdict, candidate, overdispersion, training_closed};
+use crate::diagnosis::candidate::{Family, separating_measurement};
 use crate::diagnosis::outcome::Ranked;
 use crate::diagnosis::thresholds::{
     ACCEPT_DELTA_BIC, GAP_CHI2, IDENTIFIABLE_MARGIN, MIN_CLOSED, PRACTICAL_GAP,
@@ -153,7 +152,7 @@ fn look_alikes(e: &Evidence) -> Option<Verdict> {
     Some(Verdict::NotIdentifiable {
         a,
         b,
-        separating: separating_measurement(a.id(), b.id()),
+        separating: separating_measurement(a, b).to_string(),
     })
 }
 
@@ -223,7 +222,7 @@ fn unexplained(_: &Evidence) -> Option<Verdict> {
 pub(in crate::diagnosis) fn located(e: &Evidence, responses: &Verdict) -> Option<Verdict> {
     let site = e.distortion?.site?;
     let named = responses.effect();
-    if named.is_some_and(|c| site.admits(c) || c.family() == "sensor") {
+    if named.is_some_and(|c| site.admits(c) || c.family() == Family::Sensor) {
         return None;
     }
     let b = e

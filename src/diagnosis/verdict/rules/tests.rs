@@ -184,7 +184,8 @@ fn look_alikes_of_two_families_are_not_identifiable() {
         Verdict::NotIdentifiable {
             a: Candidate::SensorDelay,
             b: Candidate::Backrest,
-            separating: separating_measurement("sensor-delay", "backrest"),
+            separating: separating_measurement(Candidate::SensorDelay, Candidate::Backrest)
+                .to_string(),
         }
     );
     assert!(v.separating().is_some_and(|m| m.contains("shaker run")));

@@ -1,0 +1,199 @@
+//! The measuring chain (docs/gap.md §5): the accelerometers, their mounts, the acquisition's
+//! filters and timing, and the seat-pan force plate. These edit the [`Variant`]'s channels, not the
+//! mechanical system; all are linear.
+
+use super::*;
+
+/// A measuring-chain effect: linear; on the seat-pan force only when `reads_force_only`.
+const fn sensor(
+    id: &'static str,
+    params: fn() -> Vec<Param>,
+    applies_to: fn(&System) -> bool,
+    apply: fn(&mut Variant, &[f64]) -> Result<()>,
+    reads_force_only: bool,
+) -> Definition {
+    Definition {
+        id,
+        family: Family::Sensor,
+        params,
+        applies_to,
+        apply,
+        magnitude: Magnitude::Linear,
+        reads_force_only,
+    }
+}
+
+/// Every model has base and seat accelerometers.
+fn always(_: &System) -> bool {
+    true
+}
+
+/// Whether the model has the head channel.
+fn has_head(s: &System) -> bool {
+    s.channel_index("a_head_z").is_some()
+}
+
+/// Whether the model has the seat-pan force channel.
+fn has_force(s: &System) -> bool {
+    s.channel_index("f_seat_z").is_some()
+}
+
+/// A mount resonance's parameters: frequency 8–300 Hz and damping ratio up to `zeta_max`.
+fn mount_params(zeta_max: f64, zeta_starts: &[f64]) -> Vec<Param> {
+    vec![
+        Param::new("f_mount_hz", 8.0, 300.0, &[15.0, 40.0, 120.0], true),
+        Param::new("zeta_mount", 0.01, zeta_max, zeta_starts, true),
+    ]
+}
+
+/// Lag on the seat and/or head channel (phase gap linear in frequency). Relative to the base
+/// channel, so a lag on the base accelerometer is a negative delay of both outputs.
+pub const DELAY: Definition = sensor(
+    "sensor-delay",
+    || {
+        vec![
+            Param::new("delay_seat_s", -0.05, 0.05, &[0.0], false),
+            Param::new("delay_head_s", -0.05, 0.05, &[0.0], false),
+        ]
+    },
+    always,
+    |v, p| {
+        v.seat.delay_s += p[0];
+        v.head.delay_s += p[1];
+        Ok(())
+    },
+    false,
+);
+
+/// 4-pole Butterworth anti-alias low-pass on the seat and/or head channel.
+pub const LOWPASS: Definition = sensor(
+    "sensor-lowpass",
+    || {
+        vec![
+            Param::new("lowpass_seat_hz", 10.0, 5000.0, &[150.0], true),
+            Param::new("lowpass_head_hz", 10.0, 5000.0, &[150.0], true),
+        ]
+    },
+    always,
+    |v, p| {
+        v.seat.lowpass_hz = p[0];
+        v.head.lowpass_hz = p[1];
+        Ok(())
+    },
+    false,
+);
+
+/// First-order high-pass (AC coupling of an IEPE accelerometer) on the base, seat and/or head
+/// channel: a gap below ~2 Hz on the paths of one channel, rising phase lead.
+pub const HIGHPASS: Definition = sensor(
+    "sensor-highpass",
+    || {
+        vec![
+            Param::new("highpass_base_hz", 0.01, 5.0, &[0.1], true),
+            Param::new("highpass_seat_hz", 0.01, 5.0, &[0.1], true),
+            Param::new("highpass_head_hz", 0.01, 5.0, &[0.1], true),
+        ]
+    },
+    always,
+    |v, p| {
+        v.base.highpass_hz = p[0];
+        v.seat.highpass_hz = p[1];
+        v.head.highpass_hz = p[2];
+        Ok(())
+    },
+    false,
+);
+
+/// Calibration gain error on the base, seat and head accelerometers.
+pub const GAIN: Definition = sensor(
+    "sensor-gain",
+    || {
+        vec![
+            Param::new("gain_base", 0.7, 1.4, &[1.0], true),
+            Param::new("gain_seat", 0.7, 1.4, &[1.0], true),
+            Param::new("gain_head", 0.7, 1.4, &[1.0], true),
+        ]
+    },
+    always,
+    |v, p| {
+        v.base.gain *= p[0];
+        v.seat.gain *= p[1];
+        v.head.gain *= p[2];
+        Ok(())
+    },
+    false,
+);
+
+/// Mount resonance of the seat-pad accelerometer.
+pub const MOUNT_SEAT: Definition = sensor(
+    "sensor-mount-seat",
+    || mount_params(0.7, &[0.08]),
+    always,
+    |v, p| {
+        v.seat.mount = Some((p[0], p[1]));
+        Ok(())
+    },
+    false,
+);
+
+/// Mount resonance of the head accelerometer.
+pub const MOUNT_HEAD: Definition = sensor(
+    "sensor-mount-head",
+    || mount_params(0.7, &[0.08]),
+    has_head,
+    |v, p| {
+        v.head.mount = Some((p[0], p[1]));
+        Ok(())
+    },
+    false,
+);
+
+/// Dynamics of the base accelerometer (a mount resonance, or with high damping an anti-alias
+/// low-pass of another acquisition module): the measured base is the input, so it divides
+/// base→seat and base→head alike and leaves seat→head alone. Damping up to 1 and a heavily damped
+/// start: a base-channel low-pass is as likely as a resonant mount on a shaker table.
+pub const MOUNT_BASE: Definition = sensor(
+    "sensor-mount-base",
+    || mount_params(1.0, &[0.08, 0.6]),
+    always,
+    |v, p| {
+        v.base.mount = Some((p[0], p[1]));
+        Ok(())
+    },
+    false,
+);
+
+/// The seat-pan force plate's own response (E11/E13 and the ISO 5982 mass cancellation): a delay
+/// and a 4-pole low-pass of the load cells, and the top plate's uncancelled mass,
+/// AM_meas = l_f(f)·(AM + m_plate). Its gain is not a parameter: a force gain is the same as
+/// scaling every body mass, which the null re-fit already does.
+pub const FORCE: Definition = sensor(
+    "sensor-force",
+    || {
+        vec![
+            Param::new("delay_force_s", -0.05, 0.05, &[0.0], false),
+            Param::new("lowpass_force_hz", 10.0, 5000.0, &[150.0], true),
+            Param::new("m_plate_kg", -10.0, 40.0, &[0.0, 5.0], false),
+        ]
+    },
+    has_force,
+    |v, p| {
+        v.force.delay_s += p[0];
+        v.force.lowpass_hz = p[1];
+        v.force_mass_kg += p[2];
+        Ok(())
+    },
+    true,
+);
+
+/// Mount (load-cell) resonance of the seat-pan force plate.
+pub const MOUNT_FORCE: Definition = sensor(
+    "sensor-mount-force",
+    || mount_params(0.7, &[0.08]),
+    has_force,
+    |v, p| {
+        v.force.mount = Some((p[0], p[1]));
+        Ok(())
+    },
+    true,
+);

@@ -1,0 +1,64 @@
+//! Body softening (docs/gap.md §5): the occupant's resonance falls as the magnitude rises.
+
+use super::*;
+use crate::diagnosis::predict::MagnitudeSchedule;
+use crate::system::Law;
+
+/// Softening body link at the seat interface, the tanh law k·d_ref·tanh(d/d_ref): resonance falls
+/// as magnitude rises, within a run.
+pub const BODY_SOFTENING: Definition = Definition {
+    id: "body-softening",
+    family: Family::BodySoftening,
+    params: || {
+        vec![Param::new(
+            "d_ref_m",
+            2e-4,
+            0.05,
+            &[0.001, 0.004, 0.015],
+            true,
+        )]
+    },
+    applies_to: |s| interface_link(s).is_some(),
+    apply: |v, p| {
+        let s = &mut v.system;
+        let i = need(BODY_SOFTENING.id, interface_link(s), "body–seat interface")?;
+        s.links[i].law = Some(Law::Softening { d_ref: p[0] });
+        Ok(())
+    },
+    magnitude: Magnitude::Dependent {
+        at: Place::Body,
+        distortion_grows: true,
+    },
+    reads_force_only: false,
+};
+
+/// Body stiffness and damping scheduled with the run's magnitude (E1): linear within a run,
+/// softer between runs of different magnitude.
+pub const BODY_SOFTENING_MAGNITUDE: Definition = Definition {
+    id: "body-softening-magnitude",
+    family: Family::BodySoftening,
+    params: || {
+        vec![
+            Param::new("alpha_k", -0.3, 1.0, &[0.0, 0.3], false),
+            Param::new("alpha_c", -0.6, 1.0, &[0.0], false),
+        ]
+    },
+    applies_to: |s| {
+        s.links
+            .iter()
+            .any(|l| l.role == Role::Body && matches!(l.element, Element::KelvinVoigt { .. }))
+    },
+    apply: |v, p| {
+        v.schedule = Some(MagnitudeSchedule {
+            alpha_k: p[0],
+            alpha_c: p[1],
+            rms_ref: v.rms_ref,
+        });
+        Ok(())
+    },
+    magnitude: Magnitude::Dependent {
+        at: Place::Body,
+        distortion_grows: true,
+    },
+    reads_force_only: false,
+};

@@ -1,0 +1,112 @@
+//! Cushion stiffening (docs/gap.md §5): the foam stiffens with its deflection, in three forms so
+//! that the report names the form that fits better. Each acts on every Kelvin–Voigt cushion link
+//! (a segment model's foam under each contact, in both axes) with one relative law.
+
+use super::*;
+use crate::system::Law;
+
+/// A nonlinearity between base and seat whose distortion grows with magnitude.
+const SUPPORT_NONLINEAR: Magnitude = Magnitude::Dependent {
+    at: Place::Support,
+    distortion_grows: true,
+};
+
+/// Cubic stiffening, F = k d + k3 d³. k3 is stated for the first cushion link and scaled by each
+/// link's stiffness, so every link stiffens at the same deflection.
+pub const CUSHION_STIFFENING: Definition = Definition {
+    id: "cushion-stiffening",
+    family: Family::CushionStiffening,
+    params: || vec![Param::new("k3_n_m3", 1e6, 1e12, &[1e8, 3e9, 1e11], true)],
+    applies_to: |s| !cushion_links(s).is_empty(),
+    apply: |v, p| {
+        let s = &mut v.system;
+        let c = cushion_or_err(CUSHION_STIFFENING.id, s)?;
+        let k_first = s.links[c[0]].element.static_stiffness();
+        for i in c {
+            let k3 = p[0] * s.links[i].element.static_stiffness() / k_first;
+            s.links[i].law = Some(Law::Cubic { k3 });
+        }
+        Ok(())
+    },
+    magnitude: SUPPORT_NONLINEAR,
+    reads_force_only: false,
+};
+
+/// Quadratic contact stiffening, F = k d (1 + |d|/d0): the second stiffening form.
+pub const CUSHION_CONTACT: Definition = Definition {
+    id: "cushion-contact",
+    family: Family::CushionStiffening,
+    params: || vec![Param::new("d0_m", 1e-4, 1.0, &[0.002, 0.02, 0.2], true)],
+    applies_to: |s| !cushion_links(s).is_empty(),
+    apply: |v, p| {
+        let s = &mut v.system;
+        for i in cushion_or_err(CUSHION_CONTACT.id, s)? {
+            s.links[i].law = Some(Law::Contact { d0: p[0] });
+        }
+        Ok(())
+    },
+    magnitude: SUPPORT_NONLINEAR,
+    reads_force_only: false,
+};
+
+/// Bottoming of the cushion under the occupant's preload: a compression-only stop, a second layer
+/// of stiffness k_stop = ratio·k that touches `gap` (m) past the static sag (`Law::Bottoming`).
+/// Unlike the symmetric laws it stiffens on one side only, so its equivalent stiffness
+/// k + k_stop·P(compression > gap) grows with the run's r.m.s. and the pad motion turns asymmetric
+/// — the signature of foam loaded by the body's weight. One gap for every cushion link (they share
+/// the seat's deflection); each link's stop in proportion to its own stiffness.
+pub const CUSHION_BOTTOMING: Definition = Definition {
+    id: "cushion-bottoming",
+    family: Family::CushionStiffening,
+    // Gap from 0.1 mm (a layer touching at the sag) to 5 cm; the stop from a tenth of the
+    // cushion's stiffness to thirty times it. The starts bracket the cushion's r.m.s. deflection
+    // at 0.25–2 m/s² (about 1–5 mm on the reference seat).
+    params: || {
+        vec![
+            Param::new("gap_m", 1e-4, 0.05, &[0.001, 0.004], true),
+            Param::new("k_stop_over_k", 0.1, 30.0, &[1.0], true),
+        ]
+    },
+    applies_to: |s| !cushion_links(s).is_empty(),
+    apply: |v, p| {
+        let s = &mut v.system;
+        for i in cushion_or_err(CUSHION_BOTTOMING.id, s)? {
+            let k_stop = p[1] * s.links[i].element.static_stiffness();
+            s.links[i].law = Some(Law::Bottoming { gap: p[0], k_stop });
+        }
+        Ok(())
+    },
+    magnitude: SUPPORT_NONLINEAR,
+    reads_force_only: false,
+};
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::model::catalog;
+
+    #[test]
+    fn bottoming_puts_a_compression_stop_on_every_cushion_link() {
+        let s = catalog::resolve("reference").unwrap().system().clone();
+        let v = Candidate::CushionBottoming
+            .apply(&s, &[0.002, 1.5])
+            .unwrap();
+        let cushion = cushion_links(&s);
+        assert!(!cushion.is_empty());
+        for &i in &cushion {
+            let k = s.links[i].element.static_stiffness();
+            assert_eq!(
+                v.system.links[i].law,
+                Some(Law::Bottoming {
+                    gap: 0.002,
+                    k_stop: 1.5 * k
+                })
+            );
+        }
+        assert_eq!(
+            Candidate::CushionBottoming.family(),
+            Family::CushionStiffening
+        );
+        assert!(Candidate::CushionBottoming.amplitude_dependent());
+    }
+}
