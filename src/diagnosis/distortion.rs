@@ -32,10 +32,11 @@ pub const MIN_EXPONENT: f64 = 0.3;
 /// Least ratio of the highest to the lowest run magnitude for the comparison to mean anything.
 pub const MIN_MAGNITUDE_RATIO: f64 = 1.3;
 /// A body path rising with a distorting base→seat puts the nonlinearity in the occupant when its
-/// rise is at least this share of base→seat's and this many dB. Softening bodies on the truth
-/// bench give 0.35–1.0 of it; cushions there ≤ 0 (seat→head −0.1 to −6.5 dB while base→seat rose
-/// 3.6–16 dB); a bottoming layer in the independent blind generator (`tools/blind-gap`, impacts
-/// that also ring the body) 0.12–0.47 — the ranges overlap, and the share is set for the body.
+/// rise is at least this share of base→seat's and this many dB. A nonlinearity in the occupant
+/// distorts seat→head about as much as base→seat (measured share 0.35–1.0); one between base and
+/// seat leaves the body linear, so seat→head's incoherent share stays or falls (≤ 0: −0.1 to
+/// −6.5 dB while base→seat rose 3.6–16 dB), except where a bottoming foam's impacts ring the body
+/// (0.12–0.47). The ranges overlap; the share is set to keep the occupant's.
 pub const BODY_SHARE: (f64, f64) = (0.3, 1.5);
 /// Frequency range compared, Hz: the body and cushion modes and their low harmonics.
 pub const BAND_HZ: (f64, f64) = (1.0, 40.0);

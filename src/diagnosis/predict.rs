@@ -474,8 +474,8 @@ mod tests {
     #[test]
     fn linearisation_settles_on_its_fixed_point_for_steep_stops() {
         // A stop past a gap near the cushion's own σ_d with 3–30 × its stiffness: σ ↦ σ′ falls
-        // steeply with σ, and plain iteration alternated between two states (helper's finding on
-        // the blind suspension cases, k_eq/k 1.0 ↔ 4.9). The result must satisfy the fixed-point
+        // steeply with σ, and plain iteration alternates between two states (k_eq/k 1.0 ↔ 4.9 on
+        // a suspension with a steep stop). The result must satisfy the fixed-point
         // equation k_eq = k + k_stop·erfc(gap/(σ_d√2)) with σ_d of the linearised system itself.
         let base = crate::model::catalog::resolve("reference").unwrap();
         let system = base.system();

@@ -1,6 +1,6 @@
 //! The thresholds of the diagnosis's decisions (docs/gap.md §6 and §7), in one place.
 
-/// ΔBIC (held-out) an effect must reach against the null re-fit to be *detected* (gap.md §3.6:
+/// ΔBIC (held-out) an effect must reach against the null re-fit to be *detected* (docs/gap.md §6.3:
 /// "strong evidence", Kass & Raftery, JASA 90 (1995) 773–795).
 pub const ACCEPT_DELTA_BIC: f64 = -10.0;
 /// Reduced χ² of the null re-fit on the held-out run above which a structural gap is declared.
