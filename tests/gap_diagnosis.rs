@@ -3,6 +3,7 @@
 //! instead of refused, and bad input gives a clear error or warning. Runs come from the truth
 //! bench's case generator (`wbv::gap_bench::case`), which shares no code with the candidates.
 
+use wbv::analysis::faults::FaultKind;
 use wbv::diagnosis::measure::{Path, estimate, h1_sigma};
 use wbv::diagnosis::predict::{Variant, predict};
 use wbv::diagnosis::replay::replay;
@@ -37,7 +38,7 @@ fn replayed_h1_matches_the_analytic_frf_within_its_error_band() {
     let model = catalog::resolve("reference").unwrap();
     let base = case.check.require("a_base_z").unwrap();
     let sim = replay(model.system(), base, case.check.sample_rate_hz, "replay").unwrap();
-    let spec = estimate(&sim).unwrap();
+    let spec = estimate(&sim, &[]).unwrap();
     let pred = predict(&Variant::plain(model.system().clone()), &spec).unwrap();
     for (pe, pv) in spec.paths.iter().zip(&pred) {
         for (b, (&f, &h)) in spec.freq_hz.iter().zip(pv).enumerate() {
@@ -527,4 +528,123 @@ fn an_ac_coupled_seat_accelerometer_is_named_a_sensor_high_pass() {
         .find(|p| p.name == "highpass_seat_hz")
         .unwrap();
     assert!((seat.value / 0.8 - 1.0).abs() < 0.15, "{seat:?}");
+}
+
+/// `x` with a logger's faults planted independently of the detector: dropouts (the value at each
+/// start held for `hold` samples) and single-sample spikes of `spike` standard deviations.
+fn with_faults(
+    x: &[f64],
+    drop_at: &[usize],
+    hold: usize,
+    spikes_at: &[usize],
+    spike: f64,
+) -> Vec<f64> {
+    let mut y = x.to_vec();
+    for &a in drop_at {
+        let v = y[a];
+        for s in &mut y[a..a + hold] {
+            *s = v;
+        }
+    }
+    let sd = (x.iter().map(|v| v * v).sum::<f64>() / x.len() as f64).sqrt();
+    for &i in spikes_at {
+        y[i] += spike * sd;
+    }
+    y
+}
+
+#[test]
+fn logger_dropouts_and_a_spike_train_are_screened_out_before_the_fit() {
+    // A no-effect case whose seat and head channels come from a logger that drops out for 0.3 s a
+    // few times per run and adds a spike every 2.7 s. The faults are reported with their times,
+    // and the verdict is the clean data's.
+    let case = null_case();
+    let model = catalog::resolve("reference").unwrap();
+    let fs = case.check.sample_rate_hz;
+    let hold = (0.3 * fs) as usize;
+    // Run k of n samples: dropouts at a quarter, half and three quarters, spikes every 2.7 s
+    // where the logger is recording (none inside a dropout).
+    let plan = |n: usize, k: usize| {
+        let drops: Vec<usize> = (1..4).map(|j| (j * n) / 4 + 37 * k).collect();
+        let spikes: Vec<usize> = (1..)
+            .map(|j| j * (2.7 * fs) as usize + 11 * k)
+            .take_while(|&i| i < n)
+            .filter(|&i| drops.iter().all(|&a| i + 3 < a || i > a + hold + 3))
+            .collect();
+        (drops, spikes)
+    };
+    let plant = |s: &Signals, k: usize| {
+        let (drops, spikes) = plan(s.len(), k);
+        let s = with_channel(s, "a_seat_z", |x| {
+            with_faults(x, &drops, hold, &spikes, 20.0)
+        });
+        with_channel(&s, "a_head_z", |x| with_faults(x, &drops, hold, &[], 0.0))
+    };
+    let train: Vec<Signals> = case
+        .train
+        .iter()
+        .enumerate()
+        .map(|(k, s)| plant(s, k))
+        .collect();
+    let check = plant(&case.check, 7);
+    let clean = diagnose(&model, &case.train, &case.check).unwrap();
+    let d = diagnose(&model, &train, &check).unwrap();
+    assert_eq!(d.verdict, clean.verdict, "{}", d.verdict_text);
+    let runs = train.len() + 1;
+    let held = d
+        .data_faults
+        .iter()
+        .filter(|f| f.kind == FaultKind::Held)
+        .count();
+    assert_eq!(held, runs * 3 * 2, "{:#?}", d.data_faults);
+    let spikes = d
+        .data_faults
+        .iter()
+        .filter(|f| f.kind == FaultKind::Spike)
+        .count();
+    let planted: usize = case
+        .train
+        .iter()
+        .enumerate()
+        .chain([(7, &case.check)])
+        .map(|(k, s)| plan(s.len(), k).1.len())
+        .sum();
+    assert_eq!(spikes, planted, "{:#?}", d.data_faults);
+    // Each dropout is reported where it was made, to the sample.
+    let first = d
+        .data_faults
+        .iter()
+        .find(|f| f.kind == FaultKind::Held && f.channel == "a_seat_z")
+        .unwrap();
+    let n = case.train[0].len();
+    assert!(
+        (first.start_s - (n / 4) as f64 / fs).abs() < 1e-9,
+        "{first:?}"
+    );
+    assert!((first.duration_s - 0.3).abs() < 1.5 / fs, "{first:?}");
+    assert!(
+        d.warnings
+            .iter()
+            .any(|w| w.contains("held value") && w.contains("left out")),
+        "{:?}",
+        d.warnings
+    );
+    // A logger that drops out every few seconds leaves too few clean segments: refused, with the
+    // faults named.
+    let dead = |s: &Signals| {
+        let drops: Vec<usize> = (0..s.len() - fs as usize)
+            .step_by((3.0 * fs) as usize)
+            .skip(1)
+            .collect();
+        with_channel(s, "a_seat_z", |x| {
+            with_faults(x, &drops, (0.2 * fs) as usize, &[], 0.0)
+        })
+    };
+    let e = diagnose(&model, &case.train, &dead(&case.check))
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains("spectral segments clean") && e.contains("held value"),
+        "{e}"
+    );
 }

@@ -233,6 +233,7 @@ mod tests {
             head_psd: None,
             base_rms: rms,
             offset_notes: Vec::new(),
+            excluded: Vec::new(),
             paths: coh
                 .iter()
                 .map(|&(path, g)| PathEstimate {

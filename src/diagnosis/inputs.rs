@@ -566,7 +566,7 @@ mod tests {
             .collect();
         let sim = super::super::replay::replay(model.system(), &base, 256.0, "run.csv").unwrap();
         let s = scaled(&sim, fix).unwrap();
-        (model, super::super::measure::estimate(&s).unwrap())
+        (model, super::super::measure::estimate(&s, &[]).unwrap())
     }
 
     #[test]

@@ -43,7 +43,7 @@ pub(super) fn locate<'a>(
             sig.sample_rate_hz,
             "replay",
         )?;
-        let ss = measure::estimate(&sim)?;
+        let ss = measure::estimate(&sim, &spec.excluded)?;
         let pred: Vec<_> = spec
             .paths
             .iter()

@@ -7,6 +7,7 @@ use crate::analysis::spectrum::{Segment, Welch, WelchOptions};
 use crate::error::{Error, Result};
 use crate::signals::Signals;
 use num_complex::Complex64;
+use std::ops::Range;
 
 /// Finest frequency resolution of the diagnosis spectra in Hz: 4 s segments give ≥ 59 averages in
 /// 120 s (half-overlapped) and 2 bins in the 0.5 Hz one-third-octave band. Shorter runs trade
@@ -117,6 +118,8 @@ pub struct RunSpectra {
     pub offset_notes: Vec<String>,
     /// The path estimates available in this run.
     pub paths: Vec<PathEstimate>,
+    /// Sample ranges left out of every estimate (acquisition faults, [`super::screen`]).
+    pub excluded: Vec<Range<usize>>,
 }
 
 impl RunSpectra {
@@ -153,8 +156,9 @@ pub fn welch(fs: f64, duration_s: f64) -> Result<Welch> {
     )
 }
 
-/// Estimates every path the run has channels for.
-pub fn estimate(signals: &Signals) -> Result<RunSpectra> {
+/// Estimates every path the run has channels for, from the Welch segments that overlap none of
+/// the sample ranges `excluded`.
+pub fn estimate(signals: &Signals, excluded: &[Range<usize>]) -> Result<RunSpectra> {
     let fs = signals.sample_rate_hz;
     let duration_s = signals.len() as f64 / fs;
     if duration_s < MIN_DURATION_S {
@@ -182,7 +186,7 @@ pub fn estimate(signals: &Signals) -> Result<RunSpectra> {
     let seat = signals.require("a_seat_z")?;
     let mut w = welch(fs, duration_s)?;
     let (lo, hi) = analysed_range();
-    let all = w.cross(base, seat)?;
+    let all = w.cross_excluding(base, seat, excluded)?;
     let keep: Vec<usize> = (0..all.freq_hz.len())
         .filter(|&i| all.freq_hz[i] >= lo && all.freq_hz[i] <= hi)
         .collect();
@@ -196,7 +200,7 @@ pub fn estimate(signals: &Signals) -> Result<RunSpectra> {
         let (Some(xs), Some(ys)) = (signals.get(x), signals.get(y)) else {
             continue;
         };
-        let cs = w.cross(xs, ys)?;
+        let cs = w.cross_excluding(xs, ys, excluded)?;
         if path == Path::SeatHead {
             head_psd = Some(pick(&cs.gyy));
         }
@@ -244,6 +248,7 @@ pub fn estimate(signals: &Signals) -> Result<RunSpectra> {
         base_rms,
         offset_notes,
         paths,
+        excluded: excluded.to_vec(),
     })
 }
 

@@ -29,6 +29,7 @@ mod prepare;
 pub mod replay;
 pub mod report;
 pub mod score;
+mod screen;
 mod select;
 mod text;
 mod thresholds;
@@ -36,7 +37,8 @@ mod verdict;
 
 pub use candidate::separating_measurement;
 pub use outcome::{
-    BandCoverage, ChannelError, Diagnosis, Estimate, Ranked, RunSummary, Stage, VerdictId,
+    BandCoverage, ChannelError, DataFault, Diagnosis, Estimate, Ranked, RunSummary, Stage,
+    VerdictId,
 };
 
 pub use evidence::stage;
@@ -128,6 +130,7 @@ pub fn diagnose(model: &Model, train: &[Signals], check: &Signals) -> Result<Dia
         verdict_text: text::calibration(text, &channel_errors, decided == Verdict::None),
         separating_measurement: decided.separating().map(str::to_string),
         channel_errors,
+        data_faults: prepared.data_faults,
         named,
         bands: located.bands,
         warnings,

@@ -168,6 +168,10 @@ pub struct Diagnosis {
     /// `inputs::calibration`.
     #[serde(default)]
     pub channel_errors: Vec<ChannelError>,
+    /// Acquisition faults found before the fit (held values, clipping, spikes) and how each was
+    /// handled; see [`super::screen`].
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub data_faults: Vec<DataFault>,
     /// Per path, the one-third-octave bands judged (coherent on the check run) and those that
     /// could not be.
     pub bands: Vec<BandCoverage>,
@@ -230,6 +234,21 @@ pub struct BandCoverage {
     pub judged_hz: Vec<f64>,
     /// Band centres (Hz) that could not be judged (coherence < 0.8, or no bin at this resolution).
     pub not_judged_hz: Vec<f64>,
+}
+
+/// An acquisition fault found before the fit ([`super::screen`]).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct DataFault {
+    /// The run (its source).
+    pub run: String,
+    /// The channel.
+    pub channel: String,
+    /// Held value, clipping or spike.
+    pub kind: crate::analysis::faults::FaultKind,
+    /// Where it starts, s from the run's first sample.
+    pub start_s: f64,
+    /// How long it lasts, s.
+    pub duration_s: f64,
 }
 
 /// A calibration error of a channel found before the fit (see `inputs::calibration`): an inverted

@@ -6,6 +6,8 @@ use super::distortion::{self, Distortion};
 use super::inputs;
 use super::measure::{self, RunSpectra};
 use super::outcome::ChannelError;
+use super::outcome::DataFault;
+use super::screen::{self, Screened};
 use crate::error::Result;
 use crate::signals::Signals;
 use crate::system::System;
@@ -26,6 +28,8 @@ pub(super) struct Prepared<'a> {
     pub distortion: Option<Distortion>,
     /// Input problems that did not stop the diagnosis.
     pub warnings: Vec<String>,
+    /// Acquisition faults found and handled before the fit.
+    pub data_faults: Vec<DataFault>,
 }
 
 impl Prepared<'_> {
@@ -47,34 +51,38 @@ pub(super) fn prepare<'a>(
     train: &'a [Signals],
     check: &'a Signals,
 ) -> Result<Prepared<'a>> {
-    let mut tr: Vec<RunSpectra> = train.iter().map(measure::estimate).collect::<Result<_>>()?;
-    let mut ck = measure::estimate(check)?;
-    let mut warnings = Vec::new();
-    // Calibration first: an inverted channel or a unit slip is corrected in the samples, so that
-    // every later figure (paths, PSDs, ISO a_w) sees the corrected run.
-    let (fixes, channel_errors) = {
-        let all: Vec<&RunSpectra> = tr.iter().chain(std::iter::once(&ck)).collect();
-        inputs::calibration(system, &all, &mut warnings)
-    };
-    let mut signals = Vec::new();
-    for (i, (s, fix)) in train
+    let runs: Vec<&Signals> = train.iter().chain(std::iter::once(check)).collect();
+    // Acquisition faults first: spikes replaced, held and clipped stretches left out of every
+    // spectrum below.
+    let screened: Vec<Screened> = runs.iter().map(|s| screen::screen(s)).collect();
+    for (s, sc) in runs.iter().zip(&screened) {
+        screen::enough_left(sc, s)?;
+    }
+    let mut warnings: Vec<String> = screened.iter().flat_map(|sc| sc.notes()).collect();
+    let mut signals: Vec<Cow<'a, Signals>> = runs
         .iter()
-        .chain(std::iter::once(check))
-        .zip(&fixes)
-        .enumerate()
-    {
+        .zip(&screened)
+        .map(|(&s, sc)| sc.despiked.clone().map_or(Cow::Borrowed(s), Cow::Owned))
+        .collect();
+    let mut spectra: Vec<RunSpectra> = signals
+        .iter()
+        .zip(&screened)
+        .map(|(s, sc)| measure::estimate(s, &sc.excluded))
+        .collect::<Result<_>>()?;
+    // Calibration next: an inverted channel or a unit slip is corrected in the samples, so that
+    // every later figure (paths, PSDs, ISO a_w) sees the corrected run.
+    let (fixes, channel_errors) =
+        inputs::calibration(system, &spectra.iter().collect::<Vec<_>>(), &mut warnings);
+    for (i, fix) in fixes.iter().enumerate() {
         if fix.is_empty() {
-            signals.push(Cow::Borrowed(s));
             continue;
         }
-        let c = inputs::scaled(s, fix)?;
-        let e = measure::estimate(&c)?;
-        match tr.get_mut(i) {
-            Some(t) => *t = e,
-            None => ck = e,
-        }
-        signals.push(Cow::Owned(c));
+        let c = inputs::scaled(&signals[i], fix)?;
+        spectra[i] = measure::estimate(&c, &screened[i].excluded)?;
+        signals[i] = Cow::Owned(c);
     }
+    let mut ck = spectra.pop().expect("the check run");
+    let mut tr = spectra;
     inputs::keep_modelled(
         tr.iter_mut().chain(std::iter::once(&mut ck)),
         system,
@@ -129,5 +137,6 @@ pub(super) fn prepare<'a>(
         channel_errors,
         distortion,
         warnings,
+        data_faults: screened.into_iter().flat_map(|sc| sc.faults).collect(),
     })
 }

@@ -4,6 +4,7 @@
 use super::Welch;
 use crate::error::{Error, Result};
 use num_complex::Complex64;
+use std::ops::Range;
 
 /// Auto- and cross-spectral densities of a channel pair x → y (one-sided, per Hz).
 #[derive(Debug, Clone, PartialEq)]
@@ -70,8 +71,36 @@ impl CrossSpectra {
 }
 
 impl Welch {
+    /// Whether segment `s` overlaps none of the sample ranges `excluded`.
+    fn clean(&self, s: usize, excluded: &[Range<usize>]) -> bool {
+        let (start, end) = (s * self.step, s * self.step + self.n);
+        !excluded.iter().any(|r| r.start < end && start < r.end)
+    }
+
+    /// The number of segments of a record of `len` samples that overlap none of `excluded`, and
+    /// of all its segments.
+    pub fn clean_segments(&self, len: usize, excluded: &[Range<usize>]) -> Result<(usize, usize)> {
+        let total = self.segment_count(len)?;
+        Ok((
+            (0..total).filter(|&s| self.clean(s, excluded)).count(),
+            total,
+        ))
+    }
+
     /// Auto- and cross-spectral densities of the pair x → y (same length, same segments).
     pub fn cross(&mut self, x: &[f64], y: &[f64]) -> Result<CrossSpectra> {
+        self.cross_excluding(x, y, &[])
+    }
+
+    /// [`Welch::cross`] over the segments that overlap none of the sample ranges `excluded`
+    /// (stretches where an acquisition fault left no data, [`crate::analysis::faults`]): the
+    /// average of the clean segments is the same unbiased estimate with fewer averages.
+    pub fn cross_excluding(
+        &mut self,
+        x: &[f64],
+        y: &[f64],
+        excluded: &[Range<usize>],
+    ) -> Result<CrossSpectra> {
         if x.len() != y.len() {
             return Err(Error::parameter(
                 "cross spectrum",
@@ -82,12 +111,17 @@ impl Welch {
                 ),
             ));
         }
-        let count = self.segment_count(x.len())?;
+        let segments = self.segment_count(x.len())?;
         let m = self.n / 2 + 1;
         let (mut gxx, mut gyy, mut gxy) =
             (vec![0.0; m], vec![0.0; m], vec![Complex64::default(); m]);
-        for s in 0..count {
+        let mut count = 0;
+        for s in 0..segments {
             let start = s * self.step;
+            if !self.clean(s, excluded) {
+                continue;
+            }
+            count += 1;
             self.transform(&x[start..start + self.n], false);
             self.transform(&y[start..start + self.n], true);
             for k in 0..m {
@@ -96,6 +130,12 @@ impl Welch {
                 gyy[k] += b.norm_sqr();
                 gxy[k] += a.conj() * b;
             }
+        }
+        if count == 0 {
+            return Err(Error::parameter(
+                "cross spectrum",
+                format!("all {segments} segments overlap excluded samples; expected a clean one"),
+            ));
         }
         for k in 0..m {
             let c = self.one_sided_scale(k) / count as f64;

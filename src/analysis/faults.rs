@@ -1,0 +1,393 @@
+//! Acquisition faults in a sampled channel, found before any spectrum is taken: values a logger
+//! held (a dropout repeats the last sample), values held at the channel's extreme (clipping) and
+//! isolated spikes (a transmission or ADC error in one or two samples).
+//!
+//! A continuous vibration signal sampled by an ADC repeats a value exactly only by quantisation,
+//! with a probability p per sample pair that the channel itself shows (pairs of equal samples); a
+//! run of k equal samples then has probability ≈ p^(k−1) per start, so a run whose expected count
+//! over the record, N·p^(k−1), is below [`HELD_FALSE_ALARMS`] is a held value, not a coincidence.
+//! A spike is a sample whose distance from the median of its four neighbours is many times that
+//! distance's robust spread (1.4826 × its median absolute value, in blocks of
+//! [`SPREAD_BLOCK_S`]): a band-limited signal sampled above twice its bandwidth moves smoothly
+//! from sample to sample, so one or two samples far off their neighbours did not come from the
+//! transducer (Hampel identifier; Pearson, *Mining Imperfect Data*, 2005, §4.3).
+//!
+//! Time stamps off the uniform grid (a logger's gaps) are refused by the readers
+//! ([`crate::io::input`]), which name the sample.
+
+use std::ops::Range;
+
+/// Expected number of chance repeats, over the whole record, below which a run of equal samples
+/// is held rather than quantisation (a false alarm in one record of a hundred).
+pub const HELD_FALSE_ALARMS: f64 = 0.01;
+/// Fewest equal samples in a row that can be held: two equal samples are a quantisation step.
+pub const HELD_MIN: usize = 3;
+/// Distance from the neighbours' median, in robust standard deviations, above which a sample is a
+/// spike: ≈ 1e−22 for a Gaussian sample, so a clean record of any length has none.
+pub const SPIKE_SIGMAS: f64 = 12.0;
+/// How many times the largest neighbour difference 3–8 samples away a spike's must be: a real
+/// event (a shock, a ring) moves its neighbours too.
+pub const SPIKE_ALONE: f64 = 4.0;
+/// A spike stands this many times the signal's own r.m.s. (in its block) off its neighbours: far
+/// outside the local distribution of values, not only off the local curve (a law's kink in an
+/// oversampled acceleration is off the curve by a fraction of the r.m.s.).
+pub const SPIKE_LEVEL: f64 = 3.0;
+/// Share of a spike's height by which the lines through its two neighbours on either side must
+/// both miss it.
+pub const SPIKE_NEITHER_SIDE: f64 = 0.5;
+/// Most consecutive samples a spike spans: longer excursions have the shape of a real event.
+pub const SPIKE_MAX_SAMPLES: usize = 2;
+/// Length of the blocks in which the spread of the neighbour differences is estimated, s: short
+/// enough that a rough stretch of a road run gets its own scale, long enough for a stable median.
+pub const SPREAD_BLOCK_S: f64 = 1.0;
+
+/// What went wrong in a stretch of samples.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum FaultKind {
+    /// The same value repeated longer than quantisation explains (a logger dropout).
+    Held,
+    /// The channel's extreme value repeated (the transducer or the ADC at its range).
+    Clipped,
+    /// One or two samples far outside their neighbours.
+    Spike,
+}
+
+impl FaultKind {
+    /// Words for reports.
+    pub fn describe(self) -> &'static str {
+        match self {
+            FaultKind::Held => "held value (a dropout?)",
+            FaultKind::Clipped => "clipped at the channel's extreme",
+            FaultKind::Spike => "spike",
+        }
+    }
+}
+
+/// One faulty stretch of one channel.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Fault {
+    /// What it is.
+    pub kind: FaultKind,
+    /// The samples it covers.
+    pub samples: Range<usize>,
+}
+
+/// Every fault of channel `x`, in sample order.
+pub fn find(x: &[f64], fs: f64) -> Vec<Fault> {
+    let held = held(x);
+    let spikes = spikes(x, fs, &held);
+    let mut out = classify(x, held, &spikes);
+    out.extend(spikes);
+    out.sort_by_key(|f| f.samples.start);
+    out
+}
+
+/// Runs of equal samples too long for quantisation (see the module's statistics), before their
+/// kind is known.
+fn held(x: &[f64]) -> Vec<Range<usize>> {
+    let runs = equal_runs(x);
+    let count = |k: usize| runs.iter().filter(|r| r.len() == k).count() as f64;
+    let (c2, c3) = (count(2), count(3));
+    let n = x.len().max(2) as f64;
+    // Expected number of chance runs of ≥ k equal samples. With few repeats, from the pair
+    // probability p = c₂/N: N·p^(k−1). With many (a quantised, oversampled channel lingers at its
+    // turning points), from the geometric tail the run lengths themselves show, r = c₃/c₂:
+    // c₂·r^(k−2). Runs of exactly two and three are counted, so a few long held stretches do not
+    // inflate the estimate they are judged by.
+    let expected = |k: usize| {
+        if c2 >= 10.0 {
+            c2 * (c3 / c2).min(0.9).powi(k as i32 - 2)
+        } else {
+            n * (c2 / (n - 1.0)).powi(k as i32 - 1)
+        }
+    };
+    runs.into_iter()
+        .filter(|r| r.len() >= HELD_MIN && expected(r.len()) < HELD_FALSE_ALARMS)
+        .collect()
+}
+
+/// The kind of each held stretch: [`FaultKind::Clipped`] when it sits at the channel's extreme
+/// (outside spikes) or when its value recurs in three or more stretches (a converter's range is
+/// one level, reached again and again); otherwise [`FaultKind::Held`].
+fn classify(x: &[f64], held: Vec<Range<usize>>, spikes: &[Fault]) -> Vec<Fault> {
+    let in_spike = |i: usize| spikes.iter().any(|f| f.samples.contains(&i));
+    let (lo, hi) = (0..x.len())
+        .filter(|&i| !in_spike(i))
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), i| {
+            (lo.min(x[i]), hi.max(x[i]))
+        });
+    let runs = equal_runs(x);
+    let recurs = |v: f64| runs.iter().filter(|r| x[r.start] == v).count() >= 3;
+    held.iter()
+        .map(|r| {
+            let v = x[r.start];
+            let kind = if v == hi || v == lo || recurs(v) {
+                FaultKind::Clipped
+            } else {
+                FaultKind::Held
+            };
+            Fault {
+                kind,
+                samples: r.clone(),
+            }
+        })
+        .collect()
+}
+
+/// Maximal runs of ≥ 2 equal consecutive samples.
+fn equal_runs(x: &[f64]) -> Vec<Range<usize>> {
+    let mut out = Vec::new();
+    let mut start = 0;
+    for i in 1..=x.len() {
+        if i == x.len() || x[i] != x[start] {
+            if i - start >= 2 {
+                out.push(start..i);
+            }
+            start = i;
+        }
+    }
+    out
+}
+
+/// Isolated samples far from the median of their four neighbours (see the module's statistics),
+/// outside the held stretches `held` (whose zero differences say nothing of the spread).
+fn spikes(x: &[f64], fs: f64, held: &[Range<usize>]) -> Vec<Fault> {
+    let n = x.len();
+    if n < 5 {
+        return Vec::new();
+    }
+    let d: Vec<f64> = (0..n)
+        .map(|i| {
+            let mut nb: Vec<f64> = [i.wrapping_sub(2), i.wrapping_sub(1), i + 1, i + 2]
+                .into_iter()
+                .filter(|&j| j < n)
+                .map(|j| x[j])
+                .collect();
+            nb.sort_by(f64::total_cmp);
+            let m = nb.len();
+            let med = if m.is_multiple_of(2) {
+                0.5 * (nb[m / 2 - 1] + nb[m / 2])
+            } else {
+                nb[m / 2]
+            };
+            x[i] - med
+        })
+        .collect();
+    let spread = |v: &[f64]| {
+        let mut a: Vec<f64> = v.iter().map(|e| e.abs()).collect();
+        a.sort_by(f64::total_cmp);
+        1.4826 * a.get(a.len() / 2).copied().unwrap_or(0.0)
+    };
+    let global = spread(&d);
+    if global <= 0.0 {
+        return Vec::new();
+    }
+    let block = ((SPREAD_BLOCK_S * fs).round() as usize).max(64);
+    let scales: Vec<f64> = d
+        .chunks(block)
+        .map(|c| spread(c).max(0.1 * global))
+        .collect();
+    // Held stretches and the two samples either side (a dropout ends in a jump) say nothing.
+    let near_held = |i: usize| held.iter().any(|r| i + 2 >= r.start && i < r.end + 2);
+    // An event rings: the differences 3–8 samples away are as large. A spike stands alone.
+    let alone = |i: usize| {
+        let around = (i.saturating_sub(8)..i.saturating_sub(2))
+            .chain((i + 3..i + 9).filter(|&j| j < n))
+            .map(|j| d[j].abs())
+            .fold(0.0, f64::max);
+        d[i].abs() > SPIKE_ALONE * around
+    };
+    // The signal's own spread (r.m.s. about the block's mean) in each block.
+    let levels: Vec<f64> = x
+        .chunks(block)
+        .map(|c| {
+            let m = c.iter().sum::<f64>() / c.len() as f64;
+            (c.iter().map(|v| (v - m).powi(2)).sum::<f64>() / c.len() as f64).sqrt()
+        })
+        .collect();
+    let far = |i: usize| {
+        (2..n - 3).contains(&i)
+            && !near_held(i)
+            && d[i].abs() > SPIKE_SIGMAS * scales[i / block]
+            && d[i].abs() > SPIKE_LEVEL * levels[i / block]
+            && alone(i)
+    };
+    // A spike belongs to neither side: the lines through the two samples before it and through
+    // the two after it both miss it by about its height. A step (a law's kink, a shock's edge)
+    // lies on one of them.
+    let neither_side = |r: &Range<usize>| {
+        let (a, b) = (r.start, r.end);
+        r.clone().all(|i| {
+            let left = x[a - 1] + (x[a - 1] - x[a - 2]) * (i + 1 - a) as f64;
+            let right = x[b] + (x[b] - x[b + 1]) * (b - i) as f64;
+            (x[i] - left).abs().min((x[i] - right).abs()) > SPIKE_NEITHER_SIDE * d[i].abs()
+        })
+    };
+    let mut out = Vec::new();
+    let mut i = 0;
+    while i < n {
+        if far(i) {
+            let start = i;
+            while i < n && far(i) {
+                i += 1;
+            }
+            if i - start <= SPIKE_MAX_SAMPLES && neither_side(&(start..i)) {
+                out.push(Fault {
+                    kind: FaultKind::Spike,
+                    samples: start..i,
+                });
+            }
+        } else {
+            i += 1;
+        }
+    }
+    out
+}
+
+/// `x` with every spike in `faults` replaced by the line between the samples on either side: a
+/// spike is one or two wrong samples whose true values the smooth band-limited signal around them
+/// predicts.
+pub fn despiked(x: &[f64], faults: &[Fault]) -> Vec<f64> {
+    let mut y = x.to_vec();
+    for f in faults.iter().filter(|f| f.kind == FaultKind::Spike) {
+        let (a, b) = (f.samples.start, f.samples.end);
+        let left = a.checked_sub(1).map(|j| x[j]);
+        let right = x.get(b).copied();
+        for (k, v) in y[a..b].iter_mut().enumerate() {
+            *v = match (left, right) {
+                (Some(l), Some(r)) => l + (r - l) * (k + 1) as f64 / (b - a + 1) as f64,
+                (Some(l), None) => l,
+                (None, Some(r)) => r,
+                (None, None) => 0.0,
+            };
+        }
+    }
+    y
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use rand::{RngExt, SeedableRng};
+    use rand_chacha::ChaCha8Rng;
+    use rand_distr::{Distribution, StandardNormal};
+
+    /// Band-limited random vibration: white noise through a 2-pole resonance at `f_hz`.
+    fn vibration(n: usize, fs: f64, f_hz: f64, seed: u64) -> Vec<f64> {
+        let mut rng = ChaCha8Rng::seed_from_u64(seed);
+        let w = 2.0 * std::f64::consts::PI * f_hz / fs;
+        let r: f64 = 0.97;
+        let (a1, a2) = (2.0 * r * w.cos(), -r * r);
+        let (mut y1, mut y2) = (0.0, 0.0);
+        (0..n)
+            .map(|_| {
+                let e: f64 = StandardNormal.sample(&mut rng);
+                let y = a1 * y1 + a2 * y2 + e;
+                (y2, y1) = (y1, y);
+                y
+            })
+            .collect()
+    }
+
+    /// Rounded to a 16-bit converter's step over ±`range`.
+    fn quantised(x: &[f64], range: f64) -> Vec<f64> {
+        let q = 2.0 * range / 65536.0;
+        x.iter().map(|v| (v / q).round() * q).collect()
+    }
+
+    #[test]
+    fn clean_records_have_no_fault() {
+        // Float samples, and a 16-bit converter at a low level (many exact repeats).
+        for (seed, fs, f) in [
+            (1, 500.0, 5.0),
+            (2, 200.0, 30.0),
+            (3, 2000.0, 8.0),
+            (4, 2000.0, 1.0),
+        ] {
+            let x = vibration(300 * fs as usize, fs, f, seed);
+            assert_eq!(find(&x, fs), vec![], "float, seed {seed}");
+            let peak = x.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+            let q = quantised(&x, 40.0 * peak);
+            assert_eq!(find(&q, fs), vec![], "16 bit, seed {seed}");
+            // Printed with three decimals of its peak: an oversampled channel lingers on one
+            // printed value at every turning point.
+            let printed = quantised(&x, 32.768 * peak);
+            assert_eq!(find(&printed, fs), vec![], "printed, seed {seed}");
+        }
+    }
+
+    #[test]
+    fn a_dropout_a_spike_train_and_clipping_are_found_where_they_were_made() {
+        let fs = 500.0;
+        let mut x = vibration(120 * 500, fs, 6.0, 9);
+        // A dropout: 0.2 s of the value at 40 s held.
+        for i in 20_001..20_100 {
+            x[i] = x[20_000];
+        }
+        // Spikes of 15 standard deviations every 7.3 s.
+        let sd = (x.iter().map(|v| v * v).sum::<f64>() / x.len() as f64).sqrt();
+        let mut rng = ChaCha8Rng::seed_from_u64(4);
+        let at: Vec<usize> = (1..13)
+            .map(|k| k * 3650 + rng.random_range(0..50))
+            .collect();
+        for &i in &at {
+            x[i] += 15.0 * sd;
+        }
+        // Clipping past 2 standard deviations after 100 s.
+        for v in &mut x[50_000..] {
+            *v = v.clamp(-2.0 * sd, 2.0 * sd);
+        }
+        let f = find(&x, fs);
+        let held: Vec<_> = f.iter().filter(|f| f.kind == FaultKind::Held).collect();
+        assert_eq!(held.len(), 1, "{f:?}");
+        assert_eq!(held[0].samples, 20_000..20_100);
+        let spikes: Vec<&Range<usize>> = f
+            .iter()
+            .filter(|f| f.kind == FaultKind::Spike)
+            .map(|f| &f.samples)
+            .collect();
+        assert_eq!(spikes.len(), at.len(), "{f:?}");
+        for (r, &i) in spikes.iter().zip(&at) {
+            assert!(r.contains(&i), "spike at {i} found as {r:?}");
+        }
+        assert!(f.iter().any(|f| f.kind == FaultKind::Clipped));
+        assert!(
+            f.iter()
+                .all(|f| f.kind != FaultKind::Clipped || f.samples.start >= 50_000)
+        );
+        // Despiking puts each spike back near its neighbours.
+        let y = despiked(&x, &f);
+        for &i in &at {
+            assert!((y[i] - 0.5 * (y[i - 1] + y[i + 1])).abs() < 3.0 * sd);
+        }
+    }
+
+    #[test]
+    fn a_step_and_the_record_s_first_samples_are_not_spikes() {
+        // A jump of 30 standard deviations that stays (a law's kink in an acceleration), and a
+        // record that starts from rest with a jump at its first step.
+        let fs = 2000.0;
+        let mut x = vibration(60 * 2000, fs, 3.0, 6);
+        let sd = (x.iter().map(|v| v * v).sum::<f64>() / x.len() as f64).sqrt();
+        for v in &mut x[40_000..] {
+            *v += 30.0 * sd;
+        }
+        x[0] = 0.0;
+        x[1] = 20.0 * sd;
+        assert!(find(&x, fs).iter().all(|f| f.kind != FaultKind::Spike));
+    }
+
+    #[test]
+    fn a_shock_that_spans_several_samples_is_not_a_spike() {
+        // A decaying 20 Hz ring of 30 standard deviations sampled at 500 Hz: an event.
+        let fs = 500.0;
+        let mut x = vibration(60 * 500, fs, 6.0, 5);
+        for k in 0..200 {
+            let t = k as f64 / fs;
+            x[10_000 + k] +=
+                30.0 * (-t * 15.0).exp() * (2.0 * std::f64::consts::PI * 20.0 * t).sin() * 5.0;
+        }
+        assert!(find(&x, fs).iter().all(|f| f.kind != FaultKind::Spike));
+    }
+}
