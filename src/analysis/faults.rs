@@ -245,6 +245,45 @@ fn spikes(x: &[f64], fs: f64, held: &[Range<usize>]) -> Vec<Fault> {
     out
 }
 
+/// One sentence for the stretches `(start_s, duration_s)` of one kind of fault on `channel`: how
+/// many, what, and where (the first six).
+pub fn summary(channel: &str, kind: FaultKind, stretches: &[(f64, f64)]) -> String {
+    let times: Vec<String> = stretches
+        .iter()
+        .take(6)
+        .map(|&(t, d)| match kind {
+            FaultKind::Spike => format!("{t:.3} s"),
+            _ => format!("{t:.3}–{:.3} s", t + d),
+        })
+        .collect();
+    let more = match stretches.len().saturating_sub(6) {
+        0 => String::new(),
+        m => format!(" and {m} more"),
+    };
+    format!(
+        "{channel}: {} × {} at {}{more}",
+        stretches.len(),
+        kind.describe(),
+        times.join(", ")
+    )
+}
+
+/// The [`summary`] of every kind of fault found in channel `x` sampled at `fs`.
+pub fn summaries(channel: &str, x: &[f64], fs: f64) -> Vec<String> {
+    let found = find(x, fs);
+    [FaultKind::Held, FaultKind::Clipped, FaultKind::Spike]
+        .into_iter()
+        .filter_map(|kind| {
+            let st: Vec<(f64, f64)> = found
+                .iter()
+                .filter(|f| f.kind == kind)
+                .map(|f| (f.samples.start as f64 / fs, f.samples.len() as f64 / fs))
+                .collect();
+            (!st.is_empty()).then(|| summary(channel, kind, &st))
+        })
+        .collect()
+}
+
 /// `x` with every spike in `faults` replaced by the line between the samples on either side: a
 /// spike is one or two wrong samples whose true values the smooth band-limited signal around them
 /// predicts.

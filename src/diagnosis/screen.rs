@@ -33,46 +33,29 @@ pub(super) struct Screened {
 }
 
 impl Screened {
-    /// One sentence per channel and kind, for the report's warnings.
+    /// One sentence per run, channel and kind, for the report's warnings.
     pub fn notes(&self) -> Vec<String> {
-        let mut out: Vec<String> = Vec::new();
-        let mut groups: Vec<(&str, &str, FaultKind, Vec<&DataFault>)> = Vec::new();
+        let mut groups: Vec<(&str, &str, FaultKind, Vec<(f64, f64)>)> = Vec::new();
         for f in &self.faults {
+            let st = (f.start_s, f.duration_s);
             match groups
                 .iter_mut()
                 .find(|g| g.0 == f.run && g.1 == f.channel && g.2 == f.kind)
             {
-                Some(g) => g.3.push(f),
-                None => groups.push((&f.run, &f.channel, f.kind, vec![f])),
+                Some(g) => g.3.push(st),
+                None => groups.push((&f.run, &f.channel, f.kind, vec![st])),
             }
         }
-        for (run, channel, kind, fs) in groups {
-            let times: Vec<String> = fs
-                .iter()
-                .take(6)
-                .map(|f| match kind {
-                    FaultKind::Spike => format!("{:.3} s", f.start_s),
-                    _ => format!("{:.3}–{:.3} s", f.start_s, f.start_s + f.duration_s),
-                })
-                .collect();
-            let more = fs.len().saturating_sub(6);
-            let action = match kind {
-                FaultKind::Spike => "replaced by the line between their neighbours",
-                _ => "the spectral segments over them left out",
-            };
-            out.push(format!(
-                "{run}: {channel}: {} × {} at {}{}; {action}",
-                fs.len(),
-                kind.describe(),
-                times.join(", "),
-                if more > 0 {
-                    format!(" and {more} more")
-                } else {
-                    String::new()
-                }
-            ));
-        }
-        out
+        groups
+            .into_iter()
+            .map(|(run, channel, kind, st)| {
+                let action = match kind {
+                    FaultKind::Spike => "replaced by the line between their neighbours",
+                    _ => "the spectral segments over them left out",
+                };
+                format!("{run}: {}; {action}", faults::summary(channel, kind, &st))
+            })
+            .collect()
     }
 }
 

@@ -162,7 +162,20 @@ impl Report {
             opts,
         )?;
         builder.push(&signals.data.iter().map(Vec::as_slice).collect::<Vec<_>>())?;
-        builder.finish()
+        let mut report = builder.finish()?;
+        // Acquisition faults in the analysed channels (a logger's dropouts, clipping, spikes):
+        // the figures include them, the reader is told where they are.
+        for c in &report.channels {
+            if let Some(x) = signals.get(&c.name) {
+                let found = crate::analysis::faults::summaries(&c.name, x, signals.sample_rate_hz);
+                report.warnings.extend(found.into_iter().map(|w| {
+                    format!(
+                        "{w}: the figures include them; cut or repair the record to leave them out"
+                    )
+                }));
+            }
+        }
+        Ok(report)
     }
 }
 
