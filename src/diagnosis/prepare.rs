@@ -54,15 +54,15 @@ pub(super) fn prepare<'a>(
     let runs: Vec<&Signals> = train.iter().chain(std::iter::once(check)).collect();
     // Acquisition faults first: spikes replaced, held and clipped stretches left out of every
     // spectrum below.
-    let screened: Vec<Screened> = runs.iter().map(|s| screen::screen(s)).collect();
-    for (s, sc) in runs.iter().zip(&screened) {
-        screen::enough_left(sc, s)?;
-    }
-    let mut warnings: Vec<String> = screened.iter().flat_map(|sc| sc.notes()).collect();
+    let mut screened: Vec<Screened> = runs
+        .iter()
+        .map(|s| screen::screen(s))
+        .collect::<Result<_>>()?;
+    let mut warnings: Vec<String> = screened.iter().flat_map(|sc| sc.notes.clone()).collect();
     let mut signals: Vec<Cow<'a, Signals>> = runs
         .iter()
-        .zip(&screened)
-        .map(|(&s, sc)| sc.despiked.clone().map_or(Cow::Borrowed(s), Cow::Owned))
+        .zip(&mut screened)
+        .map(|(&s, sc)| sc.repaired.take().map_or(Cow::Borrowed(s), Cow::Owned))
         .collect();
     let mut spectra: Vec<RunSpectra> = signals
         .iter()

@@ -24,19 +24,24 @@ pub const MIN_CLEAN_SEGMENTS: usize = 12;
 
 /// What screening found in one run.
 pub(super) struct Screened {
-    /// The run with its spikes replaced, when it had any.
-    pub despiked: Option<Signals>,
+    /// The run with its spikes replaced and the channels too damaged to use left out, when it
+    /// needed either.
+    pub repaired: Option<Signals>,
     /// Sample ranges of held and clipped stretches, to leave out of the spectra.
     pub excluded: Vec<Range<usize>>,
     /// Every fault, with its channel and times.
     pub faults: Vec<DataFault>,
+    /// One sentence per channel and kind, and per channel left out, for the report's warnings.
+    pub notes: Vec<String>,
 }
 
 impl Screened {
-    /// One sentence per run, channel and kind, for the report's warnings.
-    pub fn notes(&self) -> Vec<String> {
-        let mut groups: Vec<(&str, &str, FaultKind, Vec<(f64, f64)>)> = Vec::new();
-        for f in &self.faults {
+    /// One sentence per run, channel and kind of `faults`.
+    fn notes_of(faults: &[DataFault]) -> Vec<String> {
+        // (run, channel, kind) and the (start, duration) of each stretch.
+        type Group<'a> = (&'a str, &'a str, FaultKind, Vec<(f64, f64)>);
+        let mut groups: Vec<Group> = Vec::new();
+        for f in faults {
             let st = (f.start_s, f.duration_s);
             match groups
                 .iter_mut()
@@ -59,8 +64,12 @@ impl Screened {
     }
 }
 
-/// Screens the diagnosed channels of `s` for acquisition faults.
-pub(super) fn screen(s: &Signals) -> Screened {
+/// Screens the diagnosed channels of `s` for acquisition faults: spikes replaced, held and clipped
+/// stretches to be left out. When they leave fewer than [`MIN_CLEAN_SEGMENTS`] clean segments, the
+/// optional channels (head, seat-pan force) whose own faults leave out the most are dropped from
+/// this run first (their paths then leave every run, with a warning); a run whose base or seat
+/// channel alone leaves too few is refused with its faults named.
+pub(super) fn screen(s: &Signals) -> Result<Screened> {
     let fs = s.sample_rate_hz;
     let mut found: Vec<(usize, Vec<Fault>)> = Vec::new();
     for name in CHANNELS {
@@ -71,24 +80,7 @@ pub(super) fn screen(s: &Signals) -> Screened {
             }
         }
     }
-    let mut despiked = None;
-    if found
-        .iter()
-        .any(|(_, f)| f.iter().any(|f| f.kind == FaultKind::Spike))
-    {
-        let mut c = s.clone();
-        for (i, f) in &found {
-            c.data[*i] = faults::despiked(&s.data[*i], f);
-        }
-        despiked = Some(c);
-    }
-    let excluded = found
-        .iter()
-        .flat_map(|(_, f)| f.iter())
-        .filter(|f| f.kind != FaultKind::Spike)
-        .map(|f| f.samples.clone())
-        .collect();
-    let faults = found
+    let faults: Vec<DataFault> = found
         .iter()
         .flat_map(|(i, f)| {
             f.iter().map(move |f| DataFault {
@@ -100,29 +92,72 @@ pub(super) fn screen(s: &Signals) -> Screened {
             })
         })
         .collect();
-    Screened {
-        despiked,
-        excluded,
-        faults,
+    let gaps = |f: &[Fault]| -> Vec<Range<usize>> {
+        f.iter()
+            .filter(|f| f.kind != FaultKind::Spike)
+            .map(|f| f.samples.clone())
+            .collect()
+    };
+    let w = measure::welch(fs, s.len() as f64 / fs)?;
+    let clean = |found: &[(usize, Vec<Fault>)]| -> Result<(usize, usize)> {
+        let all: Vec<Range<usize>> = found.iter().flat_map(|(_, f)| gaps(f)).collect();
+        w.clean_segments(s.len(), &all)
+    };
+    let mut dropped: Vec<String> = Vec::new();
+    let mut left = clean(&found)?;
+    while left.0 < MIN_CLEAN_SEGMENTS {
+        let optional = |i: usize| matches!(s.names[i].as_str(), "a_head_z" | "f_seat_z");
+        let worst = found
+            .iter()
+            .enumerate()
+            .filter(|(_, (i, f))| optional(*i) && !gaps(f).is_empty())
+            .max_by_key(|(_, (_, f))| gaps(f).iter().map(|r| r.len()).sum::<usize>())
+            .map(|(k, _)| k);
+        let Some(k) = worst else {
+            let notes = Screened::notes_of(&faults);
+            return Err(Error::data(
+                &s.source,
+                None,
+                format!(
+                    "acquisition faults leave {} of {} spectral segments clean; the diagnosis needs at least {MIN_CLEAN_SEGMENTS} ({})",
+                    left.0,
+                    left.1,
+                    notes.join("; ")
+                ),
+            ));
+        };
+        let (i, _) = found.remove(k);
+        dropped.push(s.names[i].clone());
+        left = clean(&found)?;
     }
-}
-
-/// Refuses a run whose faults leave fewer than [`MIN_CLEAN_SEGMENTS`] of its Welch segments clean.
-pub(super) fn enough_left(sc: &Screened, s: &Signals) -> Result<()> {
-    if sc.excluded.is_empty() {
-        return Ok(());
-    }
-    let w = measure::welch(s.sample_rate_hz, s.len() as f64 / s.sample_rate_hz)?;
-    let (kept, total) = w.clean_segments(s.len(), &sc.excluded)?;
-    if kept >= MIN_CLEAN_SEGMENTS {
-        return Ok(());
-    }
-    Err(Error::data(
-        &s.source,
-        None,
+    let spikes = found
+        .iter()
+        .any(|(_, f)| f.iter().any(|f| f.kind == FaultKind::Spike));
+    let repaired = (spikes || !dropped.is_empty()).then(|| {
+        let mut c = Signals::new(fs, s.source.clone());
+        for (i, (name, x)) in s.names.iter().zip(&s.data).enumerate() {
+            if dropped.contains(name) {
+                continue;
+            }
+            let x = match found.iter().find(|(j, _)| *j == i) {
+                Some((_, f)) => faults::despiked(x, f),
+                None => x.clone(),
+            };
+            c.push(name.clone(), x).expect("same length");
+        }
+        c
+    });
+    let mut notes = Screened::notes_of(&faults);
+    notes.extend(dropped.iter().map(|c| {
         format!(
-            "acquisition faults leave {kept} of {total} spectral segments clean; the diagnosis needs at least {MIN_CLEAN_SEGMENTS} ({})",
-            sc.notes().join("; ")
-        ),
-    ))
+            "{}: {c} left out of this run: its faults leave too few clean spectral segments",
+            s.source
+        )
+    }));
+    Ok(Screened {
+        repaired,
+        excluded: found.iter().flat_map(|(_, f)| gaps(f)).collect(),
+        faults,
+        notes,
+    })
 }

@@ -120,7 +120,7 @@ pub fn summary(scores: &[CaseScore], seed: u64, wall_s: f64) -> Summary {
         }
     }
     type Pred = Box<dyn Fn(&CaseScore) -> bool>;
-    let nuisances: Vec<(String, Pred)> = vec![
+    let mut nuisances: Vec<(String, Pred)> = vec![
         (
             "spectrum white".into(),
             Box::new(|s: &CaseScore| s.label.nuisance.spectrum == "white"),
@@ -182,6 +182,12 @@ pub fn summary(scores: &[CaseScore], seed: u64, wall_s: f64) -> Summary {
             Box::new(|s: &CaseScore| s.label.effects.len() > 1),
         ),
     ];
+    for f in crate::gap_bench::case::logger::FAULTS {
+        nuisances.push((
+            format!("logger {f}"),
+            Box::new(move |s: &CaseScore| s.label.nuisance.logger_fault == Some(f)),
+        ));
+    }
     for (k, p) in &nuisances {
         let c: Vec<&CaseScore> = effect.iter().copied().filter(|s| p(s)).collect();
         if !c.is_empty() {

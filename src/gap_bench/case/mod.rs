@@ -11,6 +11,7 @@ use detect::detectability;
 
 mod acquire;
 mod detect;
+pub mod logger;
 use crate::analysis::spectrum::{Segment, Welch, WelchOptions};
 use crate::error::Result;
 use crate::excitation::{ExcitationSpec, Kind};
@@ -63,6 +64,8 @@ pub struct Nuisance {
     pub mass_error_percent: f64,
     /// Base r.m.s. of the runs (train, train, check), m/s².
     pub rms: [f64; 3],
+    /// A logger fault planted on the measured runs ([`logger::FAULTS`]), if any.
+    pub logger_fault: Option<&'static str>,
 }
 
 /// The sealed label of a case.
@@ -337,6 +340,10 @@ pub fn make_case_with(index: usize, seed: u64, o: &CaseOptions) -> Result<Case> 
             &runs[1],
         )?
     };
+    // The logger's faults after the detectability, which is the effect's and not the logger's.
+    runs.push(check);
+    let logger_fault = logger::plant(cseed, &mut runs)?;
+    let check = runs.pop().expect("three runs");
     Ok(Case {
         train: runs,
         check,
@@ -350,6 +357,7 @@ pub fn make_case_with(index: usize, seed: u64, o: &CaseOptions) -> Result<Case> 
                 force,
                 mass_error_percent: mass_error,
                 rms,
+                logger_fault,
             },
             detectability: detect,
         },
