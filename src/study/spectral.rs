@@ -62,12 +62,14 @@ pub struct SpectralIso {
     seat: usize,
     base: usize,
     indices: Vec<usize>,
+    /// Simpson factors (Hz) of the band nodes (the first `band.len()` nodes; lines follow).
+    band: Vec<f64>,
 }
 
 /// Quadrature nodes (Hz) and weights (Hz · (m/s²)²/Hz, i.e. (m/s²)²) of the excitation's
 /// spectrum: Simpson over its band in ln f, then one node per line with weight A²/2.
-fn quadrature(excitation: &ExcitationSpec, nodes: usize) -> (Vec<f64>, Vec<f64>) {
-    let (mut f, mut w) = (Vec::new(), Vec::new());
+fn quadrature(excitation: &ExcitationSpec, nodes: usize) -> (Vec<f64>, Vec<f64>, Vec<f64>) {
+    let (mut f, mut w, mut q) = (Vec::new(), Vec::new(), Vec::new());
     if let Some([lo, hi]) = excitation.band_hz().filter(|_| excitation.is_random()) {
         let lo = lo.max(LOWEST_HZ);
         let n = (nodes.max(3) - 1) & !1; // even number of intervals
@@ -83,6 +85,7 @@ fn quadrature(excitation: &ExcitationSpec, nodes: usize) -> (Vec<f64>, Vec<f64>)
             };
             f.push(fi);
             // ∫ g(f) df = ∫ g(e^u) e^u du.
+            q.push(c * du / 3.0 * fi);
             w.push(c * du / 3.0 * fi * excitation.psd(fi));
         }
     }
@@ -90,7 +93,7 @@ fn quadrature(excitation: &ExcitationSpec, nodes: usize) -> (Vec<f64>, Vec<f64>)
         f.push(fk);
         w.push(a * a / 2.0);
     }
-    (f, w)
+    (f, w, q)
 }
 
 impl SpectralIso {
@@ -110,7 +113,7 @@ impl SpectralIso {
                 "the model is nonlinear; its ISO figures need the time-domain path",
             ));
         }
-        let (freq_hz, w) = quadrature(excitation, nodes);
+        let (freq_hz, w, band) = quadrature(excitation, nodes);
         if freq_hz.is_empty() {
             return Err(Error::parameter(
                 "excitation",
@@ -167,7 +170,33 @@ impl SpectralIso {
             seat,
             base,
             indices,
+            band,
         })
+    }
+
+    /// Relative standard error of a_w(seat) measured on a `duration_s` run of the stationary
+    /// response: the scatter of a time-domain figure about the spectral one that comes from
+    /// sampling a random input for a finite time. For a Gaussian response of one-sided weighted
+    /// PSD G_w the mean-square estimate over T has variance (1/T)·∫G_w² df (Bendat & Piersol,
+    /// *Random Data*, 4th ed., §8.2: random error ε = 1/√(B_e·T), statistical bandwidth
+    /// B_e = (∫G_w df)²/∫G_w² df); steady lines add none. a_w = √(mean square) halves it:
+    /// `ε(a_w) = √(∫G_w² df / T) / (2·a_w²)`. A lightly damped seat (narrow B_e) scatters most.
+    pub fn seat_scatter(&self, model: &Model, duration_s: f64) -> Result<f64> {
+        let mut ev = self.evaluator(model)?;
+        let mut h = vec![Complex64::default(); self.freq_hz.len()];
+        let index = [self.channels[self.seat].index];
+        ev.eval_channels(model.system(), &index, &mut h)?;
+        let w = &self.channels[self.seat].weights;
+        let ms: f64 = h.iter().zip(w).map(|(h, w)| h.norm_sqr() * w).sum();
+        // ∫ G_w² df = Σ q_j·(G_w(f_j))², G_w(f_j) = w_j·|H_j|²/q_j.
+        let g2: f64 = self
+            .band
+            .iter()
+            .zip(h.iter().zip(w))
+            .filter(|(q, _)| **q > 0.0)
+            .map(|(q, (h, w))| (h.norm_sqr() * w).powi(2) / q)
+            .sum();
+        Ok((g2.abs() / duration_s).sqrt() / (2.0 * ms))
     }
 
     /// Quadrature nodes in Hz (band nodes, then the lines).
