@@ -42,6 +42,7 @@ pub enum Scope {
 }
 
 /// The running figures of one acceleration channel.
+#[derive(Clone)]
 pub(super) struct ChannelAnalyzer {
     /// Column of the channel in the builder's input.
     pub(super) column: usize,

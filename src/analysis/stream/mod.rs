@@ -17,7 +17,10 @@ pub(crate) use channel::weighting_for;
 pub use channel::{Scope, parse_name};
 pub use observer::AnalysisObserver;
 
-/// Builds a [`Report`] from signals delivered in blocks.
+/// Builds a [`Report`] from signals delivered in blocks. A clone of a builder that has received
+/// nothing is a fresh builder for the same channels, rate and options, without designing the
+/// weighting filters and planning the FFT again (a study analysing many runs clones one).
+#[derive(Clone)]
 pub struct ReportBuilder {
     source: String,
     fs: f64,
@@ -105,6 +108,11 @@ impl ReportBuilder {
             channels,
             received: 0,
         })
+    }
+
+    /// Names the run `source` in errors and in the report (for a clone of a template builder).
+    pub fn set_source(&mut self, source: &str) {
+        self.source = source.to_string();
     }
 
     /// Appends the next block: one slice per name given to [`ReportBuilder::new`], equal lengths.
