@@ -9,10 +9,11 @@
 //!   ([`super::spectral::SpectralIso`]); a_v (eq. 10), SEAT (ISO 10326-1 10.2.2) and the comfort
 //!   class (Annex C) follow. VDV, MTVV and the crest factor depend on the time history, not on the
 //!   PSD, so this path leaves them out.
+//!   A recorded base is taken as stationary: G is the Welch estimate of its samples.
 //! - [`Path::TimeDomain`]: every point simulated and analysed while it runs, many points stepped
 //!   together over one shared excitation ([`super::batch::BatchIso`]): for nonlinear models,
-//!   non-stationary inputs (a sweep), a recorded base, or when asked for (`--time-domain`), which
-//!   also gives VDV, MTVV and the crest factor.
+//!   non-stationary inputs (a sweep), or when asked for (`--time-domain`), which also gives VDV,
+//!   MTVV and the crest factor.
 
 use crate::excitation::{ExcitationSpec, Kind};
 use crate::model::Model;
@@ -27,6 +28,9 @@ pub enum SpectralReason {
     /// Linear model; a steady sine (periodic: its figures are the steady state's, the fade-in is
     /// left out as a start-up, like the model's own start from rest).
     SteadySine,
+    /// Linear model; a recorded base taken as stationary: its PSD is the Welch estimate of the
+    /// samples that would drive the run.
+    WelchEstimate,
 }
 
 /// Why the time-domain path was taken.
@@ -38,8 +42,6 @@ pub enum TimeDomainReason {
     Nonlinear { links: Vec<String> },
     /// The excitation is not stationary (a sweep): its PSD changes with time.
     NonStationary { kind: &'static str },
-    /// The excitation has no analytic spectrum (a recorded base).
-    NoAnalyticSpectrum { kind: &'static str },
 }
 
 /// How a study computes its ISO 2631-1 figures.
@@ -94,10 +96,12 @@ pub fn choose(model: &Model, excitation: &ExcitationSpec, time_domain: bool) -> 
                     reason: SpectralReason::SteadySine,
                 };
             }
-            k @ Kind::Sweep { .. } => TimeDomainReason::NonStationary { kind: kind_name(k) },
-            k @ Kind::Recorded { .. } => {
-                TimeDomainReason::NoAnalyticSpectrum { kind: kind_name(k) }
+            Kind::Recorded { .. } => {
+                return Path::Spectral {
+                    reason: SpectralReason::WelchEstimate,
+                };
             }
+            k @ Kind::Sweep { .. } => TimeDomainReason::NonStationary { kind: kind_name(k) },
         }
     };
     Path::TimeDomain { reason }
@@ -135,6 +139,11 @@ impl fmt::Display for SpectralReason {
                 "linear model under a stationary excitation: a_w, a_v and SEAT from the \
                  excitation's PSD and lines × |H(f)|² × |W(f)|²"
             ),
+            SpectralReason::WelchEstimate => write!(
+                f,
+                "linear model under a recorded base taken as stationary: a_w, a_v and SEAT from \
+                 the Welch PSD of the base samples of the run × |H(f)|² × |W(f)|²"
+            ),
             SpectralReason::SteadySine => write!(
                 f,
                 "linear model under a steady sine: a_w, a_v and SEAT of the steady state \
@@ -156,10 +165,6 @@ impl fmt::Display for TimeDomainReason {
             TimeDomainReason::NonStationary { kind } => write!(
                 f,
                 "the {kind} excitation is not stationary: its spectrum changes with time"
-            ),
-            TimeDomainReason::NoAnalyticSpectrum { kind } => write!(
-                f,
-                "the {kind} excitation has no analytic spectrum to weight"
             ),
         }
     }

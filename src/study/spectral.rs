@@ -23,20 +23,23 @@
 
 use super::evaluate::Evaluator;
 use super::iso::Figures;
+use super::iso::IsoRun;
 use crate::analysis::comfort::Comfort;
 use crate::analysis::report::{comfort_place, in_total_value, total_value};
 use crate::analysis::seat;
+use crate::analysis::spectrum::{Spectrum, Welch, WelchOptions};
 use crate::analysis::stream::{parse_name, weighting_for};
 use crate::error::{Error, Result};
-use crate::excitation::ExcitationSpec;
+use crate::excitation::{ExcitationSpec, Kind};
 use crate::model::Model;
 use num_complex::Complex64;
 
-/// Number of Simpson nodes over the excitation's band (`NODES − 1` intervals, an even number):
-/// Δ(ln f) = ln(f₂/f₁)/(NODES − 1), 0.032 for 0.5–80 Hz. Against 5121 nodes the figures of every
-/// built-in model under every built-in random excitation agree within 8.6e-4 (worst:
-/// `seed001-full` under `road-c-72kmh`; 321 nodes: 3.7e-6, 81 nodes: 7.5e-3), well inside the 2 %
-/// the figures are checked to; a design point costs one FRF solve per node.
+/// Simpson nodes over ISO 2631-1's 0.5–80 Hz (`NODES − 1` intervals, an even number): a band
+/// gets the same spacing in ln f, Δ(ln f) = ln(160)/160 ≈ 0.032 (bell-214's 2–80 Hz: 117 nodes).
+/// Against 32 × as many nodes the figures of every built-in model under every built-in random
+/// excitation agree within 1e-3 (tests; worst `seed001-full` under `road-c-72kmh`, 8.6e-4 with
+/// 161 nodes; 321: 3.7e-6, 81: 7.5e-3), well inside the 2 % the figures are checked to; a design
+/// point costs one FRF solve per node.
 pub const NODES: usize = 161;
 
 /// Lowest integration frequency in Hz when a band starts at 0 Hz: every whole-body weighting falls
@@ -72,8 +75,11 @@ fn quadrature(excitation: &ExcitationSpec, nodes: usize) -> (Vec<f64>, Vec<f64>,
     let (mut f, mut w, mut q) = (Vec::new(), Vec::new(), Vec::new());
     if let Some([lo, hi]) = excitation.band_hz().filter(|_| excitation.is_random()) {
         let lo = lo.max(LOWEST_HZ);
-        let n = (nodes.max(3) - 1) & !1; // even number of intervals
-        let du = (hi / lo).ln() / n as f64;
+        // Intervals for the band at the spacing `nodes` gives 0.5–80 Hz, rounded up to even.
+        let span = (hi / lo).ln();
+        let per = ((nodes.max(3) - 1) as f64) / 160f64.ln();
+        let n = ((span * per).ceil() as usize).max(2).next_multiple_of(2);
+        let du = span / n as f64;
         for i in 0..=n {
             let fi = lo * (du * i as f64).exp();
             let c = if i == 0 || i == n {
@@ -96,16 +102,67 @@ fn quadrature(excitation: &ExcitationSpec, nodes: usize) -> (Vec<f64>, Vec<f64>,
     (f, w, q)
 }
 
+/// Nodes, weights and quadrature factors of a Welch estimate: every bin above 0 Hz (every
+/// weighting vanishes at 0 Hz) with the rectangle weight G·Δf (as [`Spectrum::mean_square`]).
+fn welch_quadrature(spectrum: &Spectrum) -> (Vec<f64>, Vec<f64>, Vec<f64>) {
+    let bins = spectrum.freq_hz.iter().zip(&spectrum.density).skip(1);
+    (
+        bins.clone().map(|(f, _)| *f).collect(),
+        bins.clone().map(|(_, g)| g * spectrum.df_hz).collect(),
+        bins.map(|_| spectrum.df_hz).collect(),
+    )
+}
+
 impl SpectralIso {
     /// Prepares the figures of models with the channels of `model` under `excitation`. Fails when
     /// the model has no `a_seat_z`/`a_base_z` channel, is nonlinear, or the excitation has no
-    /// analytic spectrum ([`super::path::choose`] sends those to the time domain).
+    /// analytic spectrum (a recorded base: [`SpectralIso::for_run`]).
     pub fn new(model: &Model, excitation: &ExcitationSpec) -> Result<Self> {
         Self::with_nodes(model, excitation, NODES)
     }
 
-    /// [`SpectralIso::new`] with `nodes` Simpson nodes (for convergence checks).
+    /// The figures under the excitation of `run`: its analytic spectrum, or for a recorded base
+    /// the Welch estimate (the analysis's default segmentation, Hann, 0.125 Hz) of the base
+    /// samples the run would be driven with (its step and duration), taken as stationary.
+    pub fn for_run(model: &Model, run: &IsoRun) -> Result<Self> {
+        if !matches!(run.excitation.kind, Kind::Recorded { .. }) {
+            return Self::new(model, &run.excitation);
+        }
+        run.settings.validate()?;
+        let h = run.settings.dt;
+        let n = usize::try_from(run.settings.steps()).unwrap_or(usize::MAX) + 1;
+        // The samples at the integration steps, as the base channel of the run.
+        let s = run.settings.method.substeps();
+        let mut exc = crate::measurement::excitation(
+            &run.excitation,
+            run.settings.excitation_step(),
+            run.settings.duration_s,
+            run.seed,
+        )?;
+        let mut x = vec![0.0; (n - 1) * s + 1];
+        exc.fill(&mut x);
+        let x: Vec<f64> = x.into_iter().step_by(s).collect();
+        let mut opts = WelchOptions::default();
+        let mut welch = Welch::new(1.0 / h, &opts)?;
+        if welch.segment_len() > x.len() {
+            // A run shorter than one segment: one segment of its length (as the run report).
+            opts.segment = crate::analysis::spectrum::Segment::Samples(x.len());
+            welch = Welch::new(1.0 / h, &opts)?;
+        }
+        let spectrum = welch.psd(&x)?;
+        Self::from_quadrature(model, welch_quadrature(&spectrum), &run.excitation.origin)
+    }
+
+    /// [`SpectralIso::new`] with `nodes` Simpson nodes on 0.5–80 Hz (for convergence checks).
     pub fn with_nodes(model: &Model, excitation: &ExcitationSpec, nodes: usize) -> Result<Self> {
+        Self::from_quadrature(model, quadrature(excitation, nodes), &excitation.origin)
+    }
+
+    fn from_quadrature(
+        model: &Model,
+        (freq_hz, w, band): (Vec<f64>, Vec<f64>, Vec<f64>),
+        origin: &str,
+    ) -> Result<Self> {
         let system = model.system();
         if system.is_nonlinear() {
             return Err(Error::parameter(
@@ -113,14 +170,12 @@ impl SpectralIso {
                 "the model is nonlinear; its ISO figures need the time-domain path",
             ));
         }
-        let (freq_hz, w, band) = quadrature(excitation, nodes);
         if freq_hz.is_empty() {
             return Err(Error::parameter(
                 "excitation",
                 format!(
-                    "`{}` has no analytic spectrum (PSD or steady lines); expected random, psd, \
-                     helicopter, road or sine for the spectral path",
-                    excitation.origin
+                    "`{origin}` has no analytic spectrum (PSD or steady lines); expected random, \
+                     psd, helicopter, road, sine or recorded for the spectral path"
                 ),
             ));
         }
@@ -290,7 +345,6 @@ impl super::sweep::PointFigures for SpectralIso {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::excitation::Kind;
     use crate::model::catalog;
 
     /// 32 × more nodes change the figures by less than 1e-3: the quadrature has converged.

@@ -222,7 +222,7 @@ pub fn run(args: Args) -> wbv::Result<()> {
         .map(|iso| study_path::choose(&model, &iso.excitation, args.time_domain));
     let figures: Option<Box<dyn PointFigures>> = match (&iso, &path) {
         (Some(iso), Some(p)) if p.is_spectral() => {
-            Some(Box::new(SpectralIso::new(&model, &iso.excitation)?))
+            Some(Box::new(SpectralIso::for_run(&model, iso)?))
         }
         (Some(iso), Some(_)) => Some(Box::new(BatchIso::new(iso)?)),
         _ => None,
