@@ -109,8 +109,8 @@ fn lanes_step(cols: &[f64], m: usize, u: &[f64], y: &[f64], next: &mut [f64]) {
                 let c: &[f64; L] = cols[(j * m + i + q) * L..][..L]
                     .try_into()
                     .expect("lane width");
-                for p in 0..L {
-                    a[p] += c[p] * v[p];
+                for ((a, c), v) in a.iter_mut().zip(c).zip(&v) {
+                    *a += c * v;
                 }
             }
         }
