@@ -216,8 +216,8 @@ fn both_paths_are_stated_deterministic_and_shard_exactly() {
             "{text}"
         );
     }
-    let out = Command::new(env!("CARGO_BIN_EXE_wbv"))
-        .args([
+    let one_point = |extra: &[&str]| {
+        let mut args = vec![
             "sweep",
             "--model",
             "reference",
@@ -225,30 +225,20 @@ fn both_paths_are_stated_deterministic_and_shard_exactly() {
             "link.cushion.k",
             "--values",
             "40000",
-            "--time-domain",
-        ])
-        .output()
-        .unwrap();
+        ];
+        args.extend(extra);
+        Command::new(env!("CARGO_BIN_EXE_wbv"))
+            .args(&args)
+            .output()
+            .unwrap()
+    };
+    let out = one_point(&["--time-domain"]);
     let err = String::from_utf8_lossy(&out.stderr);
     assert!(
         !out.status.success() && err.contains("--time-domain"),
         "{err}"
     );
-    let json = Command::new(env!("CARGO_BIN_EXE_wbv"))
-        .args([
-            "sweep",
-            "--model",
-            "reference",
-            "--param",
-            "link.cushion.k",
-            "--values",
-            "40000",
-            "--excitation",
-            "bell-214",
-            "--json",
-        ])
-        .output()
-        .unwrap();
+    let json = one_point(&["--excitation", "bell-214", "--json"]);
     let v: serde_json::Value = serde_json::from_slice(&json.stdout).unwrap();
     assert_eq!(v["path"]["kind"], "spectral", "{v}");
     assert_eq!(v["path"]["spectral_figures"][0], "a_w_seat_m_s2");

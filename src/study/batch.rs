@@ -256,39 +256,18 @@ struct Point {
 impl BatchIso {
     /// Draws the excitation of `run` once and analyses the base.
     pub fn new(run: &IsoRun) -> Result<Self> {
-        run.settings.validate()?;
+        let samples = run.base_samples()?;
         let s = run.settings.method.substeps();
-        let steps = usize::try_from(run.settings.steps())
-            .map_err(|_| Error::parameter("--duration", "too many steps for one run in memory"))?;
-        let mut exc = crate::measurement::excitation(
-            &run.excitation,
-            run.settings.excitation_step(),
-            run.settings.duration_s,
-            run.seed,
-        )?;
-        let mut samples = vec![0.0; steps * s + 1];
-        // The same calls as the simulation loop: the first sample, then the rest.
-        exc.fill(&mut samples[..1]);
-        exc.fill(&mut samples[1..]);
-        if let Some(i) = samples.iter().position(|v| !v.is_finite()) {
-            return Err(Error::parameter(
-                "excitation",
-                format!(
-                    "base acceleration is not finite at t = {:.6} s",
-                    i as f64 * run.settings.excitation_step()
-                ),
-            ));
-        }
+        let at_steps: Vec<f64> = samples.iter().step_by(s).copied().collect();
         let names = vec!["a_base_z".to_string()];
         let mut base = ReportBuilder::with_scope(
             "excitation",
             &names,
             1.0 / run.settings.dt,
-            steps + 1,
+            at_steps.len(),
             &Options::default(),
             Scope::Figures,
         )?;
-        let at_steps: Vec<f64> = samples.iter().step_by(s).copied().collect();
         base.push(&[&at_steps])?;
         let a_w_base = base.finish()?.channels[0].a_w;
         Ok(BatchIso {

@@ -55,6 +55,36 @@ pub struct TimeFigures {
 }
 
 impl IsoRun {
+    /// Every base sample of the run at the excitation step (`steps·s + 1`, `s` the integrator's
+    /// substeps), drawn as the simulation loop draws them (the first sample, then the rest), so a
+    /// study that shares them gives each point the samples of its own run. Errors name a
+    /// non-finite sample's time.
+    pub fn base_samples(&self) -> Result<Vec<f64>> {
+        self.settings.validate()?;
+        let s = self.settings.method.substeps();
+        let steps = usize::try_from(self.settings.steps())
+            .map_err(|_| Error::parameter("--duration", "too many steps for one run in memory"))?;
+        let mut exc = crate::measurement::excitation(
+            &self.excitation,
+            self.settings.excitation_step(),
+            self.settings.duration_s,
+            self.seed,
+        )?;
+        let mut samples = vec![0.0; steps * s + 1];
+        exc.fill(&mut samples[..1]);
+        exc.fill(&mut samples[1..]);
+        if let Some(i) = samples.iter().position(|v| !v.is_finite()) {
+            return Err(Error::parameter(
+                "excitation",
+                format!(
+                    "base acceleration is not finite at t = {:.6} s",
+                    i as f64 * self.settings.excitation_step()
+                ),
+            ));
+        }
+        Ok(samples)
+    }
+
     /// Simulates `model` under this run and analyses it.
     pub fn figures(&self, model: &Model) -> Result<Figures> {
         let scenario = Scenario {

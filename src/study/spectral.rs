@@ -128,20 +128,13 @@ impl SpectralIso {
         if !matches!(run.excitation.kind, Kind::Recorded { .. }) {
             return Self::new(model, &run.excitation);
         }
-        run.settings.validate()?;
         let h = run.settings.dt;
-        let n = usize::try_from(run.settings.steps()).unwrap_or(usize::MAX) + 1;
         // The samples at the integration steps, as the base channel of the run.
-        let s = run.settings.method.substeps();
-        let mut exc = crate::measurement::excitation(
-            &run.excitation,
-            run.settings.excitation_step(),
-            run.settings.duration_s,
-            run.seed,
-        )?;
-        let mut x = vec![0.0; (n - 1) * s + 1];
-        exc.fill(&mut x);
-        let x: Vec<f64> = x.into_iter().step_by(s).collect();
+        let x: Vec<f64> = run
+            .base_samples()?
+            .into_iter()
+            .step_by(run.settings.method.substeps())
+            .collect();
         let mut opts = WelchOptions::default();
         let mut welch = Welch::new(1.0 / h, &opts)?;
         if welch.segment_len() > x.len() {
