@@ -69,6 +69,7 @@ enum Stepper {
 /// shared input `u` is read once for all of them. Measured on `reference` (1000 points, 60 s):
 /// the step took 43 % of the per-point-stepped batch (the product, state copies in and out, the
 /// call); with lanes see `docs/speed.md`.
+#[derive(Default)]
 struct Lanes {
     /// State entries per point `m = 3n + 2r` and input samples per step `s`.
     m: usize,
@@ -192,19 +193,6 @@ impl Lanes {
     }
 }
 
-impl Default for Lanes {
-    fn default() -> Self {
-        Lanes {
-            m: 0,
-            s: 0,
-            cols: Vec::new(),
-            y: Vec::new(),
-            next: Vec::new(),
-            n: 0,
-            used: 0,
-        }
-    }
-}
 
 impl Lanes {
     /// Puts a linear point (its step `step`, initial `state`, `n` dofs) in the next free lane;
