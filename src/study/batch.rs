@@ -193,7 +193,6 @@ impl Lanes {
     }
 }
 
-
 impl Lanes {
     /// Puts a linear point (its step `step`, initial `state`, `n` dofs) in the next free lane;
     /// `None` when the lanes are full or hold points of another state size.
