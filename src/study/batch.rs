@@ -8,12 +8,12 @@
 //!   held in memory, 8 bytes per sample (29 MB per simulated hour at 1 kHz), whatever the number
 //!   of points;
 //! - the base channel `a_base_z` is the excitation itself, so it is analysed once;
-//! - points are stepped together in batches of [`BATCH`], block by block of the shared input
-//!   (the block stays in cache while every point of the batch advances over it); each point keeps
-//!   only its state, its integrator (a linear point's step matrix `y₊ = Φ·y + Γ·u`,
-//!   [`crate::integrator::linear::LinearStep`]; a nonlinear point its Newmark/RK4 stepper) and the
-//!   running figures of its comfort-surface channels, so memory per batch is fixed and the batches
-//!   run on rayon's threads;
+//! - points are stepped together in batches of [`BATCH`], block by block of the shared input:
+//!   the linear points of a batch as one struct of arrays ([`Lanes`]: their step matrices
+//!   `y₊ = Φ·y + Γ·u`, [`crate::integrator::linear::LinearStep`], one lane per point, every input
+//!   sample read once for all), a nonlinear point with its own Newmark/RK4 stepper; each point
+//!   keeps only its state and the running figures of its comfort-surface channels, so memory per
+//!   batch is fixed and the batches run on rayon's threads;
 //! - each point's channels go through the streaming analysis ([`ReportBuilder`]) in
 //!   [`Scope::Figures`]: the same weighting chain, moments and running r.m.s. as a full report,
 //!   without the spectra, the MSDV and the head channels that no study figure uses.
