@@ -139,3 +139,113 @@ fn sweep_is_deterministic_and_plots_curves_heat_map_and_iso_figures() {
         assert!(plot.join(name).exists(), "{name}");
     }
 }
+
+/// The ISO figures' path: spectral by default for a linear model under a stationary excitation
+/// (said on stderr and in JSON), batched time domain with `--time-domain` (VDV, MTVV, crest
+/// columns); both byte-identical run to run, across `--shard` and thread counts;
+/// `--time-domain` without an excitation is refused.
+#[test]
+fn both_paths_are_stated_deterministic_and_shard_exactly() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    let run = |out: &Path, extra: &[&str], threads: &str| {
+        let mut args = vec![
+            "sweep",
+            "--model",
+            "reference",
+            "--param",
+            "link.cushion.k",
+            "--values",
+            "40000:120000:7",
+            "--response",
+            "seat",
+            "--points",
+            "20",
+            "--excitation",
+            "bell-214",
+            "--out",
+            out.to_str().unwrap(),
+        ];
+        args.extend(extra);
+        let o = Command::new(env!("CARGO_BIN_EXE_wbv"))
+            .args(&args)
+            .env("RAYON_NUM_THREADS", threads)
+            .output()
+            .unwrap();
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        String::from_utf8_lossy(&o.stderr).into_owned()
+    };
+    for (name, extra) in [
+        ("spectral", vec![]),
+        ("time", vec!["--time-domain", "--duration", "20"]),
+    ] {
+        let all = d.join(format!("{name}.csv"));
+        let stderr = run(&all, &extra, "2");
+        let path = if name == "spectral" {
+            "ISO figures: spectral"
+        } else {
+            "ISO figures: time-domain"
+        };
+        assert!(stderr.contains(path), "{stderr}");
+        let again = d.join(format!("{name}-again.csv"));
+        run(&again, &extra, "1");
+        let peaks = |p: &Path| std::fs::read(super_peaks(p)).unwrap();
+        assert_eq!(peaks(&all), peaks(&again), "{name}: threads");
+        let mut shards = Vec::new();
+        for k in 1..=2 {
+            let out = d.join(format!("{name}-s{k}.csv"));
+            let mut e = extra.clone();
+            let shard = format!("{k}/2");
+            e.extend(["--shard", shard.as_str()]);
+            run(&out, &e, "2");
+            shards.push(super_peaks(&out));
+        }
+        let merged = d.join(format!("{name}-merged.csv"));
+        let mut args = vec!["merge-shards", "--out", merged.to_str().unwrap()];
+        args.extend(shards.iter().map(|s| s.to_str().unwrap()));
+        wbv(&args);
+        assert_eq!(
+            std::fs::read(&merged).unwrap(),
+            peaks(&all),
+            "{name}: shards"
+        );
+        let text = String::from_utf8(peaks(&all)).unwrap();
+        assert_eq!(
+            text.lines().next().unwrap().ends_with("crest_seat"),
+            name == "time",
+            "{text}"
+        );
+    }
+    let one_point = |extra: &[&str]| {
+        let mut args = vec![
+            "sweep",
+            "--model",
+            "reference",
+            "--param",
+            "link.cushion.k",
+            "--values",
+            "40000",
+        ];
+        args.extend(extra);
+        Command::new(env!("CARGO_BIN_EXE_wbv"))
+            .args(&args)
+            .output()
+            .unwrap()
+    };
+    let out = one_point(&["--time-domain"]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        !out.status.success() && err.contains("--time-domain"),
+        "{err}"
+    );
+    let json = one_point(&["--excitation", "bell-214", "--json"]);
+    let v: serde_json::Value = serde_json::from_slice(&json.stdout).unwrap();
+    assert_eq!(v["path"]["kind"], "spectral", "{v}");
+    assert_eq!(v["path"]["spectral_figures"][0], "a_w_seat_m_s2");
+}
+
+/// `<stem>-peaks.csv` beside `p`.
+fn super_peaks(p: &Path) -> std::path::PathBuf {
+    let stem = p.file_stem().unwrap().to_str().unwrap();
+    p.with_file_name(format!("{stem}-peaks.csv"))
+}

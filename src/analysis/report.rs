@@ -163,6 +163,32 @@ pub fn offset_note(name: &str, mean: f64, rms: f64) -> Option<String> {
     }
 }
 
+/// The contact surface whose channels make the comfort total value: `seat` when any channel is on
+/// the seat, else the first channel's place (ISO 2631-1 8.2.3: the seat surface, with backrest
+/// and feet, for seated persons).
+pub fn comfort_place<'a>(mut places: impl Iterator<Item = &'a str> + Clone) -> String {
+    if places.clone().any(|p| p == "seat") {
+        "seat".to_string()
+    } else {
+        places.next().unwrap_or_default().to_string()
+    }
+}
+
+/// Whether a channel at `place` counts in the total value of `comfort_place`: the surface itself,
+/// and for the seat also the backrest and the feet (ISO 2631-1 8.2.3).
+pub fn in_total_value(place: &str, comfort_place: &str) -> bool {
+    place == comfort_place || (comfort_place == "seat" && (place == "back" || place == "feet"))
+}
+
+/// Vibration total value a_v = (Σ k² a_w²)^½ in m/s² of `(k, a_w)` pairs, summed in order
+/// (ISO 2631-1 eq. 10).
+pub fn total_value(channels: impl Iterator<Item = (f64, f64)>) -> f64 {
+    channels
+        .map(|(k, a_w)| (k * a_w).powi(2))
+        .sum::<f64>()
+        .sqrt()
+}
+
 impl ChannelReport {
     fn notes(&self, duration_s: f64) -> Vec<String> {
         // A unit doubt is a warning of its own (Report::warnings), not a note.
@@ -234,25 +260,13 @@ impl Report {
             .iter()
             .filter_map(|c| c.unit_doubt.clone())
             .collect();
-        let comfort_place = if channels.iter().any(|c| c.place == "seat") {
-            "seat".to_string()
-        } else {
-            channels[0].place.clone()
-        };
-        let in_total = |c: &&ChannelReport| {
-            c.place == comfort_place
-                || (comfort_place == "seat" && (c.place == "back" || c.place == "feet"))
-        };
+        let comfort_place = comfort_place(channels.iter().map(|c| c.place.as_str()));
+        let in_total = |c: &&ChannelReport| in_total_value(&c.place, &comfort_place);
         let verdict_doubtful = channels
             .iter()
             .filter(in_total)
             .any(|c| c.unit_doubt.is_some());
-        let total_value = channels
-            .iter()
-            .filter(in_total)
-            .map(|c| (c.k * c.a_w).powi(2))
-            .sum::<f64>()
-            .sqrt();
+        let total_value = total_value(channels.iter().filter(in_total).map(|c| (c.k, c.a_w)));
         let find = |n: &str| channels.iter().find(|c| c.name == n);
         let seat_percent = match (find("a_seat_z"), find("a_base_z")) {
             (Some(s), Some(b)) => seat::seat_percent(s.a_w, b.a_w),

@@ -9,7 +9,7 @@
 use crate::error::{Error, Result};
 use crate::response::frf::{channel_value, dof_value, response_value};
 use crate::system::linear::link_dynamic_stiffness;
-use crate::system::{Output, System};
+use crate::system::{Element, Output, System};
 use num_complex::Complex64;
 use std::f64::consts::PI;
 
@@ -23,6 +23,13 @@ pub struct Evaluator {
     n: usize,
     d: Vec<Complex64>,
     x: Vec<Complex64>,
+    /// Of the system being evaluated ([`Evaluator::prepare`]): `−M·r`; `M`, the frequency-
+    /// independent stiffness and damping (row-major); the links stamped at each frequency.
+    rhs: Vec<f64>,
+    mass: Vec<f64>,
+    stiffness: Vec<f64>,
+    damping: Vec<f64>,
+    stamped: Vec<usize>,
 }
 
 impl Evaluator {
@@ -47,6 +54,16 @@ impl Evaluator {
                     ),
                 )
             })?;
+        Self::build(system, index, response, freq_hz)
+    }
+
+    /// Prepares the channel values of `system` at `freq_hz` (Hz), for [`Self::eval_channels`]
+    /// only ([`Self::eval`] refuses: no response is named).
+    pub fn for_channels(system: &System, freq_hz: &[f64]) -> Result<Self> {
+        Self::build(system, usize::MAX, "", freq_hz)
+    }
+
+    fn build(system: &System, index: usize, response: &str, freq_hz: &[f64]) -> Result<Self> {
         if let Some(f) = freq_hz.iter().find(|f| !(f.is_finite() && **f >= 0.0)) {
             return Err(Error::parameter(
                 "frequency",
@@ -61,6 +78,11 @@ impl Evaluator {
             n,
             d: vec![Complex64::default(); n * n],
             x: vec![Complex64::default(); n],
+            rhs: Vec::with_capacity(n),
+            mass: Vec::with_capacity(n * n),
+            stiffness: Vec::with_capacity(n * n),
+            damping: Vec::with_capacity(n * n),
+            stamped: Vec::new(),
         })
     }
 
@@ -86,32 +108,109 @@ impl Evaluator {
                 "the evaluator was built for a model of another structure",
             ));
         }
+        self.prepare(system);
         for (j, o) in out.iter_mut().enumerate() {
             let w = self.omega[j];
-            *o = self.point(system, w)?;
+            self.solve(system, w)?;
+            let x: &[Complex64] = &self.x;
+            let out = |o: Output| match o {
+                Output::Channel(c) => channel_value(system, &system.channels[c].rule, w, x),
+                Output::Dof(i) => dof_value(system, i, w, x),
+            };
+            *o = response_value(&system.responses[self.index], w, &out);
         }
         Ok(())
     }
 
-    fn point(&mut self, system: &System, w: f64) -> Result<Complex64> {
+    /// Writes the complex value of each of `channels` (indices into [`System::channels`]) per unit
+    /// base acceleration at every frequency into `out`, frequency-major (`out[j·c + k]` is channel
+    /// `k` at frequency `j`, length [`Self::len`] × `channels.len()`): one solve per frequency for
+    /// all of them. `system` must have the structure the evaluator was built for; its named
+    /// response is not used.
+    pub fn eval_channels(
+        &mut self,
+        system: &System,
+        channels: &[usize],
+        out: &mut [Complex64],
+    ) -> Result<()> {
+        if system.dof() != self.n
+            || out.len() != self.omega.len() * channels.len()
+            || channels.iter().any(|&c| c >= system.channels.len())
+        {
+            return Err(Error::parameter(
+                "model",
+                "the evaluator was built for a model of another structure",
+            ));
+        }
+        self.prepare(system);
+        for (j, row) in out.chunks_exact_mut(channels.len().max(1)).enumerate() {
+            let w = self.omega[j];
+            self.solve(system, w)?;
+            for (o, &c) in row.iter_mut().zip(channels) {
+                *o = channel_value(system, &system.channels[c].rule, w, &self.x);
+            }
+        }
+        Ok(())
+    }
+
+    /// Computes what does not depend on the frequency: `M`, the stiffness `K₀ + Σ k·rowᵀrow` and
+    /// damping `C₀ + Σ c·rowᵀrow` of the linear Kelvin–Voigt links (whose dynamic stiffness is
+    /// `k + iωc`), the links left to stamp at each frequency, and the right-hand side `−M·r`.
+    /// Measured: assembling these per frequency took about a third of a solve.
+    fn prepare(&mut self, system: &System) {
         let n = self.n;
-        let (d, x) = (&mut self.d, &mut self.x);
         let links_only = system.links_only();
+        self.mass.clear();
+        self.stiffness.clear();
+        self.damping.clear();
         for i in 0..n {
             for j in 0..n {
+                self.mass.push(system.m[(i, j)]);
                 let (k, c) = if links_only {
                     (0.0, 0.0)
                 } else {
                     (system.k0[(i, j)], system.c0[(i, j)])
                 };
-                d[i * n + j] = Complex64::new(k - w * w * system.m[(i, j)], w * c);
+                self.stiffness.push(k);
+                self.damping.push(c);
             }
-            x[i] = Complex64::new(
-                -(0..n).map(|j| system.m[(i, j)] * system.r[j]).sum::<f64>(),
-                0.0,
-            );
         }
-        for l in &system.links {
+        self.stamped.clear();
+        for (index, l) in system.links.iter().enumerate() {
+            match (l.law, l.element) {
+                (None, Element::KelvinVoigt { k, c }) => {
+                    for &(i, ci) in &l.row {
+                        for &(j, cj) in &l.row {
+                            self.stiffness[i * n + j] += k * ci * cj;
+                            self.damping[i * n + j] += c * ci * cj;
+                        }
+                    }
+                }
+                _ => self.stamped.push(index),
+            }
+        }
+        self.rhs.clear();
+        self.rhs
+            .extend((0..n).map(|i| -(0..n).map(|j| system.m[(i, j)] * system.r[j]).sum::<f64>()));
+    }
+
+    /// Solves `D(ω)·X = −M·r` into `self.x` ([`Self::prepare`] first).
+    fn solve(&mut self, system: &System, w: f64) -> Result<()> {
+        let n = self.n;
+        let (d, x) = (&mut self.d, &mut self.x);
+        for (((d, k), c), m) in d
+            .iter_mut()
+            .zip(&self.stiffness)
+            .zip(&self.damping)
+            .zip(&self.mass)
+        {
+            *d = Complex64::new(k - w * w * m, w * c);
+        }
+        for (x, r) in x.iter_mut().zip(&self.rhs) {
+            *x = Complex64::new(*r, 0.0);
+        }
+        for &index in &self.stamped {
+            let l = &system.links[index];
             let s = link_dynamic_stiffness(l, w);
             for &(i, ci) in &l.row {
                 for &(j, cj) in &l.row {
@@ -128,23 +227,20 @@ impl Evaluator {
                     w / (2.0 * PI)
                 ),
             )
-        })?;
-        let x: &[Complex64] = x;
-        let out = |o: Output| match o {
-            Output::Channel(c) => channel_value(system, &system.channels[c].rule, w, x),
-            Output::Dof(i) => dof_value(system, i, w, x),
-        };
-        Ok(response_value(&system.responses[self.index], w, &out))
+        })
     }
 }
 
 /// Solves `A·x = b` in place (`A` row-major n×n, overwritten; `b` becomes `x`) by Gaussian
-/// elimination with partial pivoting. `None` when a pivot vanishes.
+/// elimination with partial pivoting. `None` when a pivot vanishes (|pivot| ≤ 1e-14 × the largest
+/// |entry|). Magnitudes are compared squared: the same order without a `hypot` per entry, which
+/// took most of a solve's time (measured, `benches/study.rs`).
 fn solve_in_place(a: &mut [Complex64], b: &mut [Complex64], n: usize) -> Option<()> {
-    let scale = a.iter().map(|v| v.norm()).fold(0.0, f64::max);
+    let scale_sq = a.iter().map(|v| v.norm_sqr()).fold(0.0, f64::max);
     for k in 0..n {
-        let p = (k..n).max_by(|&i, &j| a[i * n + k].norm().total_cmp(&a[j * n + k].norm()))?;
-        if a[p * n + k].norm() <= 1e-14 * scale {
+        let p =
+            (k..n).max_by(|&i, &j| a[i * n + k].norm_sqr().total_cmp(&a[j * n + k].norm_sqr()))?;
+        if a[p * n + k].norm_sqr() <= 1e-28 * scale_sq {
             return None;
         }
         if p != k {

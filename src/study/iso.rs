@@ -42,7 +42,49 @@ pub struct Figures {
     pub comfort: Comfort,
 }
 
+/// The figures of the seat channel `a_seat_z` that need its time history (ISO 2631-1 6.3):
+/// computed by the time-domain path only.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct TimeFigures {
+    /// Vibration dose value of the Wk-weighted seat acceleration, m/s^1.75 (eq. 5).
+    pub vdv_seat: f64,
+    /// Maximum transient vibration value, linear 1 s running r.m.s., m/s² (eqs. 2, 4).
+    pub mtvv_seat: f64,
+    /// Crest factor |peak|/a_w of the weighted seat acceleration (6.2.1).
+    pub crest_seat: f64,
+}
+
 impl IsoRun {
+    /// Every base sample of the run at the excitation step (`steps·s + 1`, `s` the integrator's
+    /// substeps), drawn as the simulation loop draws them (the first sample, then the rest), so a
+    /// study that shares them gives each point the samples of its own run. Errors name a
+    /// non-finite sample's time.
+    pub fn base_samples(&self) -> Result<Vec<f64>> {
+        self.settings.validate()?;
+        let s = self.settings.method.substeps();
+        let steps = usize::try_from(self.settings.steps())
+            .map_err(|_| Error::parameter("--duration", "too many steps for one run in memory"))?;
+        let mut exc = crate::measurement::excitation(
+            &self.excitation,
+            self.settings.excitation_step(),
+            self.settings.duration_s,
+            self.seed,
+        )?;
+        let mut samples = vec![0.0; steps * s + 1];
+        exc.fill(&mut samples[..1]);
+        exc.fill(&mut samples[1..]);
+        if let Some(i) = samples.iter().position(|v| !v.is_finite()) {
+            return Err(Error::parameter(
+                "excitation",
+                format!(
+                    "base acceleration is not finite at t = {:.6} s",
+                    i as f64 * self.settings.excitation_step()
+                ),
+            ));
+        }
+        Ok(samples)
+    }
+
     /// Simulates `model` under this run and analyses it.
     pub fn figures(&self, model: &Model) -> Result<Figures> {
         let scenario = Scenario {
@@ -73,33 +115,53 @@ impl IsoRun {
 
 /// Index of a comfort class in Annex C order (0 = not uncomfortable), so that it travels as a
 /// sweep figure.
-fn class_index(c: Comfort) -> f64 {
+pub fn class_index(c: Comfort) -> f64 {
     comfort::RANGES.iter().position(|r| r.0 == c).unwrap_or(0) as f64
 }
 
+impl Figures {
+    /// The four figures as sweep columns ([`super::path::SPECTRAL_FIGURES`]), the comfort class
+    /// as its [`class_index`].
+    pub fn columns(&self) -> Vec<f64> {
+        vec![
+            self.a_w_seat,
+            self.total_value,
+            self.seat_percent,
+            class_index(self.comfort),
+        ]
+    }
+}
+
+impl TimeFigures {
+    /// The three figures as sweep columns ([`super::path::TIME_ONLY_FIGURES`]).
+    pub fn columns(&self) -> [f64; 3] {
+        [self.vdv_seat, self.mtvv_seat, self.crest_seat]
+    }
+}
+
+/// How sweep column `column` of the ISO figures is written: the comfort column (index 3) as the
+/// standard's wording, every other as the number.
+pub fn format_column(column: usize, value: f64) -> String {
+    match (column, comfort::RANGES.get(value as usize)) {
+        (3, Some(r)) => r.0.text().to_string(),
+        _ => value.to_string(),
+    }
+}
+
+/// The per-point path: each point simulated and analysed on its own (the baseline of
+/// `benches/study.rs`; `wbv sweep` uses [`super::batch::BatchIso`], equal to it bit for bit).
 impl PointFigures for IsoRun {
     fn names(&self) -> Vec<String> {
-        ["a_w_seat_m_s2", "a_v_m_s2", "seat_pct", "comfort"]
-            .map(String::from)
-            .to_vec()
+        super::path::SPECTRAL_FIGURES.map(String::from).to_vec()
     }
 
     fn compute(&self, model: &Model) -> Result<Vec<f64>> {
-        let f = self.figures(model)?;
-        Ok(vec![
-            f.a_w_seat,
-            f.total_value,
-            f.seat_percent,
-            class_index(f.comfort),
-        ])
+        Ok(self.figures(model)?.columns())
     }
 
     /// The comfort column is written as the standard's wording.
     fn format(&self, column: usize, value: f64) -> String {
-        match (column, comfort::RANGES.get(value as usize)) {
-            (3, Some(r)) => r.0.text().to_string(),
-            _ => value.to_string(),
-        }
+        format_column(column, value)
     }
 }
 

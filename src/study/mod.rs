@@ -7,6 +7,7 @@
 //! Every study evaluates responses through [`evaluate::Evaluator`], which solves the complex
 //! dynamic-stiffness system only at the requested frequencies without allocating.
 
+pub mod batch;
 pub mod calibrate;
 pub mod evaluate;
 pub mod foam;
@@ -16,8 +17,10 @@ pub mod iso;
 pub mod paper000;
 pub mod papers;
 pub mod param;
+pub mod path;
 pub mod reproduce;
 pub mod sensitivity;
 pub mod shard;
+pub mod spectral;
 pub mod sweep;
 pub mod table;

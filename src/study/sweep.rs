@@ -23,6 +23,11 @@ pub trait PointFigures: Sync {
     fn names(&self) -> Vec<String>;
     /// The figures for one model, in the order of [`Self::names`].
     fn compute(&self, model: &Model) -> Result<Vec<f64>>;
+    /// The figures of several models, in order (a hook that shares work across points, such as
+    /// the batched time-domain path, overrides it); by default [`Self::compute`] on each.
+    fn compute_many(&self, models: &[Model]) -> Result<Vec<Vec<f64>>> {
+        models.iter().map(|m| self.compute(m)).collect()
+    }
     /// How figure `column` (index into [`Self::names`]) is written to CSV.
     fn format(&self, column: usize, value: f64) -> String {
         let _ = column;
@@ -75,8 +80,13 @@ pub struct Point {
     pub extra: Vec<f64>,
 }
 
-/// Runs the points of `spec` that belong to `shard`, in parallel; `tick` is called once per point
-/// (progress). Points come back in index order.
+/// Points handed to the hooks together ([`PointFigures::compute_many`]); chunks run in
+/// parallel, so memory holds a chunk's models per thread, not the grid's.
+const CHUNK: usize = 64;
+
+/// Runs the points of `spec` that belong to `shard`, in parallel chunks; `tick` is called once per
+/// point (progress). Points come back in index order, and each point's figures do not depend on
+/// the chunk it falls in.
 pub fn run(
     model: &Model,
     spec: &Spec,
@@ -86,29 +96,38 @@ pub fn run(
 ) -> Result<Vec<Point>> {
     let grid = spec.grid();
     let base = Evaluator::new(model.system(), &spec.response, &spec.freq_hz)?;
-    shard
+    let chunks = shard
         .points(grid.len())
-        .into_par_iter()
+        .par_chunks(CHUNK)
         .map_init(
-            || (base.clone(), model.clone()),
-            |(ev, m), index| {
-                let (response, peak) =
-                    evaluate_point(model, m, ev, &spec.params, &grid[index], &spec.freq_hz)?;
-                let mut extra = Vec::new();
-                for h in hooks {
-                    extra.extend(h.compute(m)?);
+            || base.clone(),
+            |ev, chunk| {
+                let mut models = Vec::with_capacity(chunk.len());
+                let mut points = Vec::with_capacity(chunk.len());
+                for &index in chunk {
+                    let mut m = model.clone();
+                    apply(&mut m, &spec.params, &grid[index])?;
+                    let (response, peak) = evaluate_model(&m, ev, &spec.freq_hz)?;
+                    models.push(m);
+                    points.push(Point {
+                        index,
+                        values: grid[index].clone(),
+                        response,
+                        peak,
+                        extra: Vec::new(),
+                    });
                 }
-                tick();
-                Ok(Point {
-                    index,
-                    values: grid[index].clone(),
-                    response,
-                    peak,
-                    extra,
-                })
+                for h in hooks {
+                    for (p, extra) in points.iter_mut().zip(h.compute_many(&models)?) {
+                        p.extra.extend(extra);
+                    }
+                }
+                chunk.iter().for_each(|_| tick());
+                Ok(points)
             },
         )
-        .collect()
+        .collect::<Result<Vec<_>>>()?;
+    Ok(chunks.into_iter().flatten().collect())
 }
 
 /// Sets `values` of `params` on a copy of `model` held in `scratch`, evaluates the response at
@@ -123,8 +142,18 @@ pub fn evaluate_point(
 ) -> Result<(Vec<Complex64>, Peak)> {
     scratch.clone_from(model);
     apply(scratch, params, values)?;
+    evaluate_model(scratch, ev, freq_hz)
+}
+
+/// The response of `model` at `freq_hz` and its global peak (NaN when the magnitude has no finite
+/// sample).
+fn evaluate_model(
+    model: &Model,
+    ev: &mut Evaluator,
+    freq_hz: &[f64],
+) -> Result<(Vec<Complex64>, Peak)> {
     let mut response = vec![Complex64::default(); freq_hz.len()];
-    ev.eval(scratch.system(), &mut response)?;
+    ev.eval(model.system(), &mut response)?;
     let mag: Vec<f64> = response.iter().map(|v| v.norm()).collect();
     let peak = global_peak(freq_hz, &mag).unwrap_or(Peak {
         freq_hz: f64::NAN,

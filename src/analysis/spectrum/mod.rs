@@ -104,6 +104,7 @@ pub struct Spectrum {
 }
 
 /// A planned Welch estimator for one sample rate and one segmentation.
+#[derive(Clone)]
 pub struct Welch {
     fs: f64,
     n: usize,

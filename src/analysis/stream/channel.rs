@@ -10,14 +10,14 @@ use crate::analysis::weighting::Weighting;
 use crate::error::Result;
 
 /// Splits `a_<place>_<axis>` into (place, axis) for translational axes x, y, z.
-pub(super) fn parse_name(name: &str) -> Option<(&str, &str)> {
+pub fn parse_name(name: &str) -> Option<(&str, &str)> {
     let rest = name.strip_prefix("a_")?;
     let (place, axis) = rest.rsplit_once('_')?;
     (!place.is_empty() && matches!(axis, "x" | "y" | "z")).then_some((place, axis))
 }
 
 /// Weighting and comfort k of a channel (ISO 2631-1 Tables 1–2, 8.2.2).
-fn weighting_for(place: &str, axis: &str) -> (Weighting, f64) {
+pub(crate) fn weighting_for(place: &str, axis: &str) -> (Weighting, f64) {
     match (place, axis) {
         ("back", "x") => (Weighting::Wc, 0.8),
         ("back", "y") => (Weighting::Wd, 0.5),
@@ -29,7 +29,20 @@ fn weighting_for(place: &str, axis: &str) -> (Weighting, f64) {
     }
 }
 
+/// What a [`super::ReportBuilder`] computes per channel.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Scope {
+    /// Everything of the run report: the weighted figures, the Welch spectrum and its
+    /// one-third-octave bands, and the Wf motion-sickness dose of vertical axes.
+    Full,
+    /// The weighted figures only (a_w, VDV, MTVV, peak, crest factor, unweighted r.m.s.): no
+    /// spectrum (`bands` empty) and no MSDV. For studies that need the figures of many runs; each
+    /// figure is computed exactly as in [`Scope::Full`], bit for bit.
+    Figures,
+}
+
 /// The running figures of one acceleration channel.
+#[derive(Clone)]
 pub(super) struct ChannelAnalyzer {
     /// Column of the channel in the builder's input.
     pub(super) column: usize,
@@ -45,13 +58,14 @@ pub(super) struct ChannelAnalyzer {
     fs_weighted: f64,
     /// Σx of the raw samples, for the mean.
     sum: f64,
-    /// Wf for the MSDV (vertical axes only).
+    /// Wf for the MSDV (vertical axes only; none in [`Scope::Figures`]).
     sickness: Option<(WeightingChain, Moments)>,
     raw: Moments,
     weighted: Moments,
     linear: RunningRms,
     exponential: RunningRms,
-    psd: PsdAccumulator,
+    /// The Welch spectrum of the one-third-octave bands (none in [`Scope::Figures`]).
+    psd: Option<PsdAccumulator>,
     /// Block buffers of the Wk (or Wd/Wc) and the Wf chains.
     scratch: Vec<f64>,
     scratch_sickness: Vec<f64>,
@@ -64,12 +78,13 @@ impl ChannelAnalyzer {
         fs: f64,
         welch: &Welch,
         opts: &Options,
+        scope: Scope,
     ) -> Result<Self> {
         let (place, axis) = parse_name(name).expect("caller filtered names");
         let (weighting, k) = weighting_for(place, axis);
         let weight = WeightingChain::new(weighting, fs)?;
         let fs_weighted = weight.rate_hz();
-        let sickness = if axis == "z" {
+        let sickness = if axis == "z" && scope == Scope::Full {
             Some((WeightingChain::new(Weighting::Wf, fs)?, Moments::default()))
         } else {
             None
@@ -89,7 +104,7 @@ impl ChannelAnalyzer {
             weighted: Moments::default(),
             linear: RunningRms::new(fs_weighted, opts.tau_s, Averaging::Linear),
             exponential: RunningRms::new(fs_weighted, opts.tau_s, Averaging::Exponential),
-            psd: PsdAccumulator::new(welch),
+            psd: (scope == Scope::Full).then(|| PsdAccumulator::new(welch)),
             scratch: Vec::new(),
             scratch_sickness: Vec::new(),
         })
@@ -109,7 +124,9 @@ impl ChannelAnalyzer {
         let (raw, psd) = (&mut self.raw, &mut self.psd);
         let spectrum = || {
             raw.push(x);
-            psd.push(welch, x);
+            if let Some(psd) = psd {
+                psd.push(welch, x);
+            }
         };
         let (scratch, weight) = (&mut self.scratch, &mut self.weight);
         let figures = (&mut self.weighted, &mut self.linear, &mut self.exponential);
@@ -146,9 +163,13 @@ impl ChannelAnalyzer {
         } else {
             self.sum / self.raw.count as f64
         };
+        let bands = match self.psd {
+            Some(psd) => octave::third_octave_bands(&psd.finish(welch)?, -3, 19),
+            None => Vec::new(),
+        };
         Ok(ChannelReport {
             mean,
-            bands: octave::third_octave_bands(&self.psd.finish(welch)?, -3, 19),
+            bands,
             name: self.name,
             place: self.place,
             axis: self.axis,

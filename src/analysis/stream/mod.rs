@@ -12,10 +12,15 @@ use crate::signals::Signals;
 mod channel;
 mod observer;
 
-use channel::{ChannelAnalyzer, parse_name};
+use channel::ChannelAnalyzer;
+pub(crate) use channel::weighting_for;
+pub use channel::{Scope, parse_name};
 pub use observer::AnalysisObserver;
 
-/// Builds a [`Report`] from signals delivered in blocks.
+/// Builds a [`Report`] from signals delivered in blocks. A clone of a builder that has received
+/// nothing is a fresh builder for the same channels, rate and options, without designing the
+/// weighting filters and planning the FFT again (a study analysing many runs clones one).
+#[derive(Clone)]
 pub struct ReportBuilder {
     source: String,
     fs: f64,
@@ -35,6 +40,19 @@ impl ReportBuilder {
         fs: f64,
         len: usize,
         opts: &Options,
+    ) -> Result<Self> {
+        Self::with_scope(source, names, fs, len, opts, Scope::Full)
+    }
+
+    /// [`ReportBuilder::new`] computing what `scope` names: [`Scope::Figures`] leaves out the
+    /// spectra and the MSDV, for studies that analyse many runs.
+    pub fn with_scope(
+        source: &str,
+        names: &[String],
+        fs: f64,
+        len: usize,
+        opts: &Options,
+        scope: Scope,
     ) -> Result<Self> {
         if len == 0 {
             return Err(Error::data(source, None, "the run has no samples"));
@@ -70,7 +88,7 @@ impl ReportBuilder {
             .iter()
             .enumerate()
             .filter(|(_, n)| parse_name(n).is_some())
-            .map(|(column, n)| ChannelAnalyzer::new(column, n, fs, &welch, opts))
+            .map(|(column, n)| ChannelAnalyzer::new(column, n, fs, &welch, opts, scope))
             .collect::<Result<Vec<_>>>()?;
         if channels.is_empty() {
             return Err(Error::data(
@@ -90,6 +108,11 @@ impl ReportBuilder {
             channels,
             received: 0,
         })
+    }
+
+    /// Names the run `source` in errors and in the report (for a clone of a template builder).
+    pub fn set_source(&mut self, source: &str) {
+        self.source = source.to_string();
     }
 
     /// Appends the next block: one slice per name given to [`ReportBuilder::new`], equal lengths.

@@ -4,9 +4,12 @@ use wbv::excitation::ExcitationArgs;
 use wbv::io::atomic::{Overwrite, write_atomic};
 use wbv::report::json::{Files, Written};
 use wbv::response::frf;
+use wbv::study::batch::BatchIso;
 use wbv::study::iso::IsoRun;
 use wbv::study::param::{Param, parse_values};
+use wbv::study::path as study_path;
 use wbv::study::shard::{self, Shard};
+use wbv::study::spectral::SpectralIso;
 use wbv::study::sweep::{self, PointFigures, Spec};
 
 mod plots;
@@ -60,8 +63,14 @@ pub struct Args {
     /// instead of CSV.
     #[arg(long)]
     json: bool,
-    /// With any excitation option, every point is also simulated (same seed at every point) and
-    /// its ISO 2631-1 figures (a_w seat, a_v, SEAT, comfort) join the peaks table.
+    /// Compute the ISO figures by simulating every point (batched, same seed at every point),
+    /// which adds VDV, MTVV and crest factor of the seat; without it a linear model under a
+    /// stationary excitation gets a_w, a_v, SEAT and comfort from the excitation's spectrum.
+    #[arg(long)]
+    time_domain: bool,
+    /// With any excitation option, every point's ISO 2631-1 figures (a_w seat, a_v, SEAT,
+    /// comfort) join the peaks table: from the spectrum for a linear model under a stationary
+    /// excitation, else (or with --time-domain) simulated with the same seed at every point.
     #[command(
         flatten,
         next_help_heading = "Time-domain ISO 2631-1 figures (given an excitation)"
@@ -202,7 +211,32 @@ pub fn run(args: Args) -> wbv::Result<()> {
         }
         (None, None) => None,
     };
-    let hooks: Vec<&dyn PointFigures> = iso.iter().map(|h| h as &dyn PointFigures).collect();
+    if args.time_domain && iso.is_none() {
+        return Err(Error::parameter(
+            "--time-domain",
+            "it chooses how the ISO figures of an excitation are computed; give an excitation too",
+        ));
+    }
+    let path = iso
+        .as_ref()
+        .map(|iso| study_path::choose(&model, &iso.excitation, args.time_domain));
+    let figures: Option<Box<dyn PointFigures>> = match (&iso, &path) {
+        (Some(iso), Some(p)) if p.is_spectral() => {
+            Some(Box::new(SpectralIso::for_run(&model, iso)?))
+        }
+        (Some(iso), Some(_)) => Some(Box::new(BatchIso::new(iso)?)),
+        _ => None,
+    };
+    if let Some(p) = &path {
+        let ignored = if p.is_spectral() && args.time.is_some() {
+            "; --duration, --dt, --seed and --integrator set a simulation, which the spectral \
+             figures do not need (give --time-domain to simulate)"
+        } else {
+            ""
+        };
+        eprintln!("ISO figures: {p}{ignored}");
+    }
+    let hooks: Vec<&dyn PointFigures> = figures.iter().map(|h| h.as_ref()).collect();
     let bar = progress(shard.points(spec.grid().len()).len());
     let pts = sweep::run(&model, &spec, shard, &hooks, &|| bar.inc(1))?;
     bar.finish_and_clear();
@@ -241,6 +275,7 @@ pub fn run(args: Args) -> wbv::Result<()> {
             response_unit(&spec.response),
         );
         table.written = written;
+        table.path = path.as_ref().map(wbv::report::json::StudyPath::of);
         super::print_json("sweep", &table, &[])?;
     }
     Ok(())

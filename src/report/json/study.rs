@@ -77,8 +77,9 @@ pub struct SweepPoint {
     pub peak_freq_hz: Option<f64>,
     /// Peak magnitude in the response's unit.
     pub peak_mag: Option<f64>,
-    /// Time-domain figures by column name (`a_w_seat_m_s2`, `a_v_m_s2`, `seat_pct`, and
-    /// `comfort` spelled as everywhere in JSON), with an excitation.
+    /// ISO 2631-1 figures by column name (`a_w_seat_m_s2`, `a_v_m_s2`, `seat_pct`, and
+    /// `comfort` spelled as everywhere in JSON; on the time-domain path also `vdv_seat_m_s1_75`,
+    /// `mtvv_seat_m_s2`, `crest_seat`), with an excitation; [`Sweep::path`] says how.
     pub figures: BTreeMap<String, Value>,
 }
 
@@ -92,6 +93,44 @@ pub struct Sweep {
     pub params: Vec<String>,
     pub points: Vec<SweepPoint>,
     pub written: Vec<Written>,
+    /// How the ISO figures were computed, with an excitation.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub path: Option<StudyPath>,
+}
+
+/// How a study computed its ISO figures ([`crate::study::path::Path`]).
+#[derive(Debug, Clone, Serialize)]
+pub struct StudyPath {
+    /// `spectral` or `time-domain`.
+    pub kind: String,
+    /// Why, in words.
+    pub reason: String,
+    /// The figure columns computed from the spectrum (empty on the time-domain path).
+    pub spectral_figures: Vec<String>,
+    /// The figure columns computed from simulated time histories.
+    pub time_domain_figures: Vec<String>,
+}
+
+impl StudyPath {
+    /// The JSON form of `path`.
+    pub fn of(path: &crate::study::path::Path) -> StudyPath {
+        use crate::study::path::Path;
+        let (reason, spectral) = match path {
+            Path::Spectral { reason } => (reason.to_string(), path.figures()),
+            Path::TimeDomain { reason } => (reason.to_string(), Vec::new()),
+        };
+        let time = if path.is_spectral() {
+            Vec::new()
+        } else {
+            path.figures()
+        };
+        StudyPath {
+            kind: path.name().to_string(),
+            reason,
+            spectral_figures: spectral.into_iter().map(String::from).collect(),
+            time_domain_figures: time.into_iter().map(String::from).collect(),
+        }
+    }
 }
 
 impl Sweep {
@@ -129,6 +168,7 @@ impl Sweep {
                 .collect(),
             params,
             written: Vec::new(),
+            path: None,
         }
     }
 }
