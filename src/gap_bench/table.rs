@@ -88,38 +88,11 @@ fn median_pair(c: &[&CaseScore], gap: impl Fn(&IsoGaps) -> [f64; 3]) -> Option<(
     ))
 }
 
-/// Summarises case scores.
-pub fn summary(scores: &[CaseScore], seed: u64, wall_s: f64) -> Summary {
-    let mut rows = Vec::new();
-    let effect: Vec<&CaseScore> = scores
-        .iter()
-        .filter(|s| !s.label.effects.is_empty())
-        .collect();
-    for f in Family::ALL {
-        let c: Vec<&CaseScore> = effect
-            .iter()
-            .copied()
-            .filter(|s| s.label.effects[0].family == f)
-            .collect();
-        if !c.is_empty() {
-            rows.push(row("family", f.name().into(), &c));
-        }
-    }
-    for f in Form::ALL {
-        let c: Vec<&CaseScore> = effect
-            .iter()
-            .copied()
-            .filter(|s| s.label.effects[0].form == f)
-            .collect();
-        if !c.is_empty() {
-            rows.push(row(
-                "form",
-                format!("{}/{}", f.family().name(), f.name()),
-                &c,
-            ));
-        }
-    }
-    type Pred = Box<dyn Fn(&CaseScore) -> bool>;
+/// A nuisance row's test of a case.
+type Pred = Box<dyn Fn(&CaseScore) -> bool>;
+
+/// The nuisance rows: their names and which cases they hold.
+fn nuisances() -> Vec<(String, Pred)> {
     let mut nuisances: Vec<(String, Pred)> = vec![
         (
             "spectrum white".into(),
@@ -188,6 +161,41 @@ pub fn summary(scores: &[CaseScore], seed: u64, wall_s: f64) -> Summary {
             Box::new(move |s: &CaseScore| s.label.nuisance.logger_fault == Some(f)),
         ));
     }
+    nuisances
+}
+
+/// Summarises case scores.
+pub fn summary(scores: &[CaseScore], seed: u64, wall_s: f64) -> Summary {
+    let mut rows = Vec::new();
+    let effect: Vec<&CaseScore> = scores
+        .iter()
+        .filter(|s| !s.label.effects.is_empty())
+        .collect();
+    for f in Family::ALL {
+        let c: Vec<&CaseScore> = effect
+            .iter()
+            .copied()
+            .filter(|s| s.label.effects[0].family == f)
+            .collect();
+        if !c.is_empty() {
+            rows.push(row("family", f.name().into(), &c));
+        }
+    }
+    for f in Form::ALL {
+        let c: Vec<&CaseScore> = effect
+            .iter()
+            .copied()
+            .filter(|s| s.label.effects[0].form == f)
+            .collect();
+        if !c.is_empty() {
+            rows.push(row(
+                "form",
+                format!("{}/{}", f.family().name(), f.name()),
+                &c,
+            ));
+        }
+    }
+    let nuisances = nuisances();
     for (k, p) in &nuisances {
         let c: Vec<&CaseScore> = effect.iter().copied().filter(|s| p(s)).collect();
         if !c.is_empty() {
