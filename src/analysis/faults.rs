@@ -75,21 +75,21 @@ pub struct Fault {
 
 /// Every fault of channel `x`, in sample order.
 pub fn find(x: &[f64], fs: f64) -> Vec<Fault> {
-    let held = held(x);
+    let runs = equal_runs(x);
+    let held = held(x.len(), &runs);
     let spikes = spikes(x, fs, &held);
-    let mut out = classify(x, held, &spikes);
+    let mut out = classify(x, &runs, held, &spikes);
     out.extend(spikes);
     out.sort_by_key(|f| f.samples.start);
     out
 }
 
-/// Runs of equal samples too long for quantisation (see the module's statistics), before their
-/// kind is known.
-fn held(x: &[f64]) -> Vec<Range<usize>> {
-    let runs = equal_runs(x);
+/// The runs of equal samples `runs` (of a record of `len` samples) too long for quantisation (see
+/// the module's statistics), before their kind is known.
+fn held(len: usize, runs: &[Range<usize>]) -> Vec<Range<usize>> {
     let count = |k: usize| runs.iter().filter(|r| r.len() == k).count() as f64;
     let (c2, c3) = (count(2), count(3));
-    let n = x.len().max(2) as f64;
+    let n = len.max(2) as f64;
     // Expected number of chance runs of ≥ k equal samples. With few repeats, from the pair
     // probability p = c₂/N: N·p^(k−1). With many (a quantised, oversampled channel lingers at its
     // turning points), from the geometric tail the run lengths themselves show, r = c₃/c₂:
@@ -102,22 +102,30 @@ fn held(x: &[f64]) -> Vec<Range<usize>> {
             n * (c2 / (n - 1.0)).powi(k as i32 - 1)
         }
     };
-    runs.into_iter()
+    runs.iter()
         .filter(|r| r.len() >= HELD_MIN && expected(r.len()) < HELD_FALSE_ALARMS)
+        .cloned()
         .collect()
 }
 
 /// The kind of each held stretch: [`FaultKind::Clipped`] when it sits at the channel's extreme
 /// (outside spikes) or when its value recurs in three or more stretches (a converter's range is
 /// one level, reached again and again); otherwise [`FaultKind::Held`].
-fn classify(x: &[f64], held: Vec<Range<usize>>, spikes: &[Fault]) -> Vec<Fault> {
+fn classify(
+    x: &[f64],
+    runs: &[Range<usize>],
+    held: Vec<Range<usize>>,
+    spikes: &[Fault],
+) -> Vec<Fault> {
+    if held.is_empty() {
+        return Vec::new();
+    }
     let in_spike = |i: usize| spikes.iter().any(|f| f.samples.contains(&i));
     let (lo, hi) = (0..x.len())
         .filter(|&i| !in_spike(i))
         .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), i| {
             (lo.min(x[i]), hi.max(x[i]))
         });
-    let runs = equal_runs(x);
     let recurs = |v: f64| runs.iter().filter(|r| x[r.start] == v).count() >= 3;
     held.iter()
         .map(|r| {
