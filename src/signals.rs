@@ -101,17 +101,14 @@ impl Signals {
 /// sensor or acquisition lag on one output channel. For a sinusoid at `f` the interpolation error is
 /// of order `(2πf/fs)⁴/24`, below 10⁻⁵ for f/fs ≤ 0.02.
 pub fn delay(samples: &[f64], fs: f64, delay_s: f64) -> Vec<f64> {
-    let shift = delay_s * fs;
-    let whole = shift.floor();
-    let mu = shift - whole;
-    let whole = whole as i64;
-    // Lagrange weights for the points at offsets −1, 0, 1, 2 around the fractional position.
-    let w = [
-        -mu * (mu - 1.0) * (mu - 2.0) / 6.0,
-        (mu + 1.0) * (mu - 1.0) * (mu - 2.0) / 2.0,
-        -(mu + 1.0) * mu * (mu - 2.0) / 2.0,
-        (mu + 1.0) * mu * (mu - 1.0) / 6.0,
-    ];
+    retime(samples, fs, |_| delay_s)
+}
+
+/// Resamples `samples` (sampled at `fs` Hz) with a lag that varies through the record,
+/// y(t) = x(t − τ(t)) at t = n/fs, `lag_s(t)` = τ(t) in s, by the 4-point Lagrange interpolation of
+/// [`delay`]; samples before the record's start are zero. A logger whose clock runs at
+/// (1 + ε) × the reference's has τ(t) = τ₀ + ε·t.
+pub fn retime(samples: &[f64], fs: f64, lag_s: impl Fn(f64) -> f64) -> Vec<f64> {
     let at = |i: i64| -> f64 {
         if i < 0 || i as usize >= samples.len() {
             0.0
@@ -121,8 +118,19 @@ pub fn delay(samples: &[f64], fs: f64, delay_s: f64) -> Vec<f64> {
     };
     (0..samples.len() as i64)
         .map(|n| {
+            let shift = lag_s(n as f64 / fs) * fs;
+            let whole = shift.floor();
+            let mu = shift - whole;
+            // Lagrange weights for the points at offsets −1, 0, 1, 2 around the fractional
+            // position.
+            let w = [
+                -mu * (mu - 1.0) * (mu - 2.0) / 6.0,
+                (mu + 1.0) * (mu - 1.0) * (mu - 2.0) / 2.0,
+                -(mu + 1.0) * mu * (mu - 2.0) / 2.0,
+                (mu + 1.0) * mu * (mu - 1.0) / 6.0,
+            ];
             // y[n] = x(n − shift) = x(n − whole − mu): interpolate between n − whole − 1 and n − whole.
-            let base = n - whole - 1;
+            let base = n - whole as i64 - 1;
             w[0] * at(base + 2) + w[1] * at(base + 1) + w[2] * at(base) + w[3] * at(base - 1)
         })
         .collect()
