@@ -1,5 +1,6 @@
 use std::path::PathBuf;
-use wbv::diagnosis::{diagnose, plot, report};
+use wbv::diagnosis::acquisition::Loggers;
+use wbv::diagnosis::{diagnose_with, plot, report};
 use wbv::io::atomic::Overwrite;
 use wbv::model::catalog;
 
@@ -16,6 +17,12 @@ pub struct Args {
     /// Held-out run used only to score the candidates.
     #[arg(long)]
     check: PathBuf,
+    /// A data logger and the channels it records, `NAME:CH[,CH…]`; repeat for each logger, e.g.
+    /// `--logger base:a_base_z --logger cab:a_seat_z,a_head_z,f_seat_z`. A trigger offset or a
+    /// clock drift between loggers retimes every channel of the loggers other than the base's.
+    /// Without it the base accelerometer is assumed on one logger and the rest on another.
+    #[arg(long = "logger", value_name = "NAME:CHANNELS")]
+    loggers: Vec<String>,
     /// How to read the runs (applies to every --run and --check).
     #[command(flatten)]
     input: wbv::io::input::InputArgs,
@@ -52,6 +59,7 @@ pub fn run(args: Args) -> wbv::Result<()> {
         None => None,
     };
     let model = catalog::resolve(&args.model)?;
+    let loggers = Loggers::parse(&args.loggers)?;
     let opts = args.input.options()?;
     let load = |p: &PathBuf| -> wbv::Result<wbv::signals::Signals> {
         let s = wbv::analysis::load_input(p, &opts)?.signals;
@@ -76,7 +84,7 @@ pub fn run(args: Args) -> wbv::Result<()> {
         .map(load)
         .collect::<wbv::Result<Vec<_>>>()?;
     let check = load(&args.check)?;
-    let d = diagnose(&model, &train, &check)?;
+    let d = diagnose_with(&model, &train, &check, &loggers)?;
     let mut written = Vec::new();
     if let Some((dir, ext)) = &plot {
         plot::write_as(&d, dir, ext, ow)?;

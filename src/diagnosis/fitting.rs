@@ -2,6 +2,7 @@
 //! with an active set and Gaussian priors on the base parameters, multistart scouts) on the
 //! training runs, and the null re-fit started again where the best candidates left the base.
 
+use super::acquisition::OffBase;
 use super::candidate::{BASE_BOUND, Candidate, Param, base_params, prior_sigma, scaled};
 use super::measure::RunSpectra;
 use super::outcome::Estimate;
@@ -26,13 +27,16 @@ pub(super) fn effect_params(cands: &[Candidate]) -> Vec<Vec<Param>> {
 pub(super) struct Base<'a> {
     model: &'a Model,
     pub(super) params: Vec<(String, f64, Quantity)>,
+    /// The transducers off the base accelerometer's logger ([`super::acquisition`]).
+    off_base: OffBase,
 }
 
 impl<'a> Base<'a> {
-    pub(super) fn of(model: &'a Model) -> Self {
+    pub(super) fn of(model: &'a Model, off_base: OffBase) -> Self {
         Base {
             model,
             params: base_params(model),
+            off_base,
         }
     }
 }
@@ -43,6 +47,7 @@ pub(super) fn build(base: &Base, cands: &[Candidate], u: &[f64], rms_ref: f64) -
     let nb = base.params.len();
     let mut v = Variant::plain(scaled(base.model, &base.params, &u[..nb])?);
     v.rms_ref = rms_ref;
+    v.off_base = base.off_base;
     let mut at = nb;
     for (c, ps) in cands.iter().zip(effect_params(cands)) {
         let p: Vec<f64> = ps

@@ -9,8 +9,10 @@
 //! ([`all_runs`]) → the [`Verdict`] by an ordered list of named rules ([`verdict`]) → a second
 //! effect by forward selection ([`select::second_effect`]) → the text ([`text`]).
 
+pub mod acquisition;
 mod all_runs;
 pub mod candidate;
+pub mod clock;
 pub mod distortion;
 pub use crate::numeric::lm as fit;
 mod evidence;
@@ -48,6 +50,7 @@ pub use verdict::{Basis, Verdict};
 use crate::error::Result;
 use crate::model::Model;
 use crate::signals::Signals;
+use acquisition::Loggers;
 use candidate::Candidate;
 use evidence::Counts;
 use fitting::Base;
@@ -55,10 +58,26 @@ use measure::Path;
 use predict::Variant;
 use verdict::{Evidence, iso_figures_move_away};
 
-/// Runs the diagnosis of `model` (any kind: the candidates act on its [`crate::system::System`])
-/// against training runs and one held-out check run: the stages of docs/gap.md in order.
+/// Runs the diagnosis of `model` against training runs and one held-out check run with the
+/// loggers assumed ([`Loggers::default`]); see [`diagnose_with`].
 pub fn diagnose(model: &Model, train: &[Signals], check: &Signals) -> Result<Diagnosis> {
-    let base = Base::of(model);
+    diagnose_with(model, train, check, &Loggers::default())
+}
+
+/// Runs the diagnosis of `model` (any kind: the candidates act on its [`crate::system::System`])
+/// against training runs and one held-out check run recorded on `loggers`: the stages of
+/// docs/gap.md in order.
+pub fn diagnose_with(
+    model: &Model,
+    train: &[Signals],
+    check: &Signals,
+    loggers: &Loggers,
+) -> Result<Diagnosis> {
+    for run in train.iter().chain(std::iter::once(check)) {
+        loggers.check_covers(run.names.iter().map(String::as_str))?;
+    }
+    let off_base = loggers.off_base();
+    let base = Base::of(model, off_base);
     let system = model.system();
     let prepared = prepare::prepare(system, train, check)?;
     let (tr, ck) = (&prepared.train, &prepared.check);
@@ -72,8 +91,19 @@ pub fn diagnose(model: &Model, train: &[Signals], check: &Signals) -> Result<Dia
     let applicable: Vec<Candidate> = Candidate::ALL
         .into_iter()
         .filter(|c| c.applies_to(system) && (force_measured || !c.reads_force_only()))
+        .filter(|c| off_base.any() || !c.retimes_a_logger())
         .collect();
     let mut ranking = select::rank(&base, &applicable, tr, ck, &nominal, n)?;
+    if let Some(trend) = &prepared.clock
+        && let Some(r) = ranking
+            .cands
+            .iter_mut()
+            .find(|r| r.id == Candidate::LoggerDrift.id())
+        && let [o, d] = &mut r.params[..]
+    {
+        let runs: Vec<&measure::RunSpectra> = tr.iter().chain(std::iter::once(ck)).collect();
+        (o.value, d.value) = clock::oriented((o.value, d.value), trend, &runs);
+    }
     // The held-out acceptance is taken before the all-run winner's entry is rewritten with its
     // all-run fit (`adopt`): the rules read the accepted best as the held-out run ranked it.
     let accepted = verdict::held_out_accepted(&ranking.null, &ranking.cands).cloned();
@@ -94,6 +124,7 @@ pub fn diagnose(model: &Model, train: &[Signals], check: &Signals) -> Result<Dia
         accepted: accepted.as_ref(),
         all_runs: all_runs.as_ref().map(|(a, _)| a),
         distortion: prepared.distortion.as_ref(),
+        clock: prepared.clock.as_ref(),
     };
     let mut decided = verdict::conclude(&evidence);
     let mut text = text::verdict(&decided, &evidence);
@@ -131,6 +162,8 @@ pub fn diagnose(model: &Model, train: &[Signals], check: &Signals) -> Result<Dia
         separating_measurement: decided.separating().map(str::to_string),
         channel_errors,
         data_faults: prepared.data_faults,
+        loggers: loggers.describe(),
+        clock: prepared.clock,
         named,
         bands: located.bands,
         warnings,

@@ -172,6 +172,14 @@ pub struct Diagnosis {
     /// handled; see [`super::screen`].
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub data_faults: Vec<DataFault>,
+    /// Which logger records which transducer, as stated with `--logger` or assumed: the timing
+    /// candidates retime the loggers other than the base's ([`super::acquisition`]).
+    #[serde(default)]
+    pub loggers: String,
+    /// How the lag of the seat and head behind the base moves between the runs' halves: a
+    /// drifting logger clock ([`super::clock`]).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub clock: Option<super::clock::ClockTrend>,
     /// Per path, the one-third-octave bands judged (coherent on the check run) and those that
     /// could not be.
     pub bands: Vec<BandCoverage>,

@@ -9,6 +9,7 @@
 //! σ_d² = ∫|X_rel(f)|² G_base(f) df. Amplitude dependence then shows up between runs of different
 //! magnitude exactly as the measured H1 does, at microseconds per frequency.
 
+use super::acquisition::OffBase;
 use super::measure::{Path, RunSpectra};
 use crate::error::{Error, Result};
 use crate::system::{Element, Law, Role, System};
@@ -21,8 +22,11 @@ use std::f64::consts::PI;
 pub struct Channel {
     /// Calibration gain (1 = calibrated).
     pub gain: f64,
-    /// Lag in s (sensor or acquisition delay).
+    /// Lag in s (sensor or acquisition delay) at the start of the run.
     pub delay_s: f64,
+    /// Clock drift of the channel's logger against the base's, s per s (1e-6 = 1 ppm): the lag
+    /// grows to `delay_s + drift·t` at `t` s into the run ([`Channel::response_in`]).
+    pub drift: f64,
     /// Corner of a 4-pole Butterworth low-pass (anti-alias filter) in Hz; ∞ = none.
     pub lowpass_hz: f64,
     /// Corner of a first-order high-pass in Hz, iω/(iω + ω_c): the AC coupling of an IEPE
@@ -39,6 +43,7 @@ impl Default for Channel {
         Channel {
             gain: 1.0,
             delay_s: 0.0,
+            drift: 0.0,
             lowpass_hz: f64::INFINITY,
             highpass_hz: 0.0,
             mount: None,
@@ -46,8 +51,55 @@ impl Default for Channel {
     }
 }
 
+/// The centres of a run's Welch segments, where H1 averages a lag that drifts through the run.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SegmentTimes {
+    /// Centre of the first segment, s from the run's start.
+    pub first_s: f64,
+    /// Spacing of the centres, s (half a segment: 50 % overlap).
+    pub hop_s: f64,
+    /// Number of segments L.
+    pub count: usize,
+}
+
+impl SegmentTimes {
+    /// The segment centres of `run`: segments of 1/Δf s, half-overlapped (see [`super::measure`]).
+    pub fn of(run: &RunSpectra) -> Self {
+        let seg = 1.0 / run.df_hz;
+        SegmentTimes {
+            first_s: 0.5 * seg,
+            hop_s: 0.5 * seg,
+            count: run.segments.max(1),
+        }
+    }
+}
+
 impl Channel {
-    /// The channel's response at `f` Hz.
+    /// The channel's response at `f` Hz within a run whose H1 averages segments at `times`: a
+    /// lag `delay_s + drift·t` growing through the run enters H1 as the mean of its phasors over
+    /// the segment centres t_k = t₀ + k·h, a geometric sum,
+    /// (1/L) Σ e^{−iω·drift·t_k} = e^{−iω·drift·(t₀ + (L−1)h/2)} · sin(L x/2)/(L sin(x/2)),
+    /// x = ω·drift·h: the mid-run lag and a sinc-like loss of magnitude that grows with frequency
+    /// and run length (a drift looks like a low-pass on a whole run; its lag moves between
+    /// segments).
+    pub fn response_in(&self, f: f64, times: &SegmentTimes) -> Complex64 {
+        let h = self.response(f);
+        if self.drift == 0.0 {
+            return h;
+        }
+        let omega = 2.0 * PI * f;
+        let l = times.count as f64;
+        let mid = times.first_s + 0.5 * (l - 1.0) * times.hop_s;
+        let x = omega * self.drift * times.hop_s;
+        let loss = if (0.5 * x).sin().abs() < 1e-12 {
+            1.0
+        } else {
+            (0.5 * l * x).sin() / (l * (0.5 * x).sin())
+        };
+        h * Complex64::from_polar(loss, -omega * self.drift * mid)
+    }
+
+    /// The channel's response at `f` Hz at the start of a run (no drift yet).
     pub fn response(&self, f: f64) -> Complex64 {
         let omega = 2.0 * PI * f;
         let mut h = Complex64::from_polar(self.gain, -omega * self.delay_s);
@@ -137,6 +189,9 @@ pub struct Variant {
     /// cells also carry the plate moving with the seat surface, F_meas = F + m·a_seat, so the
     /// apparent mass reads m too much at every frequency (ISO 5982 practice subtracts it).
     pub force_mass_kg: f64,
+    /// The transducers on another logger than the base accelerometer, which a timing effect
+    /// between the loggers retimes ([`super::acquisition`]).
+    pub off_base: OffBase,
 }
 
 impl Variant {
@@ -151,6 +206,7 @@ impl Variant {
             head: Channel::default(),
             force: Channel::default(),
             force_mass_kg: 0.0,
+            off_base: OffBase::default(),
         }
     }
 }
@@ -325,11 +381,13 @@ fn path_values(
     v: &Variant,
     f: f64,
     paths: &[Path],
+    times: &SegmentTimes,
     out: &mut [Complex64],
 ) -> Result<()> {
     let (ch, _) = solve_point(system, f)?;
     let seat = ch[taps.seat_z];
-    let (lb, ls, lh) = (v.base.response(f), v.seat.response(f), v.head.response(f));
+    let response = |c: &Channel| c.response_in(f, times);
+    let (lb, ls, lh) = (response(&v.base), response(&v.seat), response(&v.head));
     for (o, &path) in out.iter_mut().zip(paths) {
         let tap = |i: Option<usize>| {
             i.map(|i| ch[i]).ok_or_else(|| {
@@ -351,7 +409,7 @@ fn path_values(
             // F_meas / a_seat,meas = l_f·(F + m_plate·a_seat) / (a_seat·l_s).
             Path::ApparentMass => {
                 let force = taps.force.map_or(Complex64::new(0.0, 0.0), |c| ch[c]);
-                v.force.response(f) * (force / seat + v.force_mass_kg) / ls
+                response(&v.force) * (force / seat + v.force_mass_kg) / ls
             }
             Path::BaseSeatX => tap(taps.seat_x)? * ls / lb,
             Path::BaseHeadX => tap(taps.head_x)? * lh / lb,
@@ -370,6 +428,7 @@ pub fn predict(v: &Variant, run: &RunSpectra) -> Result<Vec<Vec<Complex64>>> {
     let mut out = vec![vec![Complex64::new(0.0, 0.0); run.freq_hz.len()]; paths.len()];
     let mut buf = vec![Complex64::new(0.0, 0.0); paths.len()];
     let taps = Taps::of(&lin)?;
+    let times = SegmentTimes::of(run);
     // A bin whose H1 averages over a non-smooth input spectrum (beside a line) is predicted as
     // that average, Σ w_q H(f_q) (see [`super::leakage`]), so that the leakage bias is on both
     // sides of the gap; paths that share an input share the quadrature and its solves.
@@ -377,7 +436,7 @@ pub fn predict(v: &Variant, run: &RunSpectra) -> Result<Vec<Vec<Complex64>>> {
     for (b, &f) in run.freq_hz.iter().enumerate() {
         let quad = |p: usize| run.paths[p].quadrature.get(b).filter(|q| !q.is_empty());
         if (0..paths.len()).any(|p| quad(p).is_none()) {
-            path_values(&lin, &taps, v, f, &paths, &mut buf)?;
+            path_values(&lin, &taps, v, f, &paths, &times, &mut buf)?;
             for (p, val) in buf.iter().enumerate() {
                 out[p][b] = *val;
             }
@@ -389,7 +448,7 @@ pub fn predict(v: &Variant, run: &RunSpectra) -> Result<Vec<Vec<Complex64>>> {
             }
             acc.iter_mut().for_each(|a| *a = Complex64::new(0.0, 0.0));
             for &(fq, wq) in q {
-                path_values(&lin, &taps, v, fq, &paths, &mut buf)?;
+                path_values(&lin, &taps, v, fq, &paths, &times, &mut buf)?;
                 for (a, val) in acc.iter_mut().zip(&buf) {
                     *a += val * wq;
                 }

@@ -2,6 +2,7 @@
 //! corrections, the paths every run shares, the quality gates, the distortion trend (on the raw
 //! estimates) and the coherence masks.
 
+use super::clock::{self, ClockTrend};
 use super::distortion::{self, Distortion};
 use super::inputs;
 use super::measure::{self, RunSpectra};
@@ -30,6 +31,8 @@ pub(super) struct Prepared<'a> {
     pub warnings: Vec<String>,
     /// Acquisition faults found and handled before the fit.
     pub data_faults: Vec<DataFault>,
+    /// How the lag behind the base moves through the runs (a drifting logger clock).
+    pub clock: Option<ClockTrend>,
 }
 
 impl Prepared<'_> {
@@ -91,6 +94,13 @@ pub(super) fn prepare<'a>(
     inputs::keep_common(&mut tr, &mut ck, &mut warnings);
     inputs::check_inputs(&tr, &ck, &mut warnings)?;
     let refs: Vec<&Signals> = signals.iter().map(|s| s.as_ref()).collect();
+    let clock = clock::trend(
+        &refs
+            .iter()
+            .zip(&screened)
+            .map(|(&s, sc)| (s, sc.excluded.as_slice()))
+            .collect::<Vec<_>>(),
+    )?;
     let (train_refs, check_ref) = refs.split_at(tr.len());
     warnings.extend(inputs::repeated(train_refs, check_ref[0]));
     // On the raw estimates: masking zeroes the coherence of paths with few coherent bins, and a
@@ -138,5 +148,6 @@ pub(super) fn prepare<'a>(
         distortion,
         warnings,
         data_faults: screened.into_iter().flat_map(|sc| sc.faults).collect(),
+        clock,
     })
 }

@@ -64,6 +64,9 @@ pub fn text(d: &Diagnosis) -> String {
             list(&b.not_judged_hz)
         );
     }
+    if !d.loggers.is_empty() {
+        let _ = writeln!(out, "loggers: {}", d.loggers);
+    }
     where_(&mut out, d);
     which(&mut out, d);
     shrinks(&mut out, d);
@@ -115,6 +118,20 @@ fn where_(out: &mut String, d: &Diagnosis) {
                 ": a nonlinearity {}",
                 s.describe()
             ))
+        );
+    }
+    if let Some(c) = &d.clock {
+        let _ = writeln!(
+            out,
+            "  lag of seat and head behind the base, first half → second half of {} run(s): {:+.0} ± {:.0} ppm of the elapsed time{}",
+            c.runs,
+            c.drift_ppm,
+            c.sigma_ppm,
+            if c.significant() {
+                " (moves: a drifting logger clock)"
+            } else {
+                ""
+            }
         );
     }
     for c in &d.classification {

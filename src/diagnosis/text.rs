@@ -16,6 +16,7 @@ pub(super) fn verdict(v: &Verdict, e: &Evidence) -> String {
             Basis::AllRuns { refitted: false } => on_all_runs(e, e.entry(*effect).expect("ranked")),
             Basis::HeldOut { tie, alternative } => held_out(e, *effect, *tie, *alternative),
             Basis::Distortion { responses } => distortion(e, e.entry(*effect).expect("ranked"), responses),
+            Basis::Clock { responses } => clock(e, e.entry(*effect).expect("ranked"), responses),
         },
         Verdict::NotIdentifiable { a, b, separating } => {
             let (a, b) = (
@@ -222,4 +223,17 @@ pub(super) fn calibration(text: String, errors: &[ChannelError], nothing_else: b
             "{text}. Also a channel's calibration is wrong: {what}; the diagnosis above uses it corrected"
         )
     }
+}
+
+/// Named on the lag's movement between the runs' halves ([`Basis::Clock`]).
+fn clock(e: &Evidence, b: &Ranked, responses: &super::VerdictId) -> String {
+    let c = e.clock.expect("the clock named it");
+    format!(
+        "{} (ΔBIC {:.1}): the lag of the seat and head behind the base grows by {:+.0} ± {:.0} ppm of the elapsed time between the runs' halves, which a drifting logger clock makes and a filter or a constant offset does not; the whole-run responses alone named {responses}. Its size on the check run: {}",
+        b.id,
+        b.delta_bic,
+        c.drift_ppm,
+        c.sigma_ppm,
+        size(b)
+    )
 }

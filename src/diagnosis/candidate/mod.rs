@@ -155,6 +155,10 @@ pub enum Candidate {
     CushionFractional,
     /// [`sensor::DELAY`]
     SensorDelay,
+    /// [`sensor::LOGGER_OFFSET`]
+    LoggerOffset,
+    /// [`sensor::LOGGER_DRIFT`]
+    LoggerDrift,
     /// [`sensor::LOWPASS`]
     SensorLowpass,
     /// [`sensor::HIGHPASS`]
@@ -189,7 +193,7 @@ pub enum Candidate {
 
 impl Candidate {
     /// Every candidate in report order.
-    pub const ALL: [Candidate; 23] = [
+    pub const ALL: [Candidate; 25] = [
         Candidate::BodySoftening,
         Candidate::BodySofteningMagnitude,
         Candidate::CushionStiffening,
@@ -198,6 +202,8 @@ impl Candidate {
         Candidate::CushionViscoelastic,
         Candidate::CushionFractional,
         Candidate::SensorDelay,
+        Candidate::LoggerOffset,
+        Candidate::LoggerDrift,
         Candidate::SensorLowpass,
         Candidate::SensorHighpass,
         Candidate::SensorGain,
@@ -226,6 +232,8 @@ impl Candidate {
             Candidate::CushionViscoelastic => &viscoelastic::CUSHION_VISCOELASTIC,
             Candidate::CushionFractional => &viscoelastic::CUSHION_FRACTIONAL,
             Candidate::SensorDelay => &sensor::DELAY,
+            Candidate::LoggerOffset => &sensor::LOGGER_OFFSET,
+            Candidate::LoggerDrift => &sensor::LOGGER_DRIFT,
             Candidate::SensorLowpass => &sensor::LOWPASS,
             Candidate::SensorHighpass => &sensor::HIGHPASS,
             Candidate::SensorGain => &sensor::GAIN,
@@ -287,6 +295,12 @@ impl Candidate {
     /// Whether the candidate acts only on the seat-pan force ([`Definition::reads_force_only`]).
     pub fn reads_force_only(self) -> bool {
         self.definition().reads_force_only
+    }
+
+    /// Whether the candidate retimes the transducers off the base accelerometer's logger, so
+    /// that it applies only when some are ([`crate::diagnosis::acquisition::OffBase::any`]).
+    pub fn retimes_a_logger(self) -> bool {
+        matches!(self, Candidate::LoggerOffset | Candidate::LoggerDrift)
     }
 
     /// Whether the system has the part this candidate extends.

@@ -65,6 +65,64 @@ pub const DELAY: Definition = sensor(
     false,
 );
 
+/// Adds a lag growing as `offset + drift·t` through the run to every transducer off the base
+/// accelerometer's logger ([`crate::diagnosis::acquisition`]): the seat pad, head and force plate
+/// retimed together, not one channel at a time.
+fn retime_off_base(v: &mut Variant, offset_s: f64, drift: f64) {
+    let off = v.off_base;
+    for (on, ch) in [
+        (off.seat, &mut v.seat),
+        (off.head, &mut v.head),
+        (off.force, &mut v.force),
+    ] {
+        if on {
+            ch.delay_s += offset_s;
+            ch.drift += drift;
+        }
+    }
+}
+
+/// A trigger offset between two data loggers: every channel of the logger that does not record
+/// the base is late (or early) by the same `offset_s`, the seat-pan force included, so all its
+/// paths from the base show the same phase slope −2πf·offset while seat→head and the apparent
+/// mass (both on one logger) show none. With one logger this is a lag of the base accelerometer
+/// of opposite sign.
+pub const LOGGER_OFFSET: Definition = sensor(
+    "logger-offset",
+    || vec![Param::new("offset_s", -0.05, 0.05, &[0.0], false)],
+    always,
+    |v, p| {
+        retime_off_base(v, p[0], 0.0);
+        Ok(())
+    },
+    false,
+);
+
+/// Parts per million, the unit a logger's clock tolerance is quoted in.
+const PPM: f64 = 1e-6;
+
+/// A drifting clock between two data loggers: the late logger's lag grows linearly through the
+/// run, `offset_s + drift_ppm·10⁻⁶·t` (a quartz clock's rate error of tens to hundreds of ppm). A
+/// whole run's H1 averages the growing lag over its segments: the mid-run lag and a loss of
+/// magnitude rising with frequency and run length ([`crate::diagnosis::predict::Channel::response_in`]),
+/// which a low-pass mimics on one run length but not on runs of different lengths or on the
+/// run's halves.
+pub const LOGGER_DRIFT: Definition = sensor(
+    "logger-drift",
+    || {
+        vec![
+            Param::new("offset_s", -0.05, 0.05, &[0.0], false),
+            Param::new("drift_ppm", -2000.0, 2000.0, &[-100.0, 100.0], false),
+        ]
+    },
+    always,
+    |v, p| {
+        retime_off_base(v, p[0], p[1] * PPM);
+        Ok(())
+    },
+    false,
+);
+
 /// 4-pole Butterworth anti-alias low-pass on the seat and/or head channel.
 pub const LOWPASS: Definition = sensor(
     "sensor-lowpass",

@@ -9,6 +9,7 @@ pub(super) mod rules;
 
 use super::all_runs::AllRuns;
 use super::candidate::Candidate;
+use super::clock::ClockTrend;
 use super::distortion::Distortion;
 pub(super) use super::evidence::training_closed;
 use super::outcome::{Ranked, Stage, VerdictId};
@@ -68,6 +69,12 @@ pub enum Basis {
         /// The frequency-response verdict it replaces.
         responses: VerdictId,
     },
+    /// A drifting clock, seen as the lag moving between the runs' halves; `responses` is the
+    /// timing or filter effect the whole-run responses named.
+    Clock {
+        /// The verdict it replaces.
+        responses: VerdictId,
+    },
 }
 
 impl Verdict {
@@ -113,6 +120,8 @@ pub(super) struct Evidence<'a> {
     pub all_runs: Option<&'a AllRuns>,
     /// The runs' distortion trend.
     pub distortion: Option<&'a Distortion>,
+    /// How the lag behind the base moves between the runs' halves.
+    pub clock: Option<&'a ClockTrend>,
 }
 
 impl Evidence<'_> {
@@ -148,11 +157,13 @@ pub(super) fn decide(e: &Evidence) -> Verdict {
         .expect("the last rule always applies")
 }
 
-/// The verdict after the distortion's second opinion: [`rules::located`] replaces the
-/// frequency-response verdict when the distortion places a nonlinearity elsewhere.
+/// The verdict after the second opinions: [`rules::located`] replaces the frequency-response
+/// verdict when the distortion places a nonlinearity elsewhere, [`rules::clocked`] a timing or
+/// filter effect when the lag moves through the runs.
 pub(super) fn conclude(e: &Evidence) -> Verdict {
     let responses = decide(e);
-    rules::located(e, &responses).unwrap_or(responses)
+    let v = rules::located(e, &responses).unwrap_or(responses);
+    rules::clocked(e, &v).unwrap_or(v)
 }
 
 /// Overdispersion ĉ = max(1, χ²/ν) of a fit (QAIC, Burnham & Anderson 2002, §2.5): when even the

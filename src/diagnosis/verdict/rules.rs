@@ -3,7 +3,7 @@
 //! say.
 
 use super::{Basis, Evidence, Verdict, candidate, overdispersion, training_closed};
-use crate::diagnosis::candidate::{Family, separating_measurement};
+use crate::diagnosis::candidate::{Candidate, Family, separating_measurement};
 use crate::diagnosis::outcome::Ranked;
 use crate::diagnosis::thresholds::{
     ACCEPT_DELTA_BIC, GAP_CHI2, IDENTIFIABLE_MARGIN, MIN_CLOSED, PRACTICAL_GAP,
@@ -248,3 +248,24 @@ pub(in crate::diagnosis) fn located(e: &Evidence, responses: &Verdict) -> Option
 
 #[cfg(test)]
 mod tests;
+
+/// The clock's second opinion. A logger clock that drifts moves the lag behind the base between a
+/// run's halves ([`crate::diagnosis::clock`]); no filter, mount or constant offset does. When that
+/// movement is significant and the responses named a measuring-chain effect (a whole run's H1
+/// shows a drift as a mean lag and a low-pass-like loss), the drift is named if it is detected on
+/// the held-out run.
+pub(in crate::diagnosis) fn clocked(e: &Evidence, responses: &Verdict) -> Option<Verdict> {
+    e.clock.filter(|c| c.significant())?;
+    let named = responses.effect()?;
+    if named.family() != Family::Sensor || named == Candidate::LoggerDrift {
+        return None;
+    }
+    let drift = e.entry(Candidate::LoggerDrift)?;
+    (drift.delta_bic <= ACCEPT_DELTA_BIC).then(|| Verdict::Named {
+        effect: Candidate::LoggerDrift,
+        basis: Basis::Clock {
+            responses: responses.id(),
+        },
+        second: None,
+    })
+}

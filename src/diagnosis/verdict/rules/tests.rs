@@ -47,6 +47,7 @@ fn evidence<'a>(null: &'a Ranked, cands: &'a [Ranked]) -> Evidence<'a> {
         accepted: held_out_accepted(null, cands),
         all_runs: None,
         distortion: None,
+        clock: None,
     }
 }
 

@@ -1,0 +1,284 @@
+//! Which channels share a time base: the data loggers of a rig (docs/gap.md §5, acquisition
+//! timing). A field rig often records the base on one logger (the vehicle's or the shaker's) and
+//! the seat pad, head and force plate on another; each logger has its own trigger and clock, so a
+//! trigger offset or a clock drift acts on *every* channel of the other logger, the force
+//! included. The timing candidates ([`super::candidate::sensor::LOGGER_OFFSET`],
+//! [`super::candidate::sensor::LOGGER_DRIFT`]) act on the channels [`Loggers::off_base`] returns.
+
+use crate::error::{Error, Result};
+
+/// A transducer of a gap run: an accelerometer (triaxial at the seat and head: one time base for
+/// its axes) or the seat-pan force plate.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Transducer {
+    /// The base (floor, platform) accelerometer, `a_base_z`.
+    Base,
+    /// The seat-pad accelerometer, `a_seat_z` (and `a_seat_x`).
+    Seat,
+    /// The head accelerometer, `a_head_z` (and `a_head_x`).
+    Head,
+    /// The seat-pan force plate, `f_seat_z`.
+    Force,
+}
+
+impl Transducer {
+    /// Every transducer, in report order.
+    pub const ALL: [Transducer; 4] = [
+        Transducer::Base,
+        Transducer::Seat,
+        Transducer::Head,
+        Transducer::Force,
+    ];
+
+    /// The transducer recording channel `name`, if it is one a gap run reads.
+    pub fn of_channel(name: &str) -> Option<Transducer> {
+        match name {
+            "a_base_z" => Some(Transducer::Base),
+            "a_seat_z" | "a_seat_x" => Some(Transducer::Seat),
+            "a_head_z" | "a_head_x" => Some(Transducer::Head),
+            "f_seat_z" => Some(Transducer::Force),
+            _ => None,
+        }
+    }
+
+    /// Its vertical channel's name.
+    pub fn channel(self) -> &'static str {
+        match self {
+            Transducer::Base => "a_base_z",
+            Transducer::Seat => "a_seat_z",
+            Transducer::Head => "a_head_z",
+            Transducer::Force => "f_seat_z",
+        }
+    }
+}
+
+/// The transducers recorded on another logger than the base accelerometer: the ones a trigger
+/// offset or a clock drift between the loggers retimes.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct OffBase {
+    /// The seat-pad accelerometer.
+    pub seat: bool,
+    /// The head accelerometer.
+    pub head: bool,
+    /// The seat-pan force plate.
+    pub force: bool,
+}
+
+impl OffBase {
+    /// Whether any transducer is off the base's logger.
+    pub fn any(self) -> bool {
+        self.seat || self.head || self.force
+    }
+}
+
+/// One logger: a name and the transducers it records.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Logger {
+    /// The name given with `--logger NAME:…`, or `base` / `occupant` when assumed.
+    pub name: String,
+    /// What it records.
+    pub transducers: Vec<Transducer>,
+}
+
+/// The rig's loggers.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Loggers {
+    /// Every logger; the base accelerometer is on exactly one.
+    pub loggers: Vec<Logger>,
+    /// Whether the user stated them (`--logger`) rather than the diagnosis assuming them.
+    pub stated: bool,
+}
+
+impl Default for Loggers {
+    /// The assumption when none are stated: the base accelerometer on one logger, the occupant's
+    /// transducers on another. A timing effect on the occupant's logger is then the same as a lag
+    /// of the base accelerometer of opposite sign, so the assumption also covers a single logger
+    /// whose base channel is delayed; a rig with one time base for all simply shows no timing
+    /// effect.
+    fn default() -> Self {
+        Loggers {
+            loggers: vec![
+                Logger {
+                    name: "base".into(),
+                    transducers: vec![Transducer::Base],
+                },
+                Logger {
+                    name: "occupant".into(),
+                    transducers: vec![Transducer::Seat, Transducer::Head, Transducer::Force],
+                },
+            ],
+            stated: false,
+        }
+    }
+}
+
+impl Loggers {
+    /// Parses `--logger NAME:CH[,CH…]` values, one per logger, e.g. `base:a_base_z` and
+    /// `cab:a_seat_z,a_head_z,f_seat_z`. Every transducer the runs carry must be on exactly one
+    /// logger ([`Loggers::check_covers`]); an empty list gives the assumed default.
+    pub fn parse(specs: &[String]) -> Result<Loggers> {
+        if specs.is_empty() {
+            return Ok(Loggers::default());
+        }
+        let mut loggers: Vec<Logger> = Vec::new();
+        for spec in specs {
+            let bad = |what: String| Error::parameter("--logger", format!("`{spec}`: {what}"));
+            let (name, channels) = spec.split_once(':').ok_or_else(|| {
+                bad("expected NAME:CHANNEL[,CHANNEL…], e.g. cab:a_seat_z,a_head_z,f_seat_z".into())
+            })?;
+            let name = name.trim();
+            if name.is_empty() {
+                return Err(bad("the logger has no name before `:`".into()));
+            }
+            if loggers.iter().any(|l| l.name == name) {
+                return Err(bad(format!("logger `{name}` is given twice")));
+            }
+            let mut transducers = Vec::new();
+            for ch in channels.split(',').map(str::trim).filter(|c| !c.is_empty()) {
+                let t = Transducer::of_channel(ch).ok_or_else(|| {
+                    bad(format!(
+                        "unknown channel `{ch}` (expected a_base_z, a_seat_z, a_seat_x, a_head_z, a_head_x or f_seat_z)"
+                    ))
+                })?;
+                if let Some(other) = loggers.iter().find(|l| l.transducers.contains(&t)) {
+                    return Err(bad(format!(
+                        "`{ch}` is already on logger `{}`: a transducer has one time base",
+                        other.name
+                    )));
+                }
+                if !transducers.contains(&t) {
+                    transducers.push(t);
+                }
+            }
+            if transducers.is_empty() {
+                return Err(bad("the logger records no channel".into()));
+            }
+            loggers.push(Logger {
+                name: name.to_string(),
+                transducers,
+            });
+        }
+        if !loggers
+            .iter()
+            .any(|l| l.transducers.contains(&Transducer::Base))
+        {
+            return Err(Error::parameter(
+                "--logger",
+                "no logger records a_base_z: name the logger of the base accelerometer too",
+            ));
+        }
+        Ok(Loggers {
+            loggers,
+            stated: true,
+        })
+    }
+
+    /// Checks that stated loggers name every transducer in `channels` (the runs' channel names),
+    /// so that no channel's time base is silently assumed.
+    pub fn check_covers<'a>(&self, channels: impl IntoIterator<Item = &'a str>) -> Result<()> {
+        if !self.stated {
+            return Ok(());
+        }
+        for ch in channels {
+            if let Some(t) = Transducer::of_channel(ch)
+                && self.logger_of(t).is_none()
+            {
+                return Err(Error::parameter(
+                    "--logger",
+                    format!("the runs record `{ch}` but no --logger names it"),
+                ));
+            }
+        }
+        Ok(())
+    }
+
+    /// The logger recording `t`.
+    pub fn logger_of(&self, t: Transducer) -> Option<&Logger> {
+        self.loggers.iter().find(|l| l.transducers.contains(&t))
+    }
+
+    /// The transducers on another logger than the base accelerometer's (a transducer no logger
+    /// names is not recorded: [`Loggers::check_covers`]).
+    pub fn off_base(&self) -> OffBase {
+        let base = self.logger_of(Transducer::Base).map(|l| l.name.as_str());
+        let off = |t| {
+            self.logger_of(t)
+                .is_some_and(|l| Some(l.name.as_str()) != base)
+        };
+        OffBase {
+            seat: off(Transducer::Seat),
+            head: off(Transducer::Head),
+            force: off(Transducer::Force),
+        }
+    }
+
+    /// One line for the report: which logger records what.
+    pub fn describe(&self) -> String {
+        let list = self
+            .loggers
+            .iter()
+            .map(|l| {
+                let chans: Vec<&str> = l.transducers.iter().map(|t| t.channel()).collect();
+                format!("{}: {}", l.name, chans.join(", "))
+            })
+            .collect::<Vec<_>>()
+            .join("; ");
+        if self.stated {
+            list
+        } else {
+            format!("{list} (assumed; state them with --logger)")
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn specs(s: &[&str]) -> Vec<String> {
+        s.iter().map(|x| x.to_string()).collect()
+    }
+
+    #[test]
+    fn a_cab_logger_puts_seat_head_and_force_off_the_base() {
+        let l =
+            Loggers::parse(&specs(&["base:a_base_z", "cab:a_seat_z,a_head_z,f_seat_z"])).unwrap();
+        assert_eq!(
+            l.off_base(),
+            OffBase {
+                seat: true,
+                head: true,
+                force: true
+            }
+        );
+        // The force plate on the base's logger is not retimed.
+        let l = Loggers::parse(&specs(&["a:a_base_z,f_seat_z", "b:a_seat_z,a_head_z"])).unwrap();
+        assert_eq!(
+            l.off_base(),
+            OffBase {
+                seat: true,
+                head: true,
+                force: false
+            }
+        );
+        // One logger for all: nothing to retime.
+        let l = Loggers::parse(&specs(&["all:a_base_z,a_seat_z,a_head_z"])).unwrap();
+        assert!(!l.off_base().any());
+        assert!(Loggers::default().off_base().any());
+    }
+
+    #[test]
+    fn a_channel_on_two_loggers_an_unknown_one_or_a_missing_base_is_refused() {
+        let err = |s: &[&str]| Loggers::parse(&specs(s)).unwrap_err().to_string();
+        assert!(err(&["a:a_base_z,a_seat_z", "b:a_seat_z"]).contains("already on logger `a`"));
+        assert!(err(&["a:a_base_z,a_knee_z"]).contains("unknown channel `a_knee_z`"));
+        assert!(err(&["cab:a_seat_z"]).contains("no logger records a_base_z"));
+        assert!(err(&["a_base_z"]).contains("expected NAME:CHANNEL"));
+        let l = Loggers::parse(&specs(&["a:a_base_z", "b:a_seat_z"])).unwrap();
+        let e = l
+            .check_covers(["a_base_z", "a_seat_z", "f_seat_z"])
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("`f_seat_z` but no --logger names it"), "{e}");
+    }
+}

@@ -1,0 +1,109 @@
+//! `wbv gap` on runs recorded by two data loggers: a trigger offset or a drifting clock retimes
+//! every channel of the logger that does not record the base, the seat-pan force included. The
+//! runs are the truth bench's (`wbv::gap_bench::case`), retimed in the time domain at the
+//! simulation rate before sampling; the candidates predict the same effect in the frequency
+//! domain and share no code with that.
+
+use wbv::diagnosis::acquisition::Loggers;
+use wbv::diagnosis::{Diagnosis, diagnose, diagnose_with};
+use wbv::gap_bench::case::{Case, CaseOptions, make_case_with};
+use wbv::gap_bench::forms::Form;
+use wbv::model::catalog;
+
+/// The first case from `index` whose planted clock puts the force plate on the late logger
+/// (`force_late`) or on the base's; runs of 90 s at 500 Hz on white noise.
+fn case(form: Form, u: f64, force: bool, force_late: bool, index: usize) -> Case {
+    (index..index + 20)
+        .map(|i| {
+            make_case_with(
+                i,
+                5,
+                &CaseOptions {
+                    effects: Some(vec![(form, u)]),
+                    spectrum: Some("white"),
+                    fs_hz: Some(500.0),
+                    duration_s: Some(90.0),
+                    noise: Some(0.01),
+                    force: Some(force),
+                },
+            )
+            .unwrap()
+        })
+        .find(|c| c.label.effects[0].detail.contains("f_seat_z") == force_late)
+        .expect("a case with that wiring")
+}
+
+fn param(d: &Diagnosis, id: &str, name: &str) -> f64 {
+    let c = d.candidates.iter().find(|c| c.id == id).expect(id);
+    c.params.iter().find(|p| p.name == name).expect(name).value
+}
+
+/// The planted clock's offset and drift (s, s/s), read back from the case's description.
+fn planted_clock(c: &Case) -> (f64, f64) {
+    let d = &c.label.effects[0].detail;
+    let num = |key: &str| -> f64 {
+        let at = d.find(key).expect(key) + key.len();
+        let s: String = d[at..]
+            .chars()
+            .take_while(|ch| ch.is_ascii_digit() || "-+.e".contains(*ch))
+            .collect();
+        s.parse().expect("number")
+    };
+    (num("offset_s: "), num("drift: "))
+}
+
+#[test]
+fn a_trigger_offset_with_the_force_plate_on_the_late_logger_is_a_logger_offset() {
+    let c = case(Form::LoggerOffset, 0.5, true, true, 0);
+    let model = catalog::resolve("reference").unwrap();
+    let d = diagnose(&model, &c.train, &c.check).unwrap();
+    assert_eq!(d.verdict.as_str(), "logger-offset", "{}", d.verdict_text);
+    let (offset, _) = planted_clock(&c);
+    let fitted = param(&d, "logger-offset", "offset_s");
+    assert!(
+        (fitted - offset).abs() < 2e-4,
+        "offset {fitted} s against {offset} s planted"
+    );
+    // The named effect brings the check run's a_w toward the measurement.
+    let st = d.named_stage().expect("named");
+    assert!(st.weighted.aw_gap_percent.abs() <= d.null.check.weighted.aw_gap_percent.abs() + 0.5);
+    assert!(d.loggers.contains("assumed"), "{}", d.loggers);
+    // Stated as one logger for every channel, no timing between loggers is fitted at all.
+    let one = Loggers::parse(&["all:a_base_z,a_seat_z,a_head_z,f_seat_z".to_string()]).unwrap();
+    let d = diagnose_with(&model, &c.train, &c.check, &one).unwrap();
+    assert!(d.candidates.iter().all(|r| !r.id.starts_with("logger-")));
+    assert!(!d.verdict.as_str().starts_with("logger-"));
+}
+
+#[test]
+fn a_drifting_clock_is_a_logger_drift_with_its_rate_not_a_low_pass() {
+    let c = case(Form::LoggerDrift, 0.8, false, false, 0);
+    let model = catalog::resolve("reference").unwrap();
+    let d = diagnose(&model, &c.train, &c.check).unwrap();
+    assert_eq!(d.verdict.as_str(), "logger-drift", "{}", d.verdict_text);
+    let (_, drift) = planted_clock(&c);
+    let ppm = param(&d, "logger-drift", "drift_ppm");
+    assert!(
+        (ppm - drift * 1e6).abs() < 0.25 * (drift * 1e6).abs(),
+        "drift {ppm} ppm against {} ppm planted",
+        drift * 1e6
+    );
+}
+
+#[test]
+fn a_drifting_clock_with_the_force_plate_on_the_base_logger_needs_the_loggers_stated() {
+    let c = case(Form::LoggerDrift, 0.8, true, false, 0);
+    let model = catalog::resolve("reference").unwrap();
+    let stated = Loggers::parse(&[
+        "rig:a_base_z,f_seat_z".to_string(),
+        "occupant:a_seat_z,a_head_z".to_string(),
+    ])
+    .unwrap();
+    let d = diagnose_with(&model, &c.train, &c.check, &stated).unwrap();
+    assert_eq!(d.verdict.as_str(), "logger-drift", "{}", d.verdict_text);
+    assert!(
+        d.loggers.starts_with("rig: a_base_z, f_seat_z"),
+        "{}",
+        d.loggers
+    );
+}
