@@ -49,6 +49,9 @@ pub struct CaseScore {
     pub fraction_closed: Option<f64>,
     /// The check run's ISO figures, as the user judges the answer.
     pub iso: Option<IsoGaps>,
+    /// The check run's reduced χ² for the re-fitted base model and for the model with the named
+    /// effect(s) (the re-fitted one when nothing is named).
+    pub chi2_red: Option<[f64; 2]>,
     /// Wall time of the diagnosis, s.
     pub diagnosis_s: f64,
 }
@@ -109,6 +112,7 @@ pub fn run_case(index: usize, seed: u64) -> Result<CaseScore> {
             top2_hit: false,
             fraction_closed: None,
             iso: None,
+            chi2_red: None,
             label,
             diagnosis_s: secs,
         },
@@ -139,6 +143,10 @@ pub fn run_case(index: usize, seed: u64) -> Result<CaseScore> {
                 top2_hit,
                 fraction_closed,
                 iso: Some(IsoGaps::of(&d)),
+                chi2_red: Some([
+                    d.null.check.chi2_red,
+                    d.named_stage().unwrap_or(&d.null.check).chi2_red,
+                ]),
                 label,
                 diagnosis_s: secs,
             }

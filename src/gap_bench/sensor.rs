@@ -103,6 +103,9 @@ pub fn apply(sensor: &Sensor, x: &mut Vec<f64>, fs: f64) {
     match *sensor {
         Sensor::Gain(g) => x.iter_mut().for_each(|v| *v *= g),
         Sensor::Delay(t) => *x = crate::signals::delay(x, fs, t),
+        Sensor::Clock { offset_s, drift } => {
+            *x = crate::signals::retime(x, fs, |t| offset_s + drift * t)
+        }
         Sensor::LowPass { fc_hz, bessel } => {
             let wc = warp(fc_hz);
             for p in prototype(bessel) {

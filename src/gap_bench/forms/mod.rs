@@ -66,7 +66,7 @@ impl Family {
     /// `none`, `unexplained`, `not-identifiable` and unknown ids).
     pub fn of_verdict(id: &str) -> Option<Family> {
         let id = id.trim();
-        if id.starts_with("sensor-") {
+        if id.starts_with("sensor-") || id.starts_with("logger-") {
             Some(Family::Sensor)
         } else if id.starts_with("cushion-viscoelastic") || id.starts_with("cushion-fractional") {
             Some(Family::Viscoelastic)
@@ -122,6 +122,11 @@ pub enum Form {
     Mount,
     /// Calibration gain error on one channel.
     Gain,
+    /// A second data logger's trigger offset: the seat pad, head and (mostly) the force plate
+    /// recorded late or early against the base.
+    LoggerOffset,
+    /// A second data logger's drifting clock: its lag grows linearly through each run.
+    LoggerDrift,
     /// Seat-frame mode between base and cushion.
     Frame,
     /// Second body mode: a viscera mass split off the upper torso.
@@ -136,7 +141,7 @@ pub enum Form {
 
 impl Form {
     /// Every form, in report order.
-    pub const ALL: [Form; 18] = [
+    pub const ALL: [Form; 20] = [
         Form::Sls,
         Form::Maxwell2,
         Form::Fractional,
@@ -151,6 +156,8 @@ impl Form {
         Form::LowPass,
         Form::Mount,
         Form::Gain,
+        Form::LoggerOffset,
+        Form::LoggerDrift,
         Form::Frame,
         Form::Viscera,
         Form::Backrest,
@@ -164,7 +171,12 @@ impl Form {
                 Family::Stiffening
             }
             Form::Tanh | Form::Bilinear | Form::Scheduled => Family::Softening,
-            Form::Delay | Form::LowPass | Form::Mount | Form::Gain => Family::Sensor,
+            Form::Delay
+            | Form::LowPass
+            | Form::Mount
+            | Form::Gain
+            | Form::LoggerOffset
+            | Form::LoggerDrift => Family::Sensor,
             Form::Frame | Form::Viscera => Family::MissingDof,
             Form::Backrest | Form::Legs => Family::SupportPath,
         }
@@ -193,6 +205,8 @@ impl Form {
             Form::LowPass => "low-pass",
             Form::Mount => "mount",
             Form::Gain => "gain",
+            Form::LoggerOffset => "logger-offset",
+            Form::LoggerDrift => "logger-drift",
             Form::Frame => "frame",
             Form::Viscera => "viscera",
             Form::Backrest => "backrest",
@@ -212,6 +226,9 @@ pub enum Sensor {
     Mount { f_hz: f64, zeta: f64 },
     /// Gain factor (1 = calibrated).
     Gain(f64),
+    /// The channel's logger clock against the base's: the lag is `offset_s + drift·t` at `t` s
+    /// into the run (drift in s per s).
+    Clock { offset_s: f64, drift: f64 },
     /// A force plate (on `f_seat_z` only): its top plate of `m_kg` (uncancelled; negative:
     /// over-cancelled) moves with the seat surface, and the load cells under it resonate at `f_hz`
     /// with damping ratio `zeta`: F_meas = T_mount·(F + m·a_seat).
@@ -324,6 +341,33 @@ pub fn plant(
             let d = format!("{s:?} on {ch}");
             planted.sensors.push((ch.into(), s));
             d
+        }
+        Form::LoggerOffset | Form::LoggerDrift => {
+            let sign = |rng: &mut ChaCha8Rng| if rng.random::<f64>() < 0.5 { -1.0 } else { 1.0 };
+            let clock = if form == Form::LoggerOffset {
+                // A trigger offset of 1–10 ms: a few samples at the loggers' rates.
+                Sensor::Clock {
+                    offset_s: sign(rng) * (0.001 + 0.009 * u),
+                    drift: 0.0,
+                }
+            } else {
+                // Quartz rate errors of 20–200 ppm, with a trigger offset of up to 3 ms.
+                Sensor::Clock {
+                    offset_s: uniform(rng, -0.003, 0.003),
+                    drift: sign(rng) * (20.0 + 180.0 * u) * 1e-6,
+                }
+            };
+            // The force plate is wired to the occupant's logger in most rigs (70 %), to the
+            // base's in the rest.
+            let force_late = force && rng.random::<f64>() < 0.7;
+            let mut late = vec!["a_seat_z", "a_head_z"];
+            if force_late {
+                late.push("f_seat_z");
+            }
+            for ch in &late {
+                planted.sensors.push((ch.to_string(), clock.clone()));
+            }
+            format!("{clock:?} on {}", late.join(", "))
         }
         Form::Frame | Form::Viscera | Form::Backrest | Form::Legs => {
             structure::plant(form, u, rng, model)?

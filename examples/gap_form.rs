@@ -1,0 +1,53 @@
+//! Diagnoses bench cases with one planted truth form, for looking at a form's verdicts.
+//! Usage: `cargo run --release --example gap_form -- FORM STRENGTH [CASES [SEED [FORCE]]]`
+//! (FORM as the bench names it, e.g. `logger-drift`; FORCE `yes`/`no`, default drawn).
+
+use rayon::prelude::*;
+use wbv::gap_bench::case::{CaseOptions, make_case_with};
+use wbv::gap_bench::forms::Form;
+
+fn main() -> wbv::Result<()> {
+    let mut args = std::env::args().skip(1);
+    let usage = "usage: gap_form FORM STRENGTH [CASES [SEED [FORCE]]]";
+    let name = args.next().expect(usage);
+    let form = Form::ALL
+        .into_iter()
+        .find(|f| f.name() == name)
+        .expect("a form name");
+    let u: f64 = args.next().expect(usage).parse().expect("STRENGTH");
+    let cases: usize = args.next().map_or(6, |s| s.parse().expect("CASES"));
+    let seed: u64 = args.next().map_or(1, |s| s.parse().expect("SEED"));
+    let force = args.next().map(|s| s == "yes");
+    let model = wbv::model::catalog::resolve("reference")?;
+    let lines: Vec<String> = (0..cases)
+        .into_par_iter()
+        .map(|i| {
+            let o = CaseOptions {
+                effects: Some(vec![(form, u)]),
+                force,
+                ..CaseOptions::default()
+            };
+            let case = make_case_with(i, seed, &o)?;
+            let d = wbv::diagnosis::diagnose(&model, &case.train, &case.check)?;
+            let top: Vec<String> = d
+                .candidates
+                .iter()
+                .take(3)
+                .map(|c| format!("{} {:.0}", c.id, c.delta_bic))
+                .collect();
+            Ok(format!(
+                "case {i}: {} | {} | detect {:.1} | null χ² {:.1} | {} | {}",
+                d.verdict,
+                case.label.effects[0].detail,
+                case.label.detectability,
+                d.null.check.chi2_red,
+                top.join(", "),
+                case.label.nuisance.duration_s
+            ))
+        })
+        .collect::<wbv::Result<_>>()?;
+    for l in lines {
+        println!("{l}");
+    }
+    Ok(())
+}
