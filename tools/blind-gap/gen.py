@@ -835,6 +835,65 @@ def between_run_detectability(effs, fs, order):
     return d
 
 
+def draw_field(seed, index, family, force):
+    """Field conditions (--field), drawn from streams of their own so that the lab draws of a case
+    stay as they were: two data loggers (half the sensor cases become a trigger offset of 1-10 ms or
+    a clock drift of 20-200 ppm on the occupant's logger: seat, head and, in 70 % of rigs, the force
+    plate); logger faults on a quarter of the cases (dropouts holding the last value, or a spike
+    train); and the rig's wiring stated with --logger in half of the cases."""
+    r = np.random.default_rng([seed, index, 11])
+    out = {}
+    if family == "sensor" and r.uniform() < 0.5:
+        form = "logger-offset" if r.uniform() < 0.5 else "logger-drift"
+        sign = float(r.choice([-1.0, 1.0]))
+        force_late = force and bool(r.uniform() < 0.7)
+        late = ["a_seat_z", "a_head_z"] + (["f_seat_z"] if force_late else [])
+        if form == "logger-offset":
+            off, drift = sign * r.uniform(0.001, 0.01), 0.0
+        else:
+            off, drift = r.uniform(-0.003, 0.003), sign * r.uniform(20e-6, 200e-6)
+        out["logger"] = {"form": form, "channels": late, "offset_s": float(off), "drift": float(drift)}
+    else:
+        late = ["a_seat_z", "a_head_z"] + (["f_seat_z"] if force else [])
+    f = np.random.default_rng([seed, index, 12])
+    if f.uniform() < 0.25:
+        out["fault"] = str(f.choice(["dropouts", "spikes"]))
+    st = np.random.default_rng([seed, index, 13])
+    if st.uniform() < 0.5:
+        on_base = ["a_base_z"] + (["f_seat_z"] if force and "f_seat_z" not in late else [])
+        out["stated"] = ["--logger", "rig:" + ",".join(on_base), "--logger", "occupant:" + ",".join(late)]
+    return out
+
+
+def clock_filter(x, fs, offset_s, drift):
+    """A second logger's timing on the fine grid: the value at t is the signal at t - (offset + drift t)
+    (linear interpolation on the >= 4 kHz grid; zero before the start)."""
+    t = np.arange(len(x)) / fs
+    return np.interp(t - (offset_s + drift * t), t, x, left=0.0)
+
+
+def plant_fault(chans, fs, kind, r):
+    """Logger faults at the output rate: dropouts (the logger repeats its last value for 0.05-0.5 s,
+    one to four times, on every channel but the base) or a spike train (one sample off by 10-50 x the
+    channel's r.m.s. every 1-10 s on one occupant channel)."""
+    names = [c for c in chans if c != "a_base_z"]
+    n = len(chans["a_base_z"])
+    if kind == "dropouts":
+        for _ in range(int(r.integers(1, 5))):
+            ln = int(r.uniform(0.05, 0.5) * fs)
+            at = int(r.integers(0, n - ln - 1))
+            for c in names:
+                chans[c][at:at + ln] = chans[c][at]
+    else:
+        c = names[int(r.integers(len(names)))]
+        sd = float(np.std(chans[c]))
+        every = r.uniform(1.0, 10.0) * fs
+        t = r.uniform() * every
+        while t < n:
+            chans[c][int(t)] += float(r.choice([-1, 1])) * r.uniform(10, 50) * sd
+            t += every * r.uniform(0.5, 1.5)
+
+
 def make_case(case_dir, seed, index, override=None, model="reference"):
     """One case. `override` (controlled experiments): keys fs_hz, spectrum (kind), force_plate, base_dc
     replace the drawn nuisance after the draws; `params`/`strength` reuse a truth.json's effect."""
@@ -867,6 +926,9 @@ def make_case(case_dir, seed, index, override=None, model="reference"):
     force = bool(override.get("force_plate", force))
     force_static = bool(rng.uniform() < 0.5)
     noise = {ch: float(rng.uniform(0.005, 0.03)) for ch in ("a_base_z", "a_seat_z", "a_head_z", "f_seat_z")}
+    field = draw_field(seed, index, family, force) if override.get("field") else None
+    if field and field.get("logger"):
+        form = field["logger"]["form"]
     offsets = {}
     for ch in ("a_base_z", "a_seat_z", "a_head_z"):
         u = rng.uniform()
@@ -887,7 +949,10 @@ def make_case(case_dir, seed, index, override=None, model="reference"):
         sigma["susp_high"] = float(np.std(twins_fine[1]["defl_susp"][pre:]))
         sigma["susp_rate_high"] = float(np.std(twins_fine[1]["defl_susp_rate"][pre:]))
     strength = 1.0
-    params = draw_effect(rng, family, form, strength) if family != "none" else {}
+    if field and field.get("logger"):
+        params = dict(field["logger"])
+    else:
+        params = draw_effect(rng, family, form, strength) if family != "none" else {}
     if "params" in override:
         params, strength = override["params"], override["strength"]
     noise_rng = np.random.default_rng([seed, index, 99])
@@ -902,7 +967,11 @@ def make_case(case_dir, seed, index, override=None, model="reference"):
         runs_clean, twins_out = [], []
         for (u, tw, ef) in zip(bases, twins_fine, effs_fine):
             ch = {"a_base_z": u, **{k: v for k, v in (ef or tw).items() if not k.startswith("defl")}}
-            if family == "sensor":
+            if family == "sensor" and "drift" in params:
+                for c in params["channels"]:
+                    if c in ch:
+                        ch[c] = clock_filter(ch[c], ffs, params["offset_s"], params["drift"])
+            elif family == "sensor":
                 ch[params["channel"]] = sensor_filter(ch[params["channel"]], ffs, dict(params, form=form))
             twin_ch = {"a_base_z": u, **{k: v for k, v in tw.items() if not k.startswith("defl")}}
             runs_clean.append({k: v[pre // m:] for k, v in daq(ch, m, fs).items()})
@@ -914,7 +983,7 @@ def make_case(case_dir, seed, index, override=None, model="reference"):
             det = between_run_detectability(runs_clean, fs, [0, 2, 1])
         else:
             det = detectability(twins_out, runs_clean, fs)
-        if det["detect_pct"] >= 3.0 or attempt == 2 or "params" in override:
+        if det["detect_pct"] >= 3.0 or attempt == 2 or "params" in override or "drift" in params:
             break
         strength *= 2.0
         params = draw_effect(rng, family, form, strength)
@@ -934,6 +1003,8 @@ def make_case(case_dir, seed, index, override=None, model="reference"):
             if ch == "f_seat_z" and force_static:
                 v = v + body_w
             chans[ch] = v
+        if field and field.get("fault"):
+            plant_fault(chans, fs, field["fault"], np.random.default_rng([seed, index, 14, r]))
         name = ["run-low", "run-high", "check-mid"][r] + ".csv"
         write_csv(os.path.join(case_dir, name), chans, fs, layout)
         files.append(name)
@@ -943,11 +1014,13 @@ def make_case(case_dir, seed, index, override=None, model="reference"):
              "nuisances": {"fs_hz": fs, "fine_rate_hz": ffs, "spectrum": spectrum, "magnitudes_ms2": list(mags),
                            "durations_s": durs, "force_plate": force,
                            "force_static_weight": force and force_static, "noise_frac": noise,
-                           "dc_offsets_ms2": offsets, "layout": layout},
+                           "dc_offsets_ms2": offsets, "layout": layout, "field": field},
              "runs": files, "run_order": "run-low, run-high are --run; check-mid is --check"}
     with open(os.path.join(case_dir, "truth.json"), "w") as fh:
         json.dump(truth, fh, indent=1, default=float)
     cmd = ["--run", files[0], "--run", files[1], "--check", files[2]] + layout["options"]
+    if field and field.get("stated"):
+        cmd += field["stated"]
     with open(os.path.join(case_dir, "cmd.json"), "w") as fh:
         json.dump(cmd, fh)
     return truth
@@ -1024,6 +1097,8 @@ def main():
                     help="with --like: fs_hz=N, spectrum=KIND, force_plate=0|1, base_dc=M/S2")
     ap.add_argument("--family", choices=sorted(FAMILIES), help="study set: every case gets this effect family")
     ap.add_argument("--form", help="study set: every case gets this form (implies its family)")
+    ap.add_argument("--field", action="store_true",
+                    help="vehicle field conditions: two data loggers, logger faults, --logger stated in half")
     ap.add_argument("--model", choices=sorted(MODELS), default="reference",
                     help="the seat: reference (5 DOF) or seed001-full (paper 001 body, cushion, suspension)")
     a = ap.parse_args()
@@ -1044,6 +1119,8 @@ def main():
             override[k] = v if k == "spectrum" else (bool(int(v)) if k == "force_plate" else float(v))
         a.seed, a.first, a.cases = like["seed"], like["case"], 1
         a.model = like.get("model", "reference")
+    if a.field:
+        override = dict(override or {}, field=True)
     os.makedirs(a.outdir, exist_ok=True)
     for i in range(a.first, a.first + a.cases):
         d = os.path.join(a.outdir, "case-%03d" % i)
