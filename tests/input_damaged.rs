@@ -168,3 +168,33 @@ fn an_absurd_sample_in_a_uff58_is_refused() {
     let e = refused(&b, &path, &opts, "binary.uff sample 1.1e244");
     assert!(e.contains("sample 11") && e.contains("beyond"), "{e}");
 }
+
+#[test]
+fn a_gap_in_the_time_stamps_is_refused_at_its_line() {
+    // A logger that dropped 0.25 s of samples at 10 s, 500 Hz stamps printed to 0.1 ms; the text is
+    // written here, not by wbv's writer.
+    let mut text = String::from("t_s,a_base_z,a_seat_z\n");
+    let mut line_after_gap = 0;
+    for i in 0..10_000 {
+        let mut t = i as f64 * 0.002;
+        if i >= 5_000 {
+            t += 0.25;
+            if line_after_gap == 0 {
+                line_after_gap = i + 2;
+            }
+        }
+        let x = (2.0 * std::f64::consts::PI * 3.0 * t).sin();
+        text += &format!("{t:.4},{x:.6},{:.6}\n", 1.1 * x);
+    }
+    let path = Path::new("logger-with-a-gap.csv");
+    let e = refused(text.as_bytes(), path, &Options::default(), "gap");
+    assert!(e.contains(&format!(":{line_after_gap}:")), "{e}");
+    assert!(e.contains("gap in the record"), "{e}");
+    assert!(e.contains("from 9.998 s to 10.25 s"), "{e}");
+    // The same stamps without the gap are read.
+    let whole: String = (0..10_000)
+        .map(|i| format!("{:.4},0.1,0.1\n", i as f64 * 0.002))
+        .collect();
+    let ok = format!("t_s,a_base_z,a_seat_z\n{whole}");
+    assert!(read_bytes(ok.as_bytes(), path, &Options::default()).is_ok());
+}

@@ -32,6 +32,24 @@ pub(crate) fn fit_rate(
             ));
         }
     }
+    // A gap first: a step of more than 1.5 × the median one means the logger dropped samples, which
+    // the least-squares grid below would report only as some stamp far off it.
+    let mut steps: Vec<f64> = t.windows(2).map(|w| w[1] - w[0]).collect();
+    let mid = steps.len() / 2;
+    let median = *steps.select_nth_unstable_by(mid, f64::total_cmp).1;
+    if let Some(i) = (1..n).find(|&i| t[i] - t[i - 1] > 1.5 * median + half_step_res(res, i)) {
+        let jump = t[i] - t[i - 1];
+        return Err(Error::data(
+            source,
+            line_of(i),
+            format!(
+                "`{name}`: the time stamps jump from {} s to {} s, {:.0} steps of {median:.6e} s: a gap in the record (the logger dropped samples); split the file at the gap, or give --fs to ignore the time stamps",
+                t[i - 1],
+                t[i],
+                jump / median
+            ),
+        ));
+    }
     // Least-squares t_i = a + b i, computed about the means for accuracy.
     let nf = n as f64;
     let im = (nf - 1.0) / 2.0;
@@ -78,4 +96,10 @@ pub(crate) fn fit_rate(
             ),
         )),
     }
+}
+
+/// The printed resolution of the stamps on either side of step `i` (a rounded time can make one
+/// step look longer by up to that much).
+fn half_step_res(res: Option<&[f64]>, i: usize) -> f64 {
+    res.map_or(0.0, |r| r[i] + r[i - 1])
 }
