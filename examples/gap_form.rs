@@ -35,9 +35,11 @@ fn main() -> wbv::Result<()> {
                 .take(3)
                 .map(|c| format!("{} {:.0}", c.id, c.delta_bic))
                 .collect();
+            let with = d.named_stage().map_or(f64::NAN, |s| s.chi2_red);
             Ok(format!(
-                "case {i}: {} | {} | detect {:.1} | null χ² {:.1} | {} | {}",
+                "case {i}: {} [{}] χ² {with:.1} | {} | detect {:.1} | null χ² {:.1} | {} | {}",
                 d.verdict,
+                d.named.join(" + "),
                 case.label.effects[0].detail,
                 case.label.detectability,
                 d.null.check.chi2_red,

@@ -2,7 +2,7 @@
 //! and ranked by ΔBIC on the held-out run (docs/gap.md §6), and the forward selection of a second
 //! effect. The all-run judgement of amplitude-dependent effects is [`super::all_runs`].
 
-use super::candidate::Candidate;
+use super::candidate::{Candidate, Family};
 use super::evidence::{Counts, Figures, bic_check, delta_bic_all, fit_each, ranked, stage, weigh};
 use super::fitting::{Base, Fitted, estimates, fit_candidate, refine_null};
 use super::measure::RunSpectra;
@@ -97,8 +97,8 @@ pub(super) fn rank(
 }
 
 /// Forward selection: when the named effect `bc` leaves a structural residual on the check run
-/// (reduced χ² > [`GAP_CHI2`]), the four best candidates of other families are fitted jointly
-/// with it (from its optimum) and the pair with the lowest BIC is kept if it is detected against
+/// (reduced χ² > [`GAP_CHI2`]), the four best candidates of other families (and, after a missing
+/// mode, a second mode) are fitted jointly with it (from its optimum) and the pair with the lowest BIC is kept if it is detected against
 /// `bc` alone (ΔBIC ≤ [`ACCEPT_DELTA_BIC`]) and closes ≥ [`MIN_CLOSED`] of what `bc` leaves — the
 /// held-out rule, with `bc` as the reference. Returns the second effect and the pair's entry.
 pub(super) fn second_effect(
@@ -123,13 +123,24 @@ pub(super) fn second_effect(
         .expect("fitted")
         .1;
     let best_bic = bic_check(&best.check, warm.len(), n);
-    let others: Vec<Candidate> = cands
+    let mut others: Vec<Candidate> = cands
         .iter()
         .filter(|r| r.id != best.id)
         .filter_map(|r| Candidate::from_id(&r.id))
         .filter(|c| c.family() != bc.family())
         .take(4)
         .collect();
+    // A structure can lack more than one mode: after a frame or body mode, a frame mode under it
+    // (a riser: the frame's second mode) and, after a frame, a body mode are tried too.
+    if bc.family() == Family::MissingDof {
+        others.extend(
+            [Candidate::MissingDof, Candidate::BodyMode]
+                .into_iter()
+                .filter(|&c| {
+                    (c != bc || c == Candidate::MissingDof) && cands.iter().any(|r| r.id == c.id())
+                }),
+        );
+    }
     let stacks: Vec<Vec<Candidate>> = others.iter().map(|&o| vec![bc, o]).collect();
     let pairs = fit_each(base, &stacks, tr, warm, Some(ck))?;
     let floor = score::gap_floor(best.check.chi2_red);

@@ -61,19 +61,33 @@ pub const BODY_MODE: Definition = Definition {
 /// cushion removed) with damping ratio `zeta`: a vertical coordinate z_f on its own spring–damper to
 /// the base, and every cushion link on the base now deflects by −(row·r)·z_f more (row·r is the
 /// link's deflection per unit vertical motion of the body relative to the base: 1 for a chain
-/// link to the base, the normal's vertical component for a contact axis).
+/// link to the base, the normal's vertical component for a contact axis). On a variant that already
+/// has a frame, the new mass goes under that frame's spring (a riser: the frame's second mode, found
+/// by forward selection).
 fn add_frame(s: &mut System, f_hz: f64, zeta: f64, mass_kg: f64) -> Result<()> {
-    let on: Vec<usize> = cushion_links(s)
+    let on_base_with = |s: &System, role: Role| -> Vec<usize> {
+        (0..s.links.len())
+            .filter(|&i| s.links[i].role == role && on_base(&s.links[i]))
+            .collect()
+    };
+    let mut on: Vec<usize> = cushion_links(s)
         .into_iter()
         .filter(|&i| on_base(&s.links[i]))
         .collect();
     if on.is_empty() {
+        on = on_base_with(s, Role::Frame);
+    }
+    if on.is_empty() {
         return Err(Error::parameter(
             "missing-dof",
-            "the model has no cushion link on the base",
+            "the model has no cushion or frame link on the base",
         ));
     }
-    let j = add_dof(s, "frame", Role::Frame, mass_kg, 1.0, 0.0);
+    let name = match s.dofs.iter().filter(|d| d.role == Role::Frame).count() {
+        0 => "frame".to_string(),
+        n => format!("frame_{}", n + 1),
+    };
+    let j = add_dof(s, &name, Role::Frame, mass_kg, 1.0, 0.0);
     for i in on {
         let l = &mut s.links[i];
         let vertical: f64 = l.row.iter().map(|&(q, c)| c * s.r[q]).sum();
@@ -81,19 +95,58 @@ fn add_frame(s: &mut System, f_hz: f64, zeta: f64, mass_kg: f64) -> Result<()> {
             l.row.push((j, -vertical));
         }
         if l.nodes.0 == "base" {
-            l.nodes.0 = "frame".into();
+            l.nodes.0 = name.clone();
         } else {
-            l.nodes.1 = "frame".into();
+            l.nodes.1 = name.clone();
         }
     }
-    let frame = kv_link(
-        "frame",
-        ("frame", "base"),
-        vec![(j, 1.0)],
-        mass_kg,
-        f_hz,
-        zeta,
-    );
-    s.links.push(frame);
+    let frame = kv_link(&name, (&name, "base"), vec![(j, 1.0)], mass_kg, f_hz, zeta);
+    s.links.push(Link {
+        role: Role::Frame,
+        ..frame
+    });
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::model::catalog;
+
+    #[test]
+    fn a_second_frame_goes_under_the_first_as_a_two_mode_frame() {
+        let s = catalog::resolve("reference").unwrap().system().clone();
+        let mut v = Candidate::MissingDof.apply(&s, &[30.0, 0.1, 5.0]).unwrap();
+        Candidate::MissingDof
+            .apply_to(&mut v, &[20.0, 0.1, 8.0])
+            .unwrap();
+        let t = &v.system;
+        assert_eq!(t.dof(), s.dof() + 2);
+        // Pan m1 on k1 over riser m2 on k2 to the base: the first frame's spring now deflects by
+        // z_pan − z_riser, the riser's by z_riser, each tuned on its own mass.
+        let (m1, m2) = (5.0, 8.0);
+        let k1 = m1 * (2.0 * PI * 30.0f64).powi(2);
+        let k2 = m2 * (2.0 * PI * 20.0f64).powi(2);
+        let frames: Vec<usize> = (0..t.dof())
+            .filter(|&i| t.dofs[i].role == Role::Frame)
+            .collect();
+        assert_eq!(frames.len(), 2);
+        let (a, b) = (frames[0], frames[1]);
+        let link = |name: &str| t.links.iter().find(|l| l.name == name).unwrap();
+        let (pan, riser) = (link("frame"), link("frame_2"));
+        assert_eq!(pan.row, vec![(a, 1.0), (b, -1.0)]);
+        assert_eq!(pan.nodes, ("frame".to_string(), "frame_2".to_string()));
+        assert_eq!(riser.row, vec![(b, 1.0)]);
+        assert!((pan.element.static_stiffness() / k1 - 1.0).abs() < 1e-12);
+        assert!((riser.element.static_stiffness() / k2 - 1.0).abs() < 1e-12);
+        assert_eq!((t.m[(a, a)], t.m[(b, b)]), (m1, m2));
+        // The cushion still sits on the pan.
+        assert!(
+            t.links
+                .iter()
+                .filter(|l| l.role == Role::Cushion)
+                .all(|l| l.nodes.0 == "frame" || l.nodes.1 == "frame")
+        );
+        assert_eq!(t.dofs[b].name, "frame_2");
+    }
 }

@@ -15,6 +15,7 @@ use std::f64::consts::PI;
 
 mod body;
 mod cushion;
+mod frame;
 mod sizing;
 mod structure;
 
@@ -131,6 +132,8 @@ pub enum Form {
     Frame,
     /// Second body mode: a viscera mass split off the upper torso.
     Viscera,
+    /// A seat frame with two modes: a pan on a riser, each on its own spring.
+    FrameTwoMode,
     /// Backrest foam (standard linear solid) from the frame to the upper torso, with a softer
     /// lumbar contact on the body mass below it.
     Backrest,
@@ -141,7 +144,7 @@ pub enum Form {
 
 impl Form {
     /// Every form, in report order.
-    pub const ALL: [Form; 20] = [
+    pub const ALL: [Form; 21] = [
         Form::Sls,
         Form::Maxwell2,
         Form::Fractional,
@@ -160,6 +163,7 @@ impl Form {
         Form::LoggerDrift,
         Form::Frame,
         Form::Viscera,
+        Form::FrameTwoMode,
         Form::Backrest,
         Form::Legs,
     ];
@@ -177,7 +181,7 @@ impl Form {
             | Form::Gain
             | Form::LoggerOffset
             | Form::LoggerDrift => Family::Sensor,
-            Form::Frame | Form::Viscera => Family::MissingDof,
+            Form::Frame | Form::Viscera | Form::FrameTwoMode => Family::MissingDof,
             Form::Backrest | Form::Legs => Family::SupportPath,
         }
     }
@@ -209,6 +213,7 @@ impl Form {
             Form::LoggerDrift => "logger-drift",
             Form::Frame => "frame",
             Form::Viscera => "viscera",
+            Form::FrameTwoMode => "two-mode-frame",
             Form::Backrest => "backrest",
             Form::Legs => "legs",
         }
@@ -369,6 +374,7 @@ pub fn plant(
             }
             format!("{clock:?} on {}", late.join(", "))
         }
+        Form::FrameTwoMode => frame::plant_two_mode(u, rng, model)?,
         Form::Frame | Form::Viscera | Form::Backrest | Form::Legs => {
             structure::plant(form, u, rng, model)?
         }
