@@ -181,23 +181,32 @@ fn planar_cushion_relaxation_is_named_with_fore_and_aft_paths_judged() {
     ] {
         assert!(paths.contains(&p), "path {p} judged: {paths:?}");
     }
-    let first = d.named.first().map(String::as_str);
-    assert!(
-        matches!(first, Some("cushion-viscoelastic" | "cushion-fractional")),
-        "{}",
-        d.verdict_text
-    );
-    // Neither candidate is a log-normal spectrum: the report must say when the named effect(s) move the
-    // check run's a_w and SEAT away from the measurement although the FRFs fit better.
-    let with = d
-        .second
-        .as_ref()
-        .map_or(&d.candidates[0].check, |s| &s.check);
-    let (n, w) = (&d.null.check.weighted, &with.weighted);
-    let away = w.aw_gap_percent.abs() > n.aw_gap_percent.abs() + 0.5
-        && (w.seat_model - w.seat_meas).abs() > (n.seat_model - n.seat_meas).abs() + 0.5;
-    let warned = d.warnings.iter().any(|m| m.contains("ISO figures away"));
-    assert_eq!(away, warned, "{:?}", d.warnings);
+    // Neither candidate is the truth's standard linear solid: a named effect must bring the check
+    // run's a_w and SEAT toward the measurement (within the practically-small 1 % and 1 point),
+    // else the verdict is `unexplained` with the foam as the best partial candidate.
+    let foam = |id: &str| matches!(id, "cushion-viscoelastic" | "cushion-fractional");
+    match d.named_stage() {
+        Some(with) => {
+            assert!(foam(&d.named[0]), "{}", d.verdict_text);
+            let (n, w) = (&d.null.check.weighted, &with.weighted);
+            assert!(
+                w.aw_gap_percent.abs() < n.aw_gap_percent.abs() + 1.0,
+                "{}",
+                d.verdict_text
+            );
+            let seat = |x: &wbv::diagnosis::gapmap::Weighted| (x.seat_model - x.seat_meas).abs();
+            assert!(seat(w) < seat(n) + 1.0, "{}", d.verdict_text);
+        }
+        None => {
+            assert_eq!(d.verdict, VerdictId::Unexplained, "{}", d.verdict_text);
+            assert!(foam(&d.partial[0].id), "{:?}", d.partial);
+            assert!(
+                d.verdict_text.contains("Partial candidates"),
+                "{}",
+                d.verdict_text
+            );
+        }
+    }
 }
 
 #[test]

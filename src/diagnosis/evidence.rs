@@ -34,7 +34,12 @@ pub fn stage(v: &Variant, check: &RunSpectra) -> Result<Stage> {
             .iter()
             .filter_map(|&p| gapmap::rms_phase_deg(&cells, p))
             .fold(0.0, f64::max),
-        weighted: gapmap::weighted(check, &pred[bs]),
+        weighted: match v.without_drift() {
+            // A lag changes no power spectrum: the seat's PSD (and so a_w and SEAT) follows |H|²
+            // without the magnitude a drifting lag's average costs H1.
+            Some(steady) => gapmap::weighted(check, &predict::predict(&steady, check)?[bs]),
+            None => gapmap::weighted(check, &pred[bs]),
+        },
         cells,
     })
 }

@@ -39,13 +39,13 @@ mod verdict;
 
 pub use candidate::separating_measurement;
 pub use outcome::{
-    BandCoverage, ChannelError, DataFault, Diagnosis, Estimate, Ranked, RunSummary, Stage,
-    VerdictId,
+    BandCoverage, ChannelError, DataFault, Diagnosis, Estimate, PartialEffect, Ranked, RunSummary,
+    Stage, VerdictId,
 };
 
 pub use evidence::stage;
 pub use thresholds::*;
-pub use verdict::{Basis, Verdict};
+pub use verdict::{Basis, Shortfall, Verdict};
 
 use crate::error::Result;
 use crate::model::Model;
@@ -56,7 +56,7 @@ use evidence::Counts;
 use fitting::Base;
 use measure::Path;
 use predict::Variant;
-use verdict::{Evidence, iso_figures_move_away};
+use verdict::Evidence;
 
 /// Runs the diagnosis of `model` against training runs and one held-out check run with the
 /// loggers assumed ([`Loggers::default`]); see [`diagnose_with`].
@@ -144,11 +144,32 @@ pub fn diagnose_with(
         text += &text::second(effect.id(), o.id(), pair);
     }
     let second = second.map(|(_, pair)| pair);
-    let mut warnings = prepared.warnings;
-    // How close a_w and SEAT come on the check run once the named effect(s) are added.
-    if let Some(st) = outcome::named_stage(&named, &ranking.cands, second.as_ref()) {
-        text += &text::iso(&nominal, &ranking.null.check, st);
-        warnings.extend(iso_figures_move_away(&ranking.null.check, st));
+    let warnings = prepared.warnings;
+    // How close a_w and SEAT come on the check run once the named effect(s) are added; an effect
+    // that leaves the check run far from the measurement is reported as a partial explanation.
+    let mut partial = Vec::new();
+    if let (
+        Some(st),
+        Verdict::Named {
+            effect, second: s2, ..
+        },
+    ) = (
+        outcome::named_stage(&named, &ranking.cands, second.as_ref()),
+        &decided,
+    ) {
+        match verdict::shortfall(&ranking.null.check, st) {
+            None => text += &text::iso(&nominal, &ranking.null.check, st),
+            Some(shortfall) => {
+                partial = outcome::partial_effects(&ranking.cands, &named, second.as_ref());
+                decided = Verdict::Partial {
+                    best: *effect,
+                    second: *s2,
+                    shortfall,
+                };
+                text = text::partial(&shortfall, &partial, &nominal, &ranking.null.check);
+                named.clear();
+            }
+        }
     }
     // A channel's calibration error (an inverted sign, a unit slip) is named first when nothing
     // structural is detected, after the structural effect otherwise.
@@ -160,6 +181,7 @@ pub fn diagnose_with(
         verdict: verdict::reported_id(&decided, !channel_errors.is_empty()),
         verdict_text: text::calibration(text, &channel_errors, decided == Verdict::None),
         separating_measurement: decided.separating().map(str::to_string),
+        partial,
         channel_errors,
         data_faults: prepared.data_faults,
         loggers: loggers.describe(),

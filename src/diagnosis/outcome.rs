@@ -210,6 +210,43 @@ pub struct Diagnosis {
     pub second: Option<Ranked>,
     /// For `not-identifiable`: the measurement that would separate the two best.
     pub separating_measurement: Option<String>,
+    /// For an `unexplained` verdict whose best effect closes part of the gap: the detected
+    /// candidates, best first, and what each closes on the check run.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub partial: Vec<PartialEffect>,
+}
+
+/// A candidate that closes part of a gap it does not explain.
+#[derive(Debug, Clone, Serialize, Deserialize)]
+pub struct PartialEffect {
+    /// Candidate id (`A + B` for a forward-selected pair).
+    pub id: String,
+    /// Fraction of the structural gap it closes on the check run.
+    #[serde(deserialize_with = "super::json::f64")]
+    pub fraction_closed: f64,
+    /// The check run's reduced χ² with it.
+    #[serde(deserialize_with = "super::json::f64")]
+    pub chi2_red: f64,
+    /// The check run's seat a_w gap with it, % of the measured a_w.
+    #[serde(deserialize_with = "super::json::f64")]
+    pub aw_gap_percent: f64,
+    /// The check run's SEAT gap with it (model − measured), points.
+    #[serde(deserialize_with = "super::json::f64")]
+    pub seat_gap_points: f64,
+}
+
+impl PartialEffect {
+    /// The entry of candidate (or pair) `id` evaluated on the check run as `r`.
+    pub(super) fn of(id: String, r: &Ranked) -> Self {
+        let w = &r.check.weighted;
+        PartialEffect {
+            id,
+            fraction_closed: r.fraction_closed,
+            chi2_red: r.check.chi2_red,
+            aw_gap_percent: w.aw_gap_percent,
+            seat_gap_points: w.seat_model - w.seat_meas,
+        }
+    }
 }
 
 impl Diagnosis {
@@ -230,6 +267,35 @@ pub(super) fn named_stage<'a>(
     second
         .map(|s| &s.check)
         .or_else(|| candidates.iter().find(|b| &b.id == first).map(|b| &b.check))
+}
+
+/// The partial candidates of an `unexplained` verdict: the named effect(s) first (the pair when
+/// forward selection added a second), then the other detected candidates, up to four in all.
+pub(super) fn partial_effects(
+    candidates: &[Ranked],
+    named: &[String],
+    second: Option<&Ranked>,
+) -> Vec<PartialEffect> {
+    let detected = candidates
+        .iter()
+        .filter(|r| r.delta_bic <= super::thresholds::ACCEPT_DELTA_BIC);
+    let pair = second
+        .zip(named.get(1))
+        .map(|(r, _)| PartialEffect::of(named.join(" + "), r));
+    pair.into_iter()
+        .chain(named.first().and_then(|n| {
+            candidates
+                .iter()
+                .find(|r| &r.id == n)
+                .map(|r| PartialEffect::of(r.id.clone(), r))
+        }))
+        .chain(
+            detected
+                .filter(|r| !named.contains(&r.id))
+                .map(|r| PartialEffect::of(r.id.clone(), r)),
+        )
+        .take(4)
+        .collect()
 }
 
 /// Which bands of a path were judged.

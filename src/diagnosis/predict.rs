@@ -195,6 +195,20 @@ pub struct Variant {
 }
 
 impl Variant {
+    /// The variant with every channel's clock drift removed, when any channel has one: the same
+    /// power spectra (a lag changes none) without the loss of magnitude that averaging a drifting
+    /// lag over a run costs H1 ([`Channel::response_in`]).
+    pub fn without_drift(&self) -> Option<Variant> {
+        let chans = [&self.base, &self.seat, &self.head, &self.force];
+        chans.iter().any(|c| c.drift != 0.0).then(|| {
+            let mut v = self.clone();
+            for c in [&mut v.base, &mut v.seat, &mut v.head, &mut v.force] {
+                c.drift = 0.0;
+            }
+            v
+        })
+    }
+
     /// A variant with ideal sensors.
     pub fn plain(system: System) -> Self {
         Variant {

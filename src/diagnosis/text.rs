@@ -2,10 +2,10 @@
 //! the evidence it was chosen on, followed by the second effect, the check run's ISO figures and
 //! any calibration finding.
 
-use super::outcome::{ChannelError, Ranked, Stage};
+use super::outcome::{ChannelError, PartialEffect, Ranked, Stage};
 use super::score;
-use super::thresholds::{ACCEPT_DELTA_BIC, MIN_CLOSED};
-use super::verdict::{Basis, Evidence, Verdict, practically_small, training_closed};
+use super::thresholds::{ACCEPT_DELTA_BIC, EXPLAINED_CHI2, MIN_CLOSED};
+use super::verdict::{Basis, Evidence, Shortfall, Verdict, practically_small, training_closed};
 
 /// The verdict's sentence (before the second effect, the ISO figures and calibration).
 pub(super) fn verdict(v: &Verdict, e: &Evidence) -> String {
@@ -28,6 +28,11 @@ pub(super) fn verdict(v: &Verdict, e: &Evidence) -> String {
                 a.id, b.id, a.delta_bic, b.delta_bic
             )
         }
+        // Rendered in full by [`partial`] once the ISO figures are known.
+        Verdict::Partial { best, .. } => format!(
+            "a structural gap remains that {} explains only in part",
+            best.id()
+        ),
         Verdict::Unexplained => match e.best().filter(|b| b.delta_bic <= ACCEPT_DELTA_BIC) {
             Some(b) => format!(
                 "a structural gap remains (reduced χ² {d0:.2} after the re-fit); {} is detected (ΔBIC {:.1}) but closes only {:.0} % of it",
@@ -184,8 +189,13 @@ fn distortion(e: &Evidence, b: &Ranked, responses: &super::outcome::VerdictId) -
 
 /// The second effect's clause: what the forward-selected pair closes beyond the named effect.
 pub(super) fn second(first: &str, second: &str, pair: &Ranked) -> String {
+    let what = if first == second {
+        format!("a second {second} (a second mode of the frame, under the first)")
+    } else {
+        format!("a second effect, {second},")
+    };
     format!(
-        "; a second effect, {second}, closes a further {:.0} % of what remains (ΔBIC {:.1} against {first} alone)",
+        "; {what} closes a further {:.0} % of what remains (ΔBIC {:.1} against {first} alone)",
         100.0 * pair.fraction_closed,
         pair.delta_bic,
     )
@@ -235,5 +245,49 @@ fn clock(e: &Evidence, b: &Ranked, responses: &super::VerdictId) -> String {
         c.drift_ppm,
         c.sigma_ppm,
         size(b)
+    )
+}
+
+/// The sentence of a partial explanation ([`Verdict::Partial`]): how the best falls short, and
+/// what each partial candidate closes.
+pub(super) fn partial(
+    shortfall: &Shortfall,
+    partial: &[PartialEffect],
+    nominal: &Stage,
+    null: &Stage,
+) -> String {
+    let best = partial.first().map_or("the best effect", |p| p.id.as_str());
+    let why = match *shortfall {
+        Shortfall::FarAboveNoise { chi2_red } => format!(
+            "leaves the check run's reduced χ² at {chi2_red:.1}, more than {EXPLAINED_CHI2} times the noise: the model lacks more than this effect adds"
+        ),
+        Shortfall::IsoAway {
+            aw_gap_percent: (a0, a1),
+            seat_gap_points: (s0, s1),
+        } => format!(
+            "moves the check run's ISO figures away from the measurement (seat a_w gap {a0:+.1} % → {a1:+.1} %, SEAT gap {s0:+.1} → {s1:+.1} points): its form is not the truth's"
+        ),
+    };
+    let list = partial
+        .iter()
+        .map(|p| {
+            format!(
+                "{} closes {:.0} % (reduced χ² {:.1}, a_w gap {:+.1} %, SEAT gap {:+.1} points)",
+                p.id,
+                100.0 * p.fraction_closed,
+                p.chi2_red,
+                p.aw_gap_percent,
+                p.seat_gap_points
+            )
+        })
+        .collect::<Vec<_>>()
+        .join("; ");
+    format!(
+        "a structural gap remains that no candidate explains: {best} {why}. Partial candidates: {list}. Take a_w and SEAT from the re-fitted model (a_w gap {:+.1} % nominal → {:+.1} % re-fitted, SEAT {:.1} → {:.1} % against {:.1} % measured)",
+        nominal.weighted.aw_gap_percent,
+        null.weighted.aw_gap_percent,
+        nominal.weighted.seat_model,
+        null.weighted.seat_model,
+        null.weighted.seat_meas
     )
 }

@@ -14,9 +14,15 @@ pub const PRACTICAL_GAP: (f64, f64) = (0.2, 2.0);
 /// Sizes below which a detected effect is called practically small: 1 % of a_w, 1 SEAT point,
 /// 0.5 dB band-gap RMS.
 pub const PRACTICAL_SIZE: (f64, f64, f64) = (1.0, 1.0, 0.5);
-/// Change of the check run's a_w gap (%) and SEAT gap (points) above which a named effect is
-/// said to move the ISO figures away from the measurement: half the practically-small sizes.
-pub const VISIBLE_SIZE: (f64, f64) = (0.5, 0.5);
+/// Reduced χ² on the check run that a named effect (with any second effect) must bring the model
+/// below to be the explanation: the residual's variance is then within this factor of the noise
+/// estimate's. A named form only close to the truth's (one Maxwell arm for a power-law foam) leaves
+/// a few times the noise; a structure missing more than the effect adds leaves hundreds.
+pub const EXPLAINED_CHI2: f64 = 50.0;
+/// Growth of the check run's a_w gap (%) or SEAT gap (points) with the named effect(s), against
+/// the re-fitted base model, at which the effect does not explain the runs as the user judges
+/// them (ISO 2631-1 a_w, SEAT).
+pub const ISO_AWAY: (f64, f64) = (1.0, 1.0);
 /// BIC margin below which the two best candidates are not distinguishable (a likelihood ratio of
 /// e³ ≈ 20).
 pub const IDENTIFIABLE_MARGIN: f64 = 6.0;

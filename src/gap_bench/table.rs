@@ -55,6 +55,48 @@ pub struct Summary {
     pub confusion: Vec<(String, String, usize)>,
     /// Median diagnosis wall time per case, s.
     pub median_diagnosis_s: f64,
+    /// How the check run's ISO figures move when an effect is named.
+    pub iso_toward: IsoToward,
+}
+
+/// Of the cases whose verdict names an effect: how many bring the check run's seat a_w and SEAT
+/// toward the measurement (neither gap grows by more than [`TIE`] against the re-fitted model),
+/// and the median gaps that remain.
+#[derive(Debug, Clone, Serialize)]
+pub struct IsoToward {
+    /// Cases naming an effect.
+    pub named: usize,
+    /// Of those, cases moving both figures toward the measurement.
+    pub toward: usize,
+    /// Median remaining |a_w gap| with the named effect(s), %.
+    pub median_aw_gap_percent: Option<f64>,
+    /// Median remaining |SEAT gap| with the named effect(s), points.
+    pub median_seat_gap_points: Option<f64>,
+}
+
+/// Change of an ISO gap (% or points) read as a tie: the figures' own rounding in the report.
+pub const TIE: f64 = 0.1;
+
+fn iso_toward(scores: &[CaseScore]) -> IsoToward {
+    let named: Vec<&IsoGaps> = scores
+        .iter()
+        .filter(|s| !s.named.is_empty())
+        .filter_map(|s| s.iso.as_ref())
+        .collect();
+    let toward = named
+        .iter()
+        .filter(|g| {
+            g.aw_percent[2].abs() <= g.aw_percent[1].abs() + TIE
+                && g.seat_points[2].abs() <= g.seat_points[1].abs() + TIE
+        })
+        .count();
+    let of = |f: fn(&IsoGaps) -> f64| median(named.iter().map(|g| f(g)).collect());
+    IsoToward {
+        named: named.len(),
+        toward,
+        median_aw_gap_percent: of(|g| g.aw_percent[2].abs()),
+        median_seat_gap_points: of(|g| g.seat_points[2].abs()),
+    }
 }
 
 fn row(group: &str, key: String, c: &[&CaseScore]) -> Row {
@@ -248,6 +290,7 @@ pub fn summary(scores: &[CaseScore], seed: u64, wall_s: f64) -> Summary {
         rows,
         confusion,
         median_diagnosis_s: median(scores.iter().map(|s| s.diagnosis_s).collect()).unwrap_or(0.0),
+        iso_toward: iso_toward(scores),
     }
 }
 
@@ -291,6 +334,15 @@ impl Summary {
             self.detectable_threshold,
             f(self.none_false_positive_rate),
             self.errors
+        );
+        let t = &self.iso_toward;
+        out += &format!(
+            "Named verdicts moving the check run's seat a_w and SEAT toward the measurement (neither gap growing by more than {TIE}): {} of {} ({}); median remaining |a_w gap| {} %, |SEAT gap| {} points.\n\n",
+            t.toward,
+            t.named,
+            f((t.named > 0).then(|| t.toward as f64 / t.named as f64)),
+            f(t.median_aw_gap_percent),
+            f(t.median_seat_gap_points)
         );
         let pair = |x: Option<(f64, f64)>, d: usize| {
             x.map_or("–".to_string(), |(a, b)| format!("{a:.d$} → {b:.d$}"))

@@ -14,7 +14,6 @@ use super::distortion::Distortion;
 pub(super) use super::evidence::training_closed;
 use super::outcome::{Ranked, Stage, VerdictId};
 use super::score;
-use super::thresholds::VISIBLE_SIZE;
 
 /// What the diagnosis concludes. Calibration findings (an inverted channel, a unit slip) stand
 /// beside it in [`super::Diagnosis::channel_errors`].
@@ -40,8 +39,59 @@ pub enum Verdict {
     },
     /// A structural gap remains that no candidate closes.
     Unexplained,
+    /// The best effect (with a second, if forward selection found one) closes part of the gap but
+    /// falls short of explaining the check run ([`Shortfall`]): reported `unexplained`, with the
+    /// partial candidates ([`super::Diagnosis::partial`]).
+    Partial {
+        /// The best effect.
+        best: Candidate,
+        /// A second effect added by forward selection.
+        second: Option<Candidate>,
+        /// How it falls short.
+        shortfall: Shortfall,
+    },
     /// Nothing significant: the re-fitted base model explains the held-out run.
     None,
+}
+
+/// How the best effect falls short of explaining the check run (docs/gap.md §7).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Shortfall {
+    /// The model with the effect(s) leaves the check run's reduced χ² above
+    /// [`super::thresholds::EXPLAINED_CHI2`].
+    FarAboveNoise {
+        /// Its reduced χ².
+        chi2_red: f64,
+    },
+    /// The effect(s) move the check run's seat a_w gap or SEAT gap away from the measurement by
+    /// at least [`super::thresholds::ISO_AWAY`].
+    IsoAway {
+        /// Seat a_w gap, %, re-fitted → with the effect(s).
+        aw_gap_percent: (f64, f64),
+        /// SEAT gap, points, re-fitted → with the effect(s).
+        seat_gap_points: (f64, f64),
+    },
+}
+
+/// Whether the model with the named effect(s) (`with`) falls short of explaining the check run
+/// where the re-fitted base model gives `null`: its reduced χ² stays far above the noise, or it
+/// moves a_w or SEAT away from the measurement. The χ² rule is checked first: a residual far above
+/// the noise means structure is missing whatever the ISO figures do.
+pub(super) fn shortfall(null: &Stage, with: &Stage) -> Option<Shortfall> {
+    if with.chi2_red > super::thresholds::EXPLAINED_CHI2 {
+        return Some(Shortfall::FarAboveNoise {
+            chi2_red: with.chi2_red,
+        });
+    }
+    let (n, w) = (&null.weighted, &with.weighted);
+    let seat_gap = |s: &super::gapmap::Weighted| s.seat_model - s.seat_meas;
+    let (aw, seat) = super::thresholds::ISO_AWAY;
+    let away = w.aw_gap_percent.abs() - n.aw_gap_percent.abs() >= aw
+        || seat_gap(w).abs() - seat_gap(n).abs() >= seat;
+    away.then_some(Shortfall::IsoAway {
+        aw_gap_percent: (n.aw_gap_percent, w.aw_gap_percent),
+        seat_gap_points: (seat_gap(n), seat_gap(w)),
+    })
 }
 
 /// The evidence a named effect rests on.
@@ -84,7 +134,7 @@ impl Verdict {
         match self {
             Verdict::Named { effect, .. } => VerdictId::Effect(effect.id().to_string()),
             Verdict::NotIdentifiable { .. } => VerdictId::NotIdentifiable,
-            Verdict::Unexplained => VerdictId::Unexplained,
+            Verdict::Unexplained | Verdict::Partial { .. } => VerdictId::Unexplained,
             Verdict::None => VerdictId::None,
         }
     }
@@ -198,25 +248,6 @@ pub(super) fn practically_small(b: &Ranked) -> bool {
     b.aw_change_percent.abs() < aw
         && b.seat_change_points.abs() < seat
         && b.band_gap_change_db.abs() < db
-}
-
-/// A warning when the named effect(s) fit the frequency responses better but move the check
-/// run's ISO figures away from the measurement: the seat a_w gap and the SEAT gap both grow by
-/// more than [`VISIBLE_SIZE`]. The χ² is dominated by the many coherent bins above 10 Hz, a_w and
-/// SEAT by the 4–8 Hz band, so a form only close to the truth's (one Maxwell arm for a foam's
-/// power-law relaxation) can improve the one and worsen the other; the user judges by the ISO
-/// figures, so the report says which model to take them from.
-pub(super) fn iso_figures_move_away(null: &Stage, with: &Stage) -> Option<String> {
-    let (n, w) = (&null.weighted, &with.weighted);
-    let seat_gap = |s: f64| (s - w.seat_meas).abs();
-    let aw_worse = w.aw_gap_percent.abs() - n.aw_gap_percent.abs();
-    let seat_worse = seat_gap(w.seat_model) - seat_gap(n.seat_model);
-    (aw_worse > VISIBLE_SIZE.0 && seat_worse > VISIBLE_SIZE.1).then(|| {
-        format!(
-            "the named effect fits the frequency responses better but moves the check run's ISO figures away from the measurement (seat a_w gap {:+.1} % → {:+.1} %, SEAT {:.1} → {:.1} % against {:.1} %): its form is only close to the truth's; take a_w and SEAT from the re-fitted model",
-            n.aw_gap_percent, w.aw_gap_percent, n.seat_model, w.seat_model, w.seat_meas
-        )
-    })
 }
 
 /// The verdict's identifier in the JSON. A calibration error found when nothing structural is

@@ -485,3 +485,40 @@ fn docs_gap_md_lists_the_rules_in_their_order() {
         at += i + r.name.len();
     }
 }
+
+#[test]
+fn a_named_effect_that_leaves_the_check_run_far_from_the_measurement_is_partial() {
+    use crate::diagnosis::thresholds::{EXPLAINED_CHI2, ISO_AWAY};
+    use crate::diagnosis::verdict::{Shortfall, shortfall};
+    let null = ranked("null", 30.0, 300.0, 0.0, 0.0, 0.0).check;
+    let stage = |chi2: f64, aw: f64, seat: f64| {
+        let mut s = null.clone();
+        s.chi2_red = chi2;
+        s.weighted.aw_gap_percent = aw;
+        s.weighted.seat_model = s.weighted.seat_meas + seat;
+        s
+    };
+    // Within the noise's reach and the ISO figures unmoved: explained.
+    assert_eq!(
+        shortfall(&null, &stage(EXPLAINED_CHI2 * 0.9, 0.0, 0.0)),
+        None
+    );
+    // Far above the noise: the χ² rule, whatever the ISO figures do.
+    assert_eq!(
+        shortfall(&null, &stage(EXPLAINED_CHI2 * 1.1, 0.0, 0.0)),
+        Some(Shortfall::FarAboveNoise {
+            chi2_red: EXPLAINED_CHI2 * 1.1
+        })
+    );
+    // The a_w gap alone, or the SEAT gap alone, moving away by the threshold.
+    for (aw, seat) in [(ISO_AWAY.0, 0.0), (0.0, -ISO_AWAY.1)] {
+        assert!(matches!(
+            shortfall(&null, &stage(3.0, aw, seat)),
+            Some(Shortfall::IsoAway { .. })
+        ));
+    }
+    // Moving toward the measurement from a gap is not moving away.
+    let mut from = null.clone();
+    from.weighted.aw_gap_percent = 5.0;
+    assert_eq!(shortfall(&from, &stage(3.0, -2.0, 0.0)), None);
+}
