@@ -24,7 +24,7 @@ FAMILY = {
     "sensor-highpass": "sensor", "sensor-force": "sensor", "sensor-mount-force": "sensor",
     "sensor-mount-seat": "sensor", "sensor-mount-head": "sensor", "sensor-mount-base": "sensor",
     "missing-dof": "missing-dof", "body-mode": "missing-dof",
-    "backrest": "support-path", "feet-support": "support-path", "thigh-support": "support-path", "cushion-fractional": "viscoelastic",
+    "backrest": "support-path", "hands-support": "support-path", "feet-support": "support-path", "thigh-support": "support-path", "cushion-fractional": "viscoelastic",
     "suspension-friction": "suspension", "end-stop": "suspension",
     "none": "none", "unexplained": "unexplained", "not-identifiable": "not-identifiable",
 }
