@@ -118,7 +118,7 @@ pub const BACKREST: Definition = Definition {
 };
 
 /// Feet on the floor (E9): a legs mass joined to the lower body (pelvis and thighs) by a knee
-/// spring–damper and to the base by a heel pad ([`add_limb`]): a load path past the seat pan that
+/// spring–damper and to the base by a heel pad (`add_limb`): a load path past the seat pan that
 /// the seat-pan force does not see.
 pub const FEET: Definition = Definition {
     id: "feet-support",
@@ -144,10 +144,11 @@ pub const FEET: Definition = Definition {
 
 /// Hands on a steering wheel or a grab handle that moves with the floor (issue 39): an arms mass
 /// joined to the upper body (the heaviest body mass: upper torso and shoulders) by a shoulder–arm
-/// spring–damper and to the base by the grip ([`add_limb`]): with the torso held,
+/// spring–damper and to the base by the grip (`add_limb`): with the torso held,
 /// ω² = (2π)²·(f_shoulder² + f_grip²), k = m_arms·(2πf)², c = 2·0.3·m_arms·2πf. The path enters
-/// the body at the top of the spine, so it shapes seat→head and leaves the seat pan's apparent
-/// mass less changed than a lower-body path (feet, thighs) that loads the pelvis.
+/// the body at the top of the spine, next to the head, where a lower-body path (feet, thighs)
+/// enters at the pelvis under the seat-pan force: with a head channel or `f_seat_z` the two shape
+/// seat→head and the apparent mass differently.
 ///
 /// Bounds and starts (assumptions, not fitted to a study here): segment-mass fractions of about
 /// 2.8 % (upper arm), 1.6 % (forearm) and 0.6 % (hand) of body mass (Dempster's, as tabulated by
