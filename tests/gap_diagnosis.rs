@@ -648,3 +648,44 @@ fn logger_dropouts_and_a_spike_train_are_screened_out_before_the_fit() {
         "{e}"
     );
 }
+
+#[test]
+fn hands_on_a_wheel_are_named_an_upper_body_path_and_legs_still_a_lower_one() {
+    // The truth bench's forms, not a candidate's: the hands on a steering wheel (upper arms and
+    // forearms split off the upper torso, gripping a wheel on a compliant column) and the feet on
+    // the floor (thighs and lower legs off the pelvis). With a head channel and the seat-pan
+    // force, a path into the shoulders shapes seat→head and one into the pelvis the apparent
+    // mass, so each is named at its own place in the support-path family, not only in the family —
+    // with the force plate and, by seat→head alone, without it.
+    use wbv::gap_bench::forms::Form;
+    let model = catalog::resolve("reference").unwrap();
+    for (form, expect, force) in [
+        (Form::Hands, &["hands-support"][..], true),
+        (Form::Legs, &["feet-support", "thigh-support"][..], true),
+        (Form::Hands, &["hands-support"][..], false),
+        (Form::Legs, &["feet-support", "thigh-support"][..], false),
+    ] {
+        let case = make_case_with(
+            6,
+            3,
+            &CaseOptions {
+                effects: Some(vec![(form, 0.7)]),
+                spectrum: Some("white"),
+                fs_hz: Some(500.0),
+                duration_s: Some(120.0),
+                noise: Some(0.01),
+                force: Some(force),
+            },
+        )
+        .unwrap();
+        let d = diagnose(&model, &case.train, &case.check).unwrap();
+        let named = d.verdict.effect().unwrap_or_default();
+        assert!(
+            expect.contains(&named),
+            "{form:?} ({}): {} — {}",
+            case.label.effects[0].detail,
+            d.verdict,
+            d.verdict_text
+        );
+    }
+}

@@ -106,6 +106,28 @@ fn on_all_runs(e: &Evidence, b: &Ranked) -> String {
     )
 }
 
+/// The note on a same-family `alternative` to the named `effect`. Support paths of one family
+/// differ in where the load enters the body (upper torso, shoulders, pelvis), so for them the place
+/// is what is uncertain and the measurement that would tell is named.
+fn alternative_note(
+    effect: super::candidate::Candidate,
+    alternative: super::candidate::Candidate,
+) -> String {
+    use super::candidate::{Family, separating_measurement};
+    if alternative.family() == Family::SupportPath {
+        format!(
+            " ({} fits almost as well: where the path enters the body is uncertain; to tell, {})",
+            alternative.id(),
+            separating_measurement(effect, alternative)
+        )
+    } else {
+        format!(
+            " ({} fits almost as well: the form is uncertain)",
+            alternative.id()
+        )
+    }
+}
+
 /// Named on the held-out run, with a same-family alternative and a tie all runs decided.
 fn held_out(
     e: &Evidence,
@@ -125,9 +147,7 @@ fn held_out(
             100.0 * b.fraction_closed
         )
     };
-    let alt = alternative.map_or(String::new(), |s| {
-        format!(" ({} fits almost as well: the form is uncertain)", s.id())
-    });
+    let alt = alternative.map_or(String::new(), |s| alternative_note(effect, s));
     let tie_note = tie.map_or(String::new(), |l| {
         let lose = e.held_out_entry(l).expect("ranked");
         let fits = if e.accepted.is_some_and(|a| a.id == lose.id) {

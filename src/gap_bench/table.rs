@@ -57,6 +57,9 @@ pub struct Summary {
     pub median_diagnosis_s: f64,
     /// How the check run's ISO figures move when an effect is named.
     pub iso_toward: IsoToward,
+    /// Support-path cases named a support path: (planted form, named candidate, count), and how
+    /// many of them name the planted place ([`Form::places`]).
+    pub support_places: (Vec<(String, String, usize)>, usize),
 }
 
 /// Of the cases whose verdict names an effect: how many bring the check run's seat a_w and SEAT
@@ -278,6 +281,7 @@ pub fn summary(scores: &[CaseScore], seed: u64, wall_s: f64) -> Summary {
         }
     }
     confusion.sort();
+    let support_places = support_places(scores);
     Summary {
         cases: scores.len(),
         seed,
@@ -291,7 +295,35 @@ pub fn summary(scores: &[CaseScore], seed: u64, wall_s: f64) -> Summary {
         confusion,
         median_diagnosis_s: median(scores.iter().map(|s| s.diagnosis_s).collect()).unwrap_or(0.0),
         iso_toward: iso_toward(scores),
+        support_places,
     }
+}
+
+/// Where the support-path verdicts put the path: over the cases whose first planted effect is a
+/// support path and whose first named effect is one, (form, named id, count) and the count of
+/// those naming the planted place.
+fn support_places(scores: &[CaseScore]) -> (Vec<(String, String, usize)>, usize) {
+    let mut out: Vec<(String, String, usize)> = Vec::new();
+    let mut right = 0;
+    for s in scores {
+        let Some(e) = s.label.effects.first() else {
+            continue;
+        };
+        let (Some(places), Some(n)) = (e.form.places(), s.named.first()) else {
+            continue;
+        };
+        if Family::of_verdict(n) != Some(Family::SupportPath) {
+            continue;
+        }
+        right += usize::from(places.contains(&n.as_str()));
+        let key = (e.form.name().to_string(), n.clone());
+        match out.iter_mut().find(|c| (&c.0, &c.1) == (&key.0, &key.1)) {
+            Some(c) => c.2 += 1,
+            None => out.push((key.0, key.1, 1)),
+        }
+    }
+    out.sort();
+    (out, right)
 }
 
 impl Summary {
@@ -374,6 +406,14 @@ impl Summary {
         out += "\nconfusion (first planted family → named family or verdict: count)\n";
         for (t, v, n) in &self.confusion {
             out += &format!("  {t:<14} → {v:<18} {n}\n");
+        }
+        let (places, right) = &self.support_places;
+        let named: usize = places.iter().map(|p| p.2).sum();
+        out += &format!(
+            "support-path place (planted form → named support path: count): {right} of {named} at the planted place\n"
+        );
+        for (f, v, n) in places {
+            out += &format!("  {f:<14} → {v:<18} {n}\n");
         }
         let fails = self.failures();
         if fails.is_empty() {

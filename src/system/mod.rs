@@ -45,6 +45,8 @@ pub enum Role {
     Backrest,
     /// Footrest (floor) support of the feet.
     Footrest,
+    /// A hand grip (steering wheel or grab handle) that moves with the base.
+    Handle,
 }
 
 impl Role {
@@ -57,6 +59,7 @@ impl Role {
             Role::Frame => "frame",
             Role::Backrest => "backrest",
             Role::Footrest => "footrest",
+            Role::Handle => "handle",
         }
     }
 
@@ -69,6 +72,7 @@ impl Role {
             Role::Frame,
             Role::Backrest,
             Role::Footrest,
+            Role::Handle,
         ]
         .into_iter()
         .find(|r| r.as_str() == word)

@@ -261,7 +261,7 @@ FAMILIES = {
     "viscoelastic": ["sls", "maxwell2", "fractional"],
     "stiffening": ["cubic", "exponential", "bottoming"],
     "softening": ["tanh", "bilinear", "magnitude-saturating"],
-    "support-path": ["backrest", "thigh-path"],
+    "support-path": ["backrest", "thigh-path", "hands-wheel"],
     "missing-dof": ["seat-frame", "viscera"],
     "sensor": ["delay", "mount", "lowpass", "gain"],
 }
@@ -324,6 +324,15 @@ def draw_effect(rng, family, form, strength):
     elif family == "support-path":
         if form == "backrest":
             p = {"k_N_per_m": rng.uniform(10e3, 40e3) * strength, "c_Ns_per_m": rng.uniform(200, 1000) * strength}
+        elif form == "hands-wheel":
+            # hands on a steering wheel: the arms (about a tenth of body mass for two) leave the upper
+            # torso, hang on the shoulders and grip a wheel rim that sits on a steel steering column
+            p = {"m_arms_kg": rng.uniform(4.0, 8.0),
+                 "k_shoulder_N_per_m": rng.uniform(3e3, 12e3) * strength,
+                 "c_shoulder_Ns_per_m": rng.uniform(80, 300) * strength,
+                 "k_grip_N_per_m": rng.uniform(60e3, 200e3), "c_grip_Ns_per_m": rng.uniform(150, 500),
+                 "m_wheel_kg": rng.uniform(2.0, 5.0), "f_column_hz": rng.uniform(25, 45),
+                 "zeta_column": rng.uniform(0.03, 0.1)}
         else:
             p = {"k_N_per_m": rng.uniform(20e3, 60e3) * strength, "c_Ns_per_m": rng.uniform(300, 1500) * strength}
     elif family == "missing-dof":
@@ -448,6 +457,13 @@ def build_plant(subject, family, form, p, A_rms, sigma):
             fk = 1 - s * (1 - math.exp(-A_rms / p["A_s"]))
             fc = 1 - 0.5 * s * (1 - math.exp(-A_rms / p["A_s"]))
             links[lk] = (i, j, k * fk, c * fc)
+    elif family == "support-path" and form == "hands-wheel":
+        masses["upper_torso"] = masses["upper_torso"] - p["m_arms_kg"]
+        masses["arms"], masses["wheel"] = p["m_arms_kg"], p["m_wheel_kg"]
+        kc = p["m_wheel_kg"] * (2 * np.pi * p["f_column_hz"]) ** 2
+        links["shoulder"] = ("upper_torso", "arms", p["k_shoulder_N_per_m"], p["c_shoulder_Ns_per_m"])
+        links["grip"] = ("arms", "wheel", p["k_grip_N_per_m"], p["c_grip_Ns_per_m"])
+        links["column"] = ("wheel", None, kc, 2 * p["zeta_column"] * math.sqrt(kc * p["m_wheel_kg"]))
     elif family == "support-path":
         node = "upper_torso" if form == "backrest" else "pelvis"
         links["extra"] = (node, None, p["k_N_per_m"], p["c_Ns_per_m"])
@@ -592,7 +608,7 @@ S1_FAMILIES = {
     "viscoelastic": ["sls", "maxwell2", "fractional"],
     "stiffening": ["cubic", "exponential"],
     "softening": ["tanh", "bilinear", "magnitude-saturating"],
-    "support-path": ["backrest", "thigh-path"],
+    "support-path": ["backrest", "thigh-path", "hands-wheel"],
     "missing-dof": ["viscera"],  # wbv's seat-frame candidate needs a cushion on the base
     "sensor": ["delay", "mount", "lowpass", "gain"],
 }

@@ -89,7 +89,7 @@ pub enum Family {
     Suspension,
     /// A mass the model lacks: a seat frame or a second body mode ([`missing_dof`]).
     MissingDof,
-    /// A load path past the seat pan: backrest, feet, thighs ([`support`]).
+    /// A load path past the seat pan: backrest, hands, feet, thighs ([`support`]).
     SupportPath,
 }
 
@@ -185,6 +185,8 @@ pub enum Candidate {
     BodyMode,
     /// [`support::BACKREST`]
     Backrest,
+    /// [`support::HANDS`]
+    HandsSupport,
     /// [`support::FEET`]
     FeetSupport,
     /// [`support::THIGH`]
@@ -193,7 +195,7 @@ pub enum Candidate {
 
 impl Candidate {
     /// Every candidate in report order.
-    pub const ALL: [Candidate; 25] = [
+    pub const ALL: [Candidate; 26] = [
         Candidate::BodySoftening,
         Candidate::BodySofteningMagnitude,
         Candidate::CushionStiffening,
@@ -217,6 +219,7 @@ impl Candidate {
         Candidate::MissingDof,
         Candidate::BodyMode,
         Candidate::Backrest,
+        Candidate::HandsSupport,
         Candidate::FeetSupport,
         Candidate::ThighSupport,
     ];
@@ -247,6 +250,7 @@ impl Candidate {
             Candidate::MissingDof => &missing_dof::FRAME,
             Candidate::BodyMode => &missing_dof::BODY_MODE,
             Candidate::Backrest => &support::BACKREST,
+            Candidate::HandsSupport => &support::HANDS,
             Candidate::FeetSupport => &support::FEET,
             Candidate::ThighSupport => &support::THIGH,
         }

@@ -21,7 +21,7 @@ fn either(a: Candidate, b: Candidate, c: Candidate) -> bool {
 }
 
 /// The pair rules, most specific first: the first that applies names the measurement.
-const SEPARATIONS: [Separation; 8] = [
+const SEPARATIONS: [Separation; 11] = [
     Separation {
         applies: |a, b| {
             pair(
@@ -60,6 +60,14 @@ const SEPARATIONS: [Separation; 8] = [
         measurement: "a sensor calibration: a shaker run against a reference accelerometer gives each channel's gain, group delay and mount response",
     },
     Separation {
+        applies: |a, b| pair(a, b, &[HandsSupport], &[Backrest]),
+        measurement: "a run with the hands off the wheel or handle, or a wheel (hand) force: both paths reach the upper torso, only the hands' passes through the arms",
+    },
+    Separation {
+        applies: |a, b| pair(a, b, &[HandsSupport], &[FeetSupport, ThighSupport]),
+        measurement: "a head accelerometer with the seat-pan force f_seat_z (a path to the shoulders shapes seat-head, one to the pelvis the apparent mass), or a wheel (hand) force or accelerometer",
+    },
+    Separation {
         applies: |a, b| either(a, b, Backrest),
         measurement: "a run without backrest contact, or a backrest force (a backrest drives the torso past the seat pan)",
     },
@@ -70,6 +78,10 @@ const SEPARATIONS: [Separation; 8] = [
     Separation {
         applies: |a, b| either(a, b, FeetSupport),
         measurement: "a run with the feet on a fixed floor, or a footrest force (the feet carry part of the thighs past the seat pan)",
+    },
+    Separation {
+        applies: |a, b| either(a, b, HandsSupport),
+        measurement: "a run with the hands off the wheel or handle, or a wheel (hand) force (the arms carry part of the upper torso past the seat pan)",
     },
     Separation {
         applies: |a, b| pair(a, b, &[MissingDof], &[BodyMode]),
@@ -109,6 +121,16 @@ mod tests {
         assert!(m(SensorDelay, Backrest).starts_with("a sensor calibration"));
         assert!(m(Backrest, FeetSupport).starts_with("a run without backrest contact"));
         assert!(m(FeetSupport, BodyMode).starts_with("a run with the feet on a fixed floor"));
+        // The hands' path against the other support paths: by where it enters the body.
+        assert!(m(HandsSupport, Backrest).starts_with("a run with the hands off the wheel"));
+        assert!(m(Backrest, HandsSupport).contains("through the arms"));
+        for lower in [FeetSupport, ThighSupport] {
+            assert!(
+                m(lower, HandsSupport).starts_with("a head accelerometer with the seat-pan force")
+            );
+        }
+        assert!(m(HandsSupport, BodyMode).contains("the arms carry part of the upper torso"));
+        assert!(m(SensorGain, HandsSupport).starts_with("a sensor calibration"));
         assert_eq!(m(EndStop, CushionFractional), REPEAT);
     }
 }

@@ -1,12 +1,13 @@
 //! A second support path (docs/gap.md §5, E7 and E9): a load path from the base to the body that
-//! bypasses the seat pan — a backrest on the upper torso, the feet on the floor, the thighs on the
-//! seat's front edge — so seat→head is no longer body-only and the seat-pan force misses part of
-//! the load. Linear.
+//! bypasses the seat pan — a backrest on the upper torso, the hands on a steering wheel or grab
+//! handle, the feet on the floor, the thighs on the seat's front edge — so seat→head is no longer
+//! body-only and the seat-pan force misses part of the load. Linear.
 
 use super::*;
 use structure::{body_point_mass, heaviest_body_mass};
 
-/// Damping ratio of the feet-support knee and heel pad (a soft-tissue contact).
+/// Damping ratio of the joints and contacts of a support limb (knee and heel pad, shoulder and
+/// grip): soft tissue.
 pub const SUPPORT_ZETA: f64 = 0.3;
 
 /// The body point a support path acts on.
@@ -57,6 +58,36 @@ fn link_to_base(id: &str, s: &System, t: usize, f_hz: f64, zeta: f64) -> Link {
     kv_link(id, (&s.dofs[t].name, "base"), vec![(t, 1.0)], m, f_hz, zeta)
 }
 
+/// A limb between the body point `t` and the base (legs from the pelvis to the floor, arms from the
+/// shoulders to a wheel): a coordinate of `limb.1` kg called `limb.0`, moved by the base as `t`
+/// is, joined to `t` by the spring–damper `joint` and to the base by the contact `contact`, each
+/// given as (name, frequency in Hz) and tuned on the limb's mass with ζ [`SUPPORT_ZETA`]:
+/// k = m·(2πf)², c = 2ζ·m·2πf. With `t` held the limb rests on both in parallel,
+/// ω² = (2π)²·(f_joint² + f_contact²). Every added part carries `role`.
+fn add_limb(
+    s: &mut System,
+    t: usize,
+    role: Role,
+    limb: (&str, f64),
+    joint: (&str, f64),
+    contact: (&str, f64),
+) {
+    let ((name, m), body) = (limb, s.dofs[t].name.clone());
+    let j = add_dof(s, name, role, m, s.r[t], s.r_x[t]);
+    for (link, nodes, row, f) in [
+        (
+            joint.0,
+            (body.as_str(), name),
+            vec![(t, 1.0), (j, -1.0)],
+            joint.1,
+        ),
+        (contact.0, (name, "base"), vec![(j, 1.0)], contact.1),
+    ] {
+        let l = kv_link(link, nodes, row, m, f, SUPPORT_ZETA);
+        s.links.push(Link { role, ..l });
+    }
+}
+
 /// A backrest (E7): the upper torso leans on the seat frame through a foam — a spring–damper tuned
 /// to `f_support_hz` with a relaxing Maxwell arm (k_m/k, τ; the standard linear solid of a backrest
 /// pad, stiffer and lossier above 1/(2πτ); k_m → 0 is the plain spring–damper).
@@ -87,8 +118,8 @@ pub const BACKREST: Definition = Definition {
 };
 
 /// Feet on the floor (E9): a legs mass joined to the lower body (pelvis and thighs) by a knee
-/// spring–damper and to the base by a heel pad (ζ [`SUPPORT_ZETA`] each): a load path past the
-/// seat pan that the seat-pan force does not see.
+/// spring–damper and to the base by a heel pad (`add_limb`): a load path past the seat pan that
+/// the seat-pan force does not see.
 pub const FEET: Definition = Definition {
     id: "feet-support",
     family: Family::SupportPath,
@@ -103,23 +134,49 @@ pub const FEET: Definition = Definition {
     apply: |v, p| {
         let s = &mut v.system;
         let t = target_or_err(FEET.id, Target::LowerBody, s)?;
-        let (m, upper) = (p[0], s.dofs[t].name.clone());
-        let j = add_dof(s, "legs", Role::Footrest, m, s.r[t], s.r_x[t]);
-        for (name, nodes, row, f) in [
-            (
-                "knee",
-                (upper.as_str(), "legs"),
-                vec![(t, 1.0), (j, -1.0)],
-                p[1],
-            ),
-            ("heel", ("legs", "base"), vec![(j, 1.0)], p[2]),
-        ] {
-            let link = kv_link(name, nodes, row, m, f, SUPPORT_ZETA);
-            s.links.push(Link {
-                role: Role::Footrest,
-                ..link
-            });
-        }
+        let (legs, knee, heel) = (("legs", p[0]), ("knee", p[1]), ("heel", p[2]));
+        add_limb(s, t, Role::Footrest, legs, knee, heel);
+        Ok(())
+    },
+    magnitude: Magnitude::Linear,
+    reads_force_only: false,
+};
+
+/// Hands on a steering wheel or a grab handle that moves with the floor (issue 39): an arms mass
+/// joined to the upper body (the heaviest body mass: upper torso and shoulders) by a shoulder–arm
+/// spring–damper and to the base by the grip (`add_limb`): with the torso held,
+/// ω² = (2π)²·(f_shoulder² + f_grip²), k = m_arms·(2πf)², c = 2·0.3·m_arms·2πf. The path enters
+/// the body at the top of the spine, next to the head, where a lower-body path (feet, thighs)
+/// enters at the pelvis under the seat-pan force: with a head channel or `f_seat_z` the two shape
+/// seat→head and the apparent mass differently.
+///
+/// Bounds and starts (assumptions, not fitted to a study here): segment-mass fractions of about
+/// 2.8 % (upper arm), 1.6 % (forearm) and 0.6 % (hand) of body mass (Dempster's, as tabulated by
+/// Winter, *Biomechanics and Motor Control of Human Movement*) give two arms about 10 % of a 75 kg
+/// occupant, 7–8 kg, of which the part that moves with the grip rather than the shoulder is less:
+/// start 4 kg, bounds 1–15 kg. The shoulder–arm suspension of the torso is soft (the arms hang
+/// from muscles), 0.5–25 Hz on the arms mass with starts at 2 and 5 Hz as for the knee; the grip
+/// (palm and finger tissue on a rim) is stiffer, 3–80 Hz, start 20 Hz. Hand position changes the
+/// seated vertical apparent mass and its resonance (Wang, Rakheja and Boileau 2004, Int. J. Ind.
+/// Ergonomics 34); the Boileau–Rakheja body of the reference model was itself fitted to drivers with
+/// their hands on a wheel, so on it the candidate stands for a grip its data did not have, or a
+/// firmer one.
+pub const HANDS: Definition = Definition {
+    id: "hands-support",
+    family: Family::SupportPath,
+    params: || {
+        vec![
+            Param::new("m_arms_kg", 1.0, 15.0, &[4.0], true),
+            Param::new("f_shoulder_hz", 0.5, 25.0, &[2.0, 5.0], true),
+            Param::new("f_grip_hz", 3.0, 80.0, &[20.0], true),
+        ]
+    },
+    applies_to: |s| target(Target::UpperBody, s).is_some(),
+    apply: |v, p| {
+        let s = &mut v.system;
+        let t = target_or_err(HANDS.id, Target::UpperBody, s)?;
+        let (arms, shoulder, grip) = (("arms", p[0]), ("shoulder", p[1]), ("grip", p[2]));
+        add_limb(s, t, Role::Handle, arms, shoulder, grip);
         Ok(())
     },
     magnitude: Magnitude::Linear,
@@ -176,6 +233,7 @@ mod tests {
         let segments = system(catalog::PAPER_000);
         assert!(!Candidate::Backrest.applies_to(&segments));
         assert!(!Candidate::FeetSupport.applies_to(&segments));
+        assert!(!Candidate::HandsSupport.applies_to(&segments));
     }
 
     #[test]
@@ -197,6 +255,38 @@ mod tests {
         let w2 = k / 6.0;
         let expect = (2.0 * PI).powi(2) * (9.0 + 144.0);
         assert!((w2 / expect - 1.0).abs() < 1e-12, "{w2} vs {expect}");
+        // The seat-pan force still reads the body–seat interface alone.
+        let f = t.channel_index("f_seat_z").unwrap();
+        assert_eq!(t.channels[f].rule, s.channels[f].rule);
+    }
+
+    #[test]
+    fn hands_support_adds_an_arms_mass_between_the_shoulders_and_the_base() {
+        let s = system("reference");
+        let v = Candidate::HandsSupport
+            .apply(&s, &[4.0, 5.0, 20.0])
+            .unwrap();
+        let t = &v.system;
+        assert_eq!(t.dof(), s.dof() + 1);
+        let j = t.dof() - 1;
+        assert_eq!((t.m[(j, j)], t.r[j]), (4.0, 1.0));
+        let hand: Vec<&Link> = t.links.iter().filter(|l| l.role == Role::Handle).collect();
+        // The shoulder hangs the arms on the upper torso, the grip on the base.
+        let nodes: Vec<(&str, &str)> = hand
+            .iter()
+            .map(|l| (l.nodes.0.as_str(), l.nodes.1.as_str()))
+            .collect();
+        assert_eq!(nodes, [("upper_torso", "arms"), ("arms", "base")]);
+        // With the torso held the arms rest on shoulder and grip in parallel:
+        // ω² = (2π)²·(5² + 20²), and each link's damping is 2·ζ·m·ω of its own tuning.
+        let k: f64 = hand.iter().map(|l| l.element.static_stiffness()).sum();
+        let expect = (2.0 * PI).powi(2) * (25.0 + 400.0);
+        assert!((k / 4.0 / expect - 1.0).abs() < 1e-12, "{k} vs {expect}");
+        let Element::KelvinVoigt { c, .. } = hand[0].element else {
+            panic!("{:?}", hand[0].element)
+        };
+        let c0 = 2.0 * SUPPORT_ZETA * 4.0 * 2.0 * PI * 5.0;
+        assert!((c / c0 - 1.0).abs() < 1e-12, "{c} vs {c0}");
         // The seat-pan force still reads the body–seat interface alone.
         let f = t.channel_index("f_seat_z").unwrap();
         assert_eq!(t.channels[f].rule, s.channels[f].rule);

@@ -16,12 +16,13 @@ use std::f64::consts::PI;
 mod body;
 mod cushion;
 mod frame;
+mod hands;
 mod sizing;
 mod structure;
 
 pub use body::scheduled;
 pub use cushion::prony_fit;
-use sizing::{bisect, cushion, interface, kv, log_uniform, uniform};
+use sizing::{bisect, cushion, interface, kv, log_uniform, tuned, uniform};
 pub use sizing::{gauss_mean, link_sigma};
 
 /// Effect families scored by the bench (the diagnosis is right when it names the family).
@@ -38,7 +39,7 @@ pub enum Family {
     Sensor,
     /// A missing degree of freedom (seat frame, second body mode).
     MissingDof,
-    /// A second load path from the base to the body (backrest, feet on the floor).
+    /// A second load path from the base to the body (backrest, hands on a wheel, feet on the floor).
     SupportPath,
 }
 
@@ -81,7 +82,7 @@ impl Family {
         } else if id == "missing-dof" || id.starts_with("body-mode") || id.starts_with("seat-frame")
         {
             Some(Family::MissingDof)
-        } else if id == "backrest" || id == "feet-support" || id == "thigh-support" {
+        } else if ["backrest", "hands-support", "feet-support", "thigh-support"].contains(&id) {
             Some(Family::SupportPath)
         } else {
             None
@@ -140,11 +141,14 @@ pub enum Form {
     /// Feet on the floor: thighs split off the pelvis on a hip joint, lower legs on a knee joint
     /// and a heel pad to the base.
     Legs,
+    /// Hands on a steering wheel: upper arms and forearms split off the upper torso on shoulder
+    /// and elbow joints, gripping a wheel on a compliant steering column to the base.
+    Hands,
 }
 
 impl Form {
     /// Every form, in report order.
-    pub const ALL: [Form; 21] = [
+    pub const ALL: [Form; 22] = [
         Form::Sls,
         Form::Maxwell2,
         Form::Fractional,
@@ -166,6 +170,7 @@ impl Form {
         Form::FrameTwoMode,
         Form::Backrest,
         Form::Legs,
+        Form::Hands,
     ];
     /// The family of the form.
     pub fn family(self) -> Family {
@@ -182,7 +187,7 @@ impl Form {
             | Form::LoggerOffset
             | Form::LoggerDrift => Family::Sensor,
             Form::Frame | Form::Viscera | Form::FrameTwoMode => Family::MissingDof,
-            Form::Backrest | Form::Legs => Family::SupportPath,
+            Form::Backrest | Form::Legs | Form::Hands => Family::SupportPath,
         }
     }
     /// The forms of `family`.
@@ -191,6 +196,16 @@ impl Form {
             .into_iter()
             .filter(|f| f.family() == family)
             .collect()
+    }
+    /// For a support-path form, the verdict ids that name its place on the body (the upper torso
+    /// from the frame, the shoulders from a wheel, the pelvis from the floor); `None` otherwise.
+    pub fn places(self) -> Option<&'static [&'static str]> {
+        match self {
+            Form::Backrest => Some(&["backrest"]),
+            Form::Hands => Some(&["hands-support"]),
+            Form::Legs => Some(&["feet-support", "thigh-support"]),
+            _ => None,
+        }
     }
     /// Name used in reports.
     pub fn name(self) -> &'static str {
@@ -216,6 +231,7 @@ impl Form {
             Form::FrameTwoMode => "two-mode-frame",
             Form::Backrest => "backrest",
             Form::Legs => "legs",
+            Form::Hands => "hands-on-wheel",
         }
     }
 }
@@ -378,6 +394,7 @@ pub fn plant(
         Form::Frame | Form::Viscera | Form::Backrest | Form::Legs => {
             structure::plant(form, u, rng, model)?
         }
+        Form::Hands => hands::plant(u, rng, model)?,
     };
     Ok((planted, detail))
 }
@@ -426,6 +443,10 @@ mod tests {
         );
         assert_eq!(
             Family::of_verdict("thigh-support"),
+            Some(Family::SupportPath)
+        );
+        assert_eq!(
+            Family::of_verdict("hands-support"),
             Some(Family::SupportPath)
         );
         assert_eq!(Family::of_verdict("body-mode"), Some(Family::MissingDof));

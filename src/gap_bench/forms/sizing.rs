@@ -3,7 +3,7 @@
 //! diagnosis's statistical linearisation.
 
 use crate::error::Result;
-use crate::model::{Chain, Element, Node, Role};
+use crate::model::{Chain, Element, Link, Node, Role};
 use rand::RngExt;
 use rand_chacha::ChaCha8Rng;
 use std::f64::consts::PI;
@@ -67,6 +67,30 @@ pub(super) fn log_uniform(rng: &mut ChaCha8Rng, lo: f64, hi: f64) -> f64 {
 
 pub(super) fn uniform(rng: &mut ChaCha8Rng, lo: f64, hi: f64) -> f64 {
     lo + rng.random::<f64>() * (hi - lo)
+}
+
+/// A Kelvin–Voigt link from `a` to `b` tuned to `f_hz` with damping ratio `zeta` on a mass of
+/// `m_kg`: k = m·(2πf)², c = 2ζ·m·2πf.
+pub(super) fn tuned(
+    name: &str,
+    (a, b): (Node, Node),
+    m_kg: f64,
+    f_hz: f64,
+    zeta: f64,
+    role: Role,
+) -> Link {
+    let w = 2.0 * PI * f_hz;
+    Link {
+        name: name.into(),
+        a,
+        b,
+        element: Element::KelvinVoigt {
+            k: m_kg * w * w,
+            c: 2.0 * zeta * m_kg * w,
+        },
+        law: None,
+        role,
+    }
 }
 
 pub(super) fn kv(model: &Chain, i: usize) -> (f64, f64) {

@@ -1,4 +1,5 @@
-//! Structural truth forms: a seat-frame mode, a viscera mode, a backrest and legs on the floor.
+//! Structural truth forms: a seat-frame mode, a viscera mode, a backrest and legs on the floor (the
+//! hands on a wheel are in [`super::hands`]).
 
 use super::*;
 
@@ -22,18 +23,10 @@ pub(super) fn plant(form: Form, u: f64, rng: &mut ChaCha8Rng, model: &mut Chain)
             } else if l.a == Node::Base {
                 l.a = Node::Mass(j);
             }
-            let w = 2.0 * PI * f;
-            model.links.push(Link {
-                name: "truth-frame".into(),
-                a: Node::Mass(j),
-                b: Node::Base,
-                element: Element::KelvinVoigt {
-                    k: mf * w * w,
-                    c: 2.0 * z * mf * w,
-                },
-                law: None,
-                role: Role::Frame,
-            });
+            let ends = (Node::Mass(j), Node::Base);
+            model
+                .links
+                .push(tuned("truth-frame", ends, mf, f, z, Role::Frame));
             format!("seat frame {mf:.1} kg at {f:.1} Hz, ζ = {z:.3}")
         }
         Form::Viscera => {
@@ -49,18 +42,10 @@ pub(super) fn plant(form: Form, u: f64, rng: &mut ChaCha8Rng, model: &mut Chain)
                 m: mv,
                 role: Role::Body,
             });
-            let w = 2.0 * PI * f;
-            model.links.push(Link {
-                name: "truth-viscera".into(),
-                a: Node::Mass(j),
-                b: Node::Mass(ti),
-                element: Element::KelvinVoigt {
-                    k: mv * w * w,
-                    c: 2.0 * z * mv * w,
-                },
-                law: None,
-                role: Role::Body,
-            });
+            let ends = (Node::Mass(j), Node::Mass(ti));
+            model
+                .links
+                .push(tuned("truth-viscera", ends, mv, f, z, Role::Body));
             format!(
                 "viscera {mv:.1} kg ({:.0} % of {}) at {f:.1} Hz, ζ = {z:.2}",
                 100.0 * phi,
@@ -140,24 +125,12 @@ pub(super) fn plant(form: Form, u: f64, rng: &mut ChaCha8Rng, model: &mut Chain)
                     role: Role::Footrest,
                 });
             }
-            let kv_link = |name: &str, a: Node, b: Node, m: f64, f: f64, z: f64| {
-                let w = 2.0 * PI * f;
-                Link {
-                    name: name.into(),
-                    a,
-                    b,
-                    element: Element::KelvinVoigt {
-                        k: m * w * w,
-                        c: 2.0 * z * m * w,
-                    },
-                    law: None,
-                    role: Role::Footrest,
-                }
-            };
+            let (pn, tn, ln) = (Node::Mass(pi), Node::Mass(jt), Node::Mass(jl));
+            let foot = Role::Footrest;
             model.links.extend([
-                kv_link("truth-hip", Node::Mass(pi), Node::Mass(jt), mt, fhip, 0.3),
-                kv_link("truth-knee", Node::Mass(jt), Node::Mass(jl), ml, fk, zk),
-                kv_link("truth-heel", Node::Mass(jl), Node::Base, ml, fh, zh),
+                tuned("truth-hip", (pn, tn), mt, fhip, 0.3, foot),
+                tuned("truth-knee", (tn, ln), ml, fk, zk, foot),
+                tuned("truth-heel", (ln, Node::Base), ml, fh, zh, foot),
             ]);
             format!(
                 "thighs {mt:.1} kg ({:.0} % of {}) on a {fhip:.1} Hz hip, legs {ml:.1} kg on the floor: knee {fk:.1} Hz (ζ {zk:.2}), heel pad {fh:.1} Hz (ζ {zh:.2})",

@@ -205,6 +205,23 @@ fn look_alikes_of_two_families_are_not_identifiable() {
 }
 
 #[test]
+fn a_support_path_close_to_another_names_what_tells_their_places_apart() {
+    // Hands on a wheel and feet on the floor within 6 of each other: one family, so named, and the
+    // note says the place is uncertain and which measurement would tell.
+    let null = ranked("null", 3.0, 3.0, 0.0, 0.0, 1.0);
+    let cands = vec![
+        ranked("hands-support", 1.2, 1.3, -50.0, -80.0, 0.7),
+        ranked("feet-support", 1.2, 1.35, -47.0, -78.0, 0.68),
+    ];
+    let (v, text) = judged(&evidence(&null, &cands));
+    assert!(named(Candidate::HandsSupport)(&v), "{text}");
+    assert!(
+        text.contains("feet-support fits almost as well: where the path enters the body is uncertain; to tell, a head accelerometer with the seat-pan force"),
+        "{text}"
+    );
+}
+
+#[test]
 fn accepted_on_held_out_names_a_detected_effect_that_closes_a_quarter_of_the_gap() {
     // Null 3.0 on the check run, best detected at −40 closing 60 %: named on the held-out run.
     let null = ranked("null", 3.0, 3.0, 0.0, 0.0, 1.0);
