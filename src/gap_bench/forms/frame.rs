@@ -7,7 +7,6 @@ use super::*;
 
 /// Plants the two-mode frame with strength `u` (stiffer and lighter frames for small `u`).
 pub(super) fn plant_two_mode(u: f64, rng: &mut ChaCha8Rng, model: &mut Chain) -> Result<String> {
-    let i = cushion(model)?;
     let m_pan = uniform(rng, 3.0, 10.0);
     let m_riser = uniform(rng, 4.0, 15.0);
     // Uncoupled frequencies: the pan on its spring over a held riser, the riser and pan together
@@ -15,52 +14,25 @@ pub(super) fn plant_two_mode(u: f64, rng: &mut ChaCha8Rng, model: &mut Chain) ->
     let f_pan = 45.0 - 20.0 * u + uniform(rng, -3.0, 3.0);
     let f_riser = 30.0 - 15.0 * u + uniform(rng, -3.0, 3.0);
     let (z_pan, z_riser) = (uniform(rng, 0.03, 0.12), uniform(rng, 0.03, 0.12));
-    let pan = model.masses.len();
-    let riser = pan + 1;
-    for (name, m) in [("truth-pan", m_pan), ("truth-riser", m_riser)] {
-        model.masses.push(Mass {
-            name: name.into(),
-            m,
-            role: Role::Frame,
-        });
-    }
-    let l = &mut model.links[i];
-    if l.b == Node::Base {
-        l.b = Node::Mass(pan);
-    } else if l.a == Node::Base {
-        l.a = Node::Mass(pan);
-    }
-    for (name, a, b, m, f, z) in [
-        (
-            "truth-pan",
-            Node::Mass(pan),
-            Node::Mass(riser),
-            m_pan,
-            f_pan,
-            z_pan,
-        ),
-        (
-            "truth-riser",
-            Node::Mass(riser),
-            Node::Base,
-            m_pan + m_riser,
-            f_riser,
-            z_riser,
-        ),
-    ] {
-        let w = 2.0 * PI * f;
-        model.links.push(Link {
-            name: name.into(),
-            a,
-            b,
-            element: Element::KelvinVoigt {
-                k: m * w * w,
-                c: 2.0 * z * m * w,
-            },
-            law: None,
-            role: Role::Frame,
-        });
-    }
+    let pan = under_cushion(model, "truth-pan", m_pan)?;
+    let riser = model.masses.len();
+    model.masses.push(Mass {
+        name: "truth-riser".into(),
+        m: m_riser,
+        role: Role::Frame,
+    });
+    let (p, r) = (Node::Mass(pan), Node::Mass(riser));
+    model
+        .links
+        .push(tuned("truth-pan", (p, r), m_pan, f_pan, z_pan, Role::Frame));
+    model.links.push(tuned(
+        "truth-riser",
+        (r, Node::Base),
+        m_pan + m_riser,
+        f_riser,
+        z_riser,
+        Role::Frame,
+    ));
     Ok(format!(
         "two-mode seat frame: pan {m_pan:.1} kg at {f_pan:.1} Hz (ζ {z_pan:.3}) on a riser {m_riser:.1} kg at {f_riser:.1} Hz (ζ {z_riser:.3})"
     ))

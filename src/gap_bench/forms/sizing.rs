@@ -3,7 +3,7 @@
 //! diagnosis's statistical linearisation.
 
 use crate::error::Result;
-use crate::model::{Chain, Element, Link, Node, Role};
+use crate::model::{Chain, Element, Link, Mass, Node, Role};
 use rand::RngExt;
 use rand_chacha::ChaCha8Rng;
 use std::f64::consts::PI;
@@ -91,6 +91,25 @@ pub(super) fn tuned(
         law: None,
         role,
     }
+}
+
+/// Puts a frame mass `name` of `m_kg` under the cushion: the cushion link's base end moves to it.
+/// Returns the mass's index (its own links to the base are the caller's).
+pub(super) fn under_cushion(model: &mut Chain, name: &str, m_kg: f64) -> Result<usize> {
+    let i = cushion(model)?;
+    let j = model.masses.len();
+    model.masses.push(Mass {
+        name: name.into(),
+        m: m_kg,
+        role: Role::Frame,
+    });
+    let l = &mut model.links[i];
+    if l.b == Node::Base {
+        l.b = Node::Mass(j);
+    } else if l.a == Node::Base {
+        l.a = Node::Mass(j);
+    }
+    Ok(j)
 }
 
 pub(super) fn kv(model: &Chain, i: usize) -> (f64, f64) {

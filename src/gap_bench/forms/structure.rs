@@ -7,22 +7,10 @@ use super::*;
 pub(super) fn plant(form: Form, u: f64, rng: &mut ChaCha8Rng, model: &mut Chain) -> Result<String> {
     Ok(match form {
         Form::Frame => {
-            let i = cushion(model)?;
             let mf = uniform(rng, 3.0, 15.0);
             let f = 40.0 - 32.0 * u;
             let z = uniform(rng, 0.03, 0.15);
-            let j = model.masses.len();
-            model.masses.push(Mass {
-                name: "truth-frame".into(),
-                m: mf,
-                role: Role::Frame,
-            });
-            let l = &mut model.links[i];
-            if l.b == Node::Base {
-                l.b = Node::Mass(j);
-            } else if l.a == Node::Base {
-                l.a = Node::Mass(j);
-            }
+            let j = under_cushion(model, "truth-frame", mf)?;
             let ends = (Node::Mass(j), Node::Base);
             model
                 .links
