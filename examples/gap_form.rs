@@ -1,6 +1,7 @@
 //! Diagnoses bench cases with one planted truth form, for looking at a form's verdicts.
-//! Usage: `cargo run --release --example gap_form -- FORM STRENGTH [CASES [SEED [FORCE]]]`
-//! (FORM as the bench names it, e.g. `logger-drift`; FORCE `yes`/`no`, default drawn).
+//! Usage: `cargo run --release --example gap_form -- FORM STRENGTH [CASES [SEED [FORCE [SPECTRUM
+//! [RATE]]]]]` (FORM as the bench names it, e.g. `logger-drift`, or `none`; FORCE `yes`/`no`,
+//! SPECTRUM one of the bench's kinds, RATE in Hz; default drawn).
 
 use rayon::prelude::*;
 use wbv::gap_bench::case::{CaseOptions, make_case_with};
@@ -10,21 +11,28 @@ fn main() -> wbv::Result<()> {
     let mut args = std::env::args().skip(1);
     let usage = "usage: gap_form FORM STRENGTH [CASES [SEED [FORCE]]]";
     let name = args.next().expect(usage);
-    let form = Form::ALL
-        .into_iter()
-        .find(|f| f.name() == name)
-        .expect("a form name");
+    let form = Form::ALL.into_iter().find(|f| f.name() == name);
+    assert!(form.is_some() || name == "none", "a form name or none");
     let u: f64 = args.next().expect(usage).parse().expect("STRENGTH");
     let cases: usize = args.next().map_or(6, |s| s.parse().expect("CASES"));
     let seed: u64 = args.next().map_or(1, |s| s.parse().expect("SEED"));
     let force = args.next().map(|s| s == "yes");
+    let spectrum: Option<&'static str> = args.next().map(|s| {
+        *wbv::gap_bench::case::SPECTRA
+            .iter()
+            .find(|k| **k == s)
+            .expect("a spectrum")
+    });
+    let fs_hz: Option<f64> = args.next().map(|s| s.parse().expect("RATE"));
     let model = wbv::model::catalog::resolve("reference")?;
     let lines: Vec<String> = (0..cases)
         .into_par_iter()
         .map(|i| {
             let o = CaseOptions {
-                effects: Some(vec![(form, u)]),
+                effects: Some(form.map(|f| vec![(f, u)]).unwrap_or_default()),
                 force,
+                spectrum,
+                fs_hz,
                 ..CaseOptions::default()
             };
             let case = make_case_with(i, seed, &o)?;
@@ -40,7 +48,10 @@ fn main() -> wbv::Result<()> {
                 "case {i}: {} [{}] χ² {with:.1} | {} | detect {:.1} | null χ² {:.1} | {} | {}",
                 d.verdict,
                 d.named.join(" + "),
-                case.label.effects[0].detail,
+                case.label
+                    .effects
+                    .first()
+                    .map_or("none", |e| e.detail.as_str()),
                 case.label.detectability,
                 d.null.check.chi2_red,
                 top.join(", "),
