@@ -24,15 +24,23 @@ pub struct ClockTrend {
 }
 
 impl ClockTrend {
-    /// Whether the lag moves through the runs beyond their noise: |drift| > [`SIGNIFICANT_SIGMA`] σ.
+    /// Whether the lag moves through the runs beyond their noise: |drift| > [`SIGNIFICANT_SIGMA`] σ
+    /// and ≥ [`MIN_DRIFT_PPM`].
     pub fn significant(&self) -> bool {
         self.drift_ppm.abs() > SIGNIFICANT_SIGMA * self.sigma_ppm
+            && self.drift_ppm.abs() >= MIN_DRIFT_PPM
     }
 }
 
 /// Standard errors a drift must exceed to be read as one: 4σ leaves a false alarm rate of
-/// 6·10⁻⁵ per diagnosis for a Gaussian estimate.
+/// 6·10⁻⁵ per diagnosis for a Gaussian estimate. The σ treats neighbouring bins as independent,
+/// which a Hann window's overlapping bins are not, so it is too small by up to about 2: runs
+/// without a drift reach 3.6σ. [`MIN_DRIFT_PPM`] keeps those sub-ppm readings from counting.
 pub const SIGNIFICANT_SIGMA: f64 = 4.0;
+
+/// Least drift read as a logger clock's, ppm: two free-running quartz clocks differ by several to
+/// a few hundred ppm (tolerances ±10–100 ppm each), so a sub-ppm trend is the estimate's noise.
+pub const MIN_DRIFT_PPM: f64 = 2.0;
 
 /// The paths from the base whose lag a second logger moves.
 const PATHS: [Path; 2] = [Path::BaseSeat, Path::BaseHead];
@@ -164,4 +172,23 @@ pub(super) fn oriented(
     let t = SegmentTimes::of(first);
     let mid = t.first_s + 0.5 * (t.count as f64 - 1.0) * t.hop_s;
     (offset_s + 2.0 * drift_ppm * 1e-6 * mid, -drift_ppm)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_drift_counts_beyond_four_sigma_and_two_ppm() {
+        let t = |d: f64, s: f64| ClockTrend {
+            drift_ppm: d,
+            sigma_ppm: s,
+            runs: 3,
+        };
+        assert!(t(57.0, 0.2).significant());
+        assert!(t(-9.0, 2.0).significant());
+        // Within the noise, or a sub-ppm reading however sharp.
+        assert!(!t(7.0, 2.0).significant());
+        assert!(!t(0.5, 0.01).significant());
+    }
 }

@@ -302,12 +302,34 @@ pub(super) fn partial(
         })
         .collect::<Vec<_>>()
         .join("; ");
+    let lead = match shortfall {
+        Shortfall::FarAboveNoise { .. } => "a structural gap remains that no candidate explains",
+        Shortfall::IsoAway { .. } => {
+            "no candidate explains the check run as its a_w and SEAT judge it"
+        }
+    };
     format!(
-        "a structural gap remains that no candidate explains: {best} {why}. Partial candidates: {list}. Take a_w and SEAT from the re-fitted model (a_w gap {:+.1} % nominal → {:+.1} % re-fitted, SEAT {:.1} → {:.1} % against {:.1} % measured)",
+        "{lead}: {best} {why}. Partial candidates: {list}. Take a_w and SEAT from the re-fitted model (a_w gap {:+.1} % nominal → {:+.1} % re-fitted, SEAT {:.1} → {:.1} % against {:.1} % measured)",
         nominal.weighted.aw_gap_percent,
         null.weighted.aw_gap_percent,
         nominal.weighted.seat_model,
         null.weighted.seat_model,
         null.weighted.seat_meas
     )
+}
+
+/// The warning when amplitude-dependent effect(s) move the check run's ISO figures away
+/// ([`Shortfall::decides`]): their equivalent linear model omits the distortion power.
+pub(super) fn equivalent_linear_iso(s: &Shortfall) -> String {
+    match *s {
+        Shortfall::IsoAway {
+            aw_gap_percent: (a0, a1),
+            seat_gap_points: (s0, s1),
+        } => format!(
+            "the named effect fits the frequency responses but its equivalent linear model moves the check run's ISO figures away from the measurement (seat a_w gap {a0:+.1} % → {a1:+.1} %, SEAT gap {s0:+.1} → {s1:+.1} points): a nonlinearity's distortion power is in the measured a_w and not in the linearised prediction, so take a_w and SEAT from the re-fitted model"
+        ),
+        Shortfall::FarAboveNoise { chi2_red } => {
+            format!("the named effect leaves the check run's reduced χ² at {chi2_red:.1}")
+        }
+    }
 }

@@ -539,3 +539,18 @@ fn a_named_effect_that_leaves_the_check_run_far_from_the_measurement_is_partial(
     from.weighted.aw_gap_percent = 5.0;
     assert_eq!(shortfall(&from, &stage(3.0, -2.0, 0.0)), None);
 }
+
+#[test]
+fn the_iso_figures_decide_only_for_linear_effects() {
+    use crate::diagnosis::verdict::Shortfall;
+    let far = Shortfall::FarAboveNoise { chi2_red: 300.0 };
+    let away = Shortfall::IsoAway {
+        aw_gap_percent: (0.1, 2.0),
+        seat_gap_points: (0.1, 1.5),
+    };
+    // A residual far above the noise is structure missing, whatever the effect.
+    assert!(far.decides(true) && far.decides(false));
+    // A linear effect's model predicts the seat PSD in full; an equivalent-linear one does not.
+    assert!(away.decides(true));
+    assert!(!away.decides(false));
+}
