@@ -38,6 +38,11 @@ pub const MIN_MAGNITUDE_RATIO: f64 = 1.3;
 /// −6.5 dB while base→seat rose 3.6–16 dB), except where a bottoming foam's impacts ring the body
 /// (0.12–0.47). The ranges overlap; the share is set to keep the occupant's.
 pub const BODY_SHARE: (f64, f64) = (0.3, 1.5);
+/// Spread of a linear path's rise, dB: linear paths on the truth bench stay within ±0.6 dB (see
+/// [`MIN_RISE_DB`]). A body path falling further contradicts a nonlinearity in the occupant, which
+/// raises the incoherent share of every path that crosses it (a fault on one channel, a dropout or a
+/// spike train, can raise one path's alone).
+pub const LINEAR_SPREAD_DB: f64 = 0.6;
 /// Frequency range compared, Hz: the body and cushion modes and their low harmonics.
 pub const BAND_HZ: (f64, f64) = (1.0, 40.0);
 
@@ -193,7 +198,13 @@ pub fn trend(runs: &[&RunSpectra]) -> Option<Distortion> {
         })
     };
     let measured = |p: Path| of(p).is_some();
-    let site = if body(Path::SeatHead) || body(Path::ApparentMass) {
+    let falls = |p: Path| of(p).is_some_and(|d| d.rise_db < -LINEAR_SPREAD_DB);
+    // The occupant only when the body paths agree: one rising and another falling is not a
+    // nonlinearity both cross.
+    let in_body = (body(Path::SeatHead) || body(Path::ApparentMass))
+        && !falls(Path::SeatHead)
+        && !falls(Path::ApparentMass);
+    let site = if in_body {
         Some(Site::Body)
     } else if seat.is_some() {
         Some(
@@ -343,5 +354,30 @@ mod tests {
         };
         assert_eq!(site(2.0), Some(Site::Body));
         assert_eq!(site(1.8), Some(Site::Support));
+    }
+
+    #[test]
+    fn body_paths_that_disagree_do_not_place_the_nonlinearity_in_the_occupant() {
+        // The apparent mass's NSR ×9 (a channel fault can do that) while seat→head's falls ×0.5
+        // (−3 dB, beyond a linear path's ±0.6 dB): not the occupant. With seat→head flat: the body.
+        let site = |head: f64| {
+            let runs: Vec<RunSpectra> = [(0.5, 1.0), (1.5, head)]
+                .iter()
+                .map(|&(a, h)| {
+                    let m = coh(0.01 * (a / 0.5f64).powi(2));
+                    run(
+                        a,
+                        &[
+                            (Path::BaseSeat, coh(0.01)),
+                            (Path::SeatHead, coh(0.01 * h)),
+                            (Path::ApparentMass, m),
+                        ],
+                    )
+                })
+                .collect();
+            trend(&runs.iter().collect::<Vec<_>>()).unwrap().site
+        };
+        assert_eq!(site(0.5), None);
+        assert_eq!(site(1.0), Some(Site::Body));
     }
 }
