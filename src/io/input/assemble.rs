@@ -47,27 +47,75 @@ pub(crate) fn assemble(raw: Raw, source: &str, opts: &Options) -> Result<Input> 
         mut notes,
     } = raw;
     let line_of = |i: usize| lines.as_ref().and_then(|l| l.get(i).copied());
-    let find = |cols: &[Column], src: &str| -> Option<usize> {
-        cols.iter()
-            .position(|c| c.name == src)
-            .or_else(|| cols.iter().position(|c| c.aliases.iter().any(|a| a == src)))
+    let time = take_time_column(&mut columns, &timing, source, opts)?;
+    let picked = if opts.columns.iter().any(|(c, _)| c != "t_s") {
+        pick_mapped(columns, source, opts, &mut notes)?
+    } else {
+        pick_by_name(columns, source, &mut notes)?
     };
-    let available = |cols: &[Column]| {
-        cols.iter()
-            .map(|c| format!("`{}`", c.name))
-            .collect::<Vec<_>>()
-            .join(", ")
-    };
-    // Time: mapped, or a column named like time; only for formats whose time is a column.
-    let mut time: Option<Column> = None;
+    check_channel_options(&picked, source, opts)?;
+    let (fs, rate_note) = sample_rate(&timing, time, opts.fs, source, &line_of)?;
+    if let Some(n) = rate_note {
+        notes.push(format!("{source}: {n}"));
+    }
+    let mut signals = Signals::new(fs, source);
+    let mut undeclared = Vec::new();
+    for (ch, mut c) in picked {
+        let unit = channel_unit(&ch, &mut c, source, opts, &mut notes, &mut undeclared)?;
+        let scale = scale_of(&unit).expect("unit checked")
+            * opts
+                .sensitivity
+                .iter()
+                .find(|(c2, _)| *c2 == ch)
+                .map_or(1.0, |(_, s)| *s);
+        if scale != 1.0 {
+            c.data.iter_mut().for_each(|v| *v *= scale);
+        }
+        if let Some((i, why)) = implausible_sample(&c, &ch) {
+            return Err(Error::data(source, line_of(i), why));
+        }
+        signals.push(ch, c.data)?;
+    }
+    check_duration(&signals, source)?;
+    Ok(Input {
+        signals,
+        notes,
+        undeclared,
+    })
+}
+
+/// The column that `src` of `--column CH=SRC` names: by name first, then by alias.
+fn find_column(cols: &[Column], src: &str) -> Option<usize> {
+    cols.iter()
+        .position(|c| c.name == src)
+        .or_else(|| cols.iter().position(|c| c.aliases.iter().any(|a| a == src)))
+}
+
+/// The column names, quoted and comma-separated, for messages.
+fn available(cols: &[Column]) -> String {
+    cols.iter()
+        .map(|c| format!("`{}`", c.name))
+        .collect::<Vec<_>>()
+        .join(", ")
+}
+
+/// The time column, taken out of `columns`: the one `--column t_s=…` maps, else one named like
+/// time ([`TIME_NAMES`]); only for formats whose time is a column. A format that states its own
+/// rate refuses `--column t_s=…`.
+fn take_time_column(
+    columns: &mut Vec<Column>,
+    timing: &Timing,
+    source: &str,
+    opts: &Options,
+) -> Result<Option<Column>> {
     if let Timing::InColumns = timing {
         let idx = match opts.columns.iter().find(|(c, _)| c == "t_s") {
-            Some((_, src)) => Some(find(&columns, src).ok_or_else(|| {
+            Some((_, src)) => Some(find_column(columns, src).ok_or_else(|| {
                 Error::parameter(
                     "--column",
                     format!(
                         "t_s={src}: {source} has no such column (columns: {})",
-                        available(&columns)
+                        available(columns)
                     ),
                 )
             })?),
@@ -75,74 +123,96 @@ pub(crate) fn assemble(raw: Raw, source: &str, opts: &Options) -> Result<Input> 
                 .iter()
                 .position(|c| TIME_NAMES.iter().any(|n| c.name.eq_ignore_ascii_case(n))),
         };
-        time = idx.map(|i| columns.remove(i).usable()).transpose()?;
+        idx.map(|i| columns.remove(i).usable()).transpose()
     } else if matches!(timing, Timing::Rate { .. }) && opts.columns.iter().any(|(c, _)| c == "t_s")
     {
-        return Err(refuse(
+        Err(refuse(
             "--column",
             "t_s=…: this format states its own timing (sample rate or time stamps)",
+        ))
+    } else {
+        Ok(None)
+    }
+}
+
+/// Without `--column` mappings: every column named like a channel (`a_<place>_<axis>`,
+/// `f_<place>_<axis>`), at least one; the others are ignored with a note.
+fn pick_by_name(
+    columns: Vec<Column>,
+    source: &str,
+    notes: &mut Vec<String>,
+) -> Result<Vec<(String, Column)>> {
+    let mut picked = Vec::new();
+    let mut ignored = Vec::new();
+    for c in columns {
+        if is_channel_name(&c.name) {
+            picked.push((c.name.clone(), c.usable()?));
+        } else {
+            ignored.push(format!("`{}`", c.name));
+        }
+    }
+    if picked.is_empty() {
+        return Err(Error::data(
+            source,
+            None,
+            format!(
+                "no column is named a_<place>_<axis> or f_<place>_<axis> (columns: {}); map \
+                 one with --column a_seat_z=SOURCE",
+                if ignored.is_empty() {
+                    "none".into()
+                } else {
+                    ignored.join(", ")
+                }
+            ),
         ));
     }
-    // Channels.
-    let mut picked: Vec<(String, Column)> = Vec::new();
-    let mapped: Vec<&(String, String)> = opts.columns.iter().filter(|(c, _)| c != "t_s").collect();
-    if mapped.is_empty() {
-        let mut ignored = Vec::new();
-        for c in columns.drain(..) {
-            if is_channel_name(&c.name) {
-                picked.push((c.name.clone(), c.usable()?));
-            } else {
-                ignored.push(format!("`{}`", c.name));
-            }
-        }
-        if picked.is_empty() {
-            return Err(Error::data(
-                source,
-                None,
-                format!(
-                    "no column is named a_<place>_<axis> or f_<place>_<axis> (columns: {}); map \
-                     one with --column a_seat_z=SOURCE",
-                    if ignored.is_empty() {
-                        "none".into()
-                    } else {
-                        ignored.join(", ")
-                    }
-                ),
-            ));
-        }
-        if !ignored.is_empty() {
-            notes.push(format!(
-                "{source}: columns {} are not a_<place>_<axis> or f_<place>_<axis> and were \
-                 ignored (map them with --column)",
-                ignored.join(", ")
-            ));
-        }
-    } else {
-        for (ch, src) in mapped {
-            let i = find(&columns, src).ok_or_else(|| {
-                Error::parameter(
-                    "--column",
-                    format!(
-                        "{ch}={src}: {source} has no such column (columns: {})",
-                        available(&columns)
-                    ),
-                )
-            })?;
-            let mut c = columns.remove(i).usable()?;
-            c.aliases.clear();
-            if picked.iter().any(|(n, _)| n == ch) {
-                return Err(refuse("--column", &format!("{ch} is mapped twice")));
-            }
-            picked.push((ch.clone(), c));
-        }
-        if !columns.is_empty() {
-            notes.push(format!(
-                "{source}: columns {} not mapped with --column; ignored",
-                available(&columns)
-            ));
-        }
+    if !ignored.is_empty() {
+        notes.push(format!(
+            "{source}: columns {} are not a_<place>_<axis> or f_<place>_<axis> and were \
+             ignored (map them with --column)",
+            ignored.join(", ")
+        ));
     }
-    // Options that name channels must name picked ones.
+    Ok(picked)
+}
+
+/// With `--column CH=SRC` mappings (other than `t_s`): the channels they map, each once, in the
+/// order given; the columns left over are ignored with a note.
+fn pick_mapped(
+    mut columns: Vec<Column>,
+    source: &str,
+    opts: &Options,
+    notes: &mut Vec<String>,
+) -> Result<Vec<(String, Column)>> {
+    let mut picked: Vec<(String, Column)> = Vec::new();
+    for (ch, src) in opts.columns.iter().filter(|(c, _)| c != "t_s") {
+        let i = find_column(&columns, src).ok_or_else(|| {
+            Error::parameter(
+                "--column",
+                format!(
+                    "{ch}={src}: {source} has no such column (columns: {})",
+                    available(&columns)
+                ),
+            )
+        })?;
+        let mut c = columns.remove(i).usable()?;
+        c.aliases.clear();
+        if picked.iter().any(|(n, _)| n == ch) {
+            return Err(refuse("--column", &format!("{ch} is mapped twice")));
+        }
+        picked.push((ch.clone(), c));
+    }
+    if !columns.is_empty() {
+        notes.push(format!(
+            "{source}: columns {} not mapped with --column; ignored",
+            available(&columns)
+        ));
+    }
+    Ok(picked)
+}
+
+/// `--units CH=…` and `--sensitivity CH=…` must name channels that were picked.
+fn check_channel_options(picked: &[(String, Column)], source: &str, opts: &Options) -> Result<()> {
     for (ch, _) in opts
         .units
         .iter()
@@ -163,8 +233,20 @@ pub(crate) fn assemble(raw: Raw, source: &str, opts: &Options) -> Result<Input> 
             ));
         }
     }
-    // Sample rate.
-    let (fs, rate_note) = match (&timing, time, opts.fs) {
+    Ok(())
+}
+
+/// The sample rate (Hz) and a note on where it came from: the rate the file states (which
+/// `--fs`, `flag_fs`, may not override), `--fs`, or one fitted to the file's time stamps or time
+/// column.
+fn sample_rate(
+    timing: &Timing,
+    time: Option<Column>,
+    flag_fs: Option<f64>,
+    source: &str,
+    line_of: &dyn Fn(usize) -> Option<usize>,
+) -> Result<(f64, Option<String>)> {
+    Ok(match (timing, time, flag_fs) {
         (Timing::Rate { .. }, _, Some(given)) | (Timing::Stamps { .. }, _, Some(given)) => {
             if matches!(timing, Timing::Stamps { .. }) {
                 (given, Some("time stamps ignored: --fs given".to_string()))
@@ -184,24 +266,7 @@ pub(crate) fn assemble(raw: Raw, source: &str, opts: &Options) -> Result<Input> 
             )
         }
         (Timing::InColumns, Some(t), None) => {
-            let scale = match &t.unit {
-                Some(u) => scale_of(u)
-                    .filter(|_| ["s", "ms", "us", "µs", "μs"].contains(&u.trim()))
-                    .ok_or_else(|| {
-                        Error::data(
-                            source,
-                            line_of(0).map(|l| l.saturating_sub(1).max(1)),
-                            format!("time column `{}`: unit `{u}`, expected s or ms", t.name),
-                        )
-                    })?,
-                None => 1.0,
-            };
-            let stamps: Vec<f64> = t.data.iter().map(|v| v * scale).collect();
-            let res: Option<Vec<f64>> = t
-                .resolution
-                .as_ref()
-                .map(|r| r.iter().map(|v| v * scale).collect());
-            let fs = fit_rate(&stamps, res.as_deref(), &line_of, source, &t.name)?;
+            let fs = rate_of_time_column(&t, source, line_of)?;
             (
                 fs,
                 Some(format!("{fs} Hz fitted to the time column `{}`", t.name)),
@@ -223,82 +288,114 @@ pub(crate) fn assemble(raw: Raw, source: &str, opts: &Options) -> Result<Input> 
                  is unknown",
             ));
         }
+    })
+}
+
+/// The sample rate (Hz) fitted to time column `t`, in s (its unit s, ms or µs; none: s), with
+/// the printed resolution of its values.
+fn rate_of_time_column(
+    t: &Column,
+    source: &str,
+    line_of: &dyn Fn(usize) -> Option<usize>,
+) -> Result<f64> {
+    let scale = match &t.unit {
+        Some(u) => scale_of(u)
+            .filter(|_| ["s", "ms", "us", "µs", "μs"].contains(&u.trim()))
+            .ok_or_else(|| {
+                Error::data(
+                    source,
+                    line_of(0).map(|l| l.saturating_sub(1).max(1)),
+                    format!("time column `{}`: unit `{u}`, expected s or ms", t.name),
+                )
+            })?,
+        None => 1.0,
     };
-    if let Some(n) = rate_note {
-        notes.push(format!("{source}: {n}"));
+    let stamps: Vec<f64> = t.data.iter().map(|v| v * scale).collect();
+    let res: Option<Vec<f64>> = t
+        .resolution
+        .as_ref()
+        .map(|r| r.iter().map(|v| v * scale).collect());
+    fit_rate(&stamps, res.as_deref(), line_of, source, &t.name)
+}
+
+/// The unit of channel `ch` (column `c`): `--units` for it or for all, which must agree with a
+/// known unit the file declares; else the file's, which wbv must know; else m/s² (N for a force),
+/// with a note, `ch` then counted as undeclared. Samples relative to full scale need
+/// `--sensitivity` and are then in the unit of `--units` (or m/s²).
+fn channel_unit(
+    ch: &str,
+    c: &mut Column,
+    source: &str,
+    opts: &Options,
+    notes: &mut Vec<String>,
+    undeclared: &mut Vec<String>,
+) -> Result<String> {
+    let flag_unit = opts
+        .units
+        .iter()
+        .find(|(c2, _)| c2.as_deref() == Some(ch))
+        .or_else(|| opts.units.iter().find(|(c2, _)| c2.is_none()))
+        .map(|(_, u)| u.clone());
+    if c.unit.as_deref() == Some(FULL_SCALE) {
+        needs_sensitivity(ch, c, source, opts)?;
+        c.unit = None;
     }
-    let mut signals = Signals::new(fs, source);
-    let mut undeclared = Vec::new();
-    for (ch, mut c) in picked {
-        let flag_unit = opts
-            .units
-            .iter()
-            .find(|(c2, _)| c2.as_deref() == Some(ch.as_str()))
-            .or_else(|| opts.units.iter().find(|(c2, _)| c2.is_none()))
-            .map(|(_, u)| u.clone());
-        if c.unit.as_deref() == Some(FULL_SCALE) {
-            if !opts.sensitivity.iter().any(|(c2, _)| *c2 == ch) {
-                return Err(Error::parameter(
-                    "--sensitivity",
+    Ok(match (flag_unit, &c.unit) {
+        (Some(f), Some(file)) if scale_of(file).is_some() && scale_of(file) != scale_of(&f) => {
+            return Err(refuse(
+                "--units",
+                &format!(
+                    "{ch}: {f} given, but {source} declares `{file}` for `{}`",
+                    c.name
+                ),
+            ));
+        }
+        (Some(f), _) => f,
+        (None, Some(file)) => {
+            if scale_of(file).is_none() {
+                return Err(Error::data(
+                    source,
+                    None,
                     format!(
-                        "{ch}: `{}` of {source} is relative to full scale; give \
-                         --sensitivity {ch}=VALUE (its value at full scale, in m/s² or in the \
-                         unit of --units)",
+                        "column `{}` declares unit `{file}`, which wbv does not know; give \
+                         --units {ch}=UNIT ({UNITS})",
                         c.name
                     ),
                 ));
             }
-            c.unit = None;
+            file.clone()
         }
-        let unit = match (flag_unit, &c.unit) {
-            (Some(f), Some(file)) if scale_of(file).is_some() && scale_of(file) != scale_of(&f) => {
-                return Err(refuse(
-                    "--units",
-                    &format!(
-                        "{ch}: {f} given, but {source} declares `{file}` for `{}`",
-                        c.name
-                    ),
-                ));
-            }
-            (Some(f), _) => f,
-            (None, Some(file)) => {
-                if scale_of(file).is_none() {
-                    return Err(Error::data(
-                        source,
-                        None,
-                        format!(
-                            "column `{}` declares unit `{file}`, which wbv does not know; give \
-                             --units {ch}=UNIT ({UNITS})",
-                            c.name
-                        ),
-                    ));
-                }
-                file.clone()
-            }
-            (None, None) => {
-                notes.push(format!(
-                    "{source}: `{}` has no declared unit; read as {} (give --units otherwise)",
-                    c.name,
-                    if ch.starts_with("f_") { "N" } else { "m/s²" }
-                ));
-                undeclared.push(ch.clone());
-                if ch.starts_with("f_") { "N" } else { "m/s2" }.to_string()
-            }
-        };
-        let scale = scale_of(&unit).expect("unit checked")
-            * opts
-                .sensitivity
-                .iter()
-                .find(|(c2, _)| *c2 == ch)
-                .map_or(1.0, |(_, s)| *s);
-        if scale != 1.0 {
-            c.data.iter_mut().for_each(|v| *v *= scale);
+        (None, None) => {
+            notes.push(format!(
+                "{source}: `{}` has no declared unit; read as {} (give --units otherwise)",
+                c.name,
+                if ch.starts_with("f_") { "N" } else { "m/s²" }
+            ));
+            undeclared.push(ch.to_string());
+            if ch.starts_with("f_") { "N" } else { "m/s2" }.to_string()
         }
-        if let Some((i, why)) = implausible_sample(&c, &ch) {
-            return Err(Error::data(source, line_of(i), why));
-        }
-        signals.push(ch, c.data)?;
+    })
+}
+
+/// Samples relative to full scale (WAV, [`FULL_SCALE`]) are only read with `--sensitivity` for
+/// channel `ch` (the value at full scale, in m/s² or the unit of `--units`).
+fn needs_sensitivity(ch: &str, c: &Column, source: &str, opts: &Options) -> Result<()> {
+    if !opts.sensitivity.iter().any(|(c2, _)| *c2 == ch) {
+        return Err(Error::parameter(
+            "--sensitivity",
+            format!(
+                "{ch}: `{}` of {source} is relative to full scale; give \
+                 --sensitivity {ch}=VALUE (its value at full scale, in m/s² or in the \
+                 unit of --units)",
+                c.name
+            ),
+        ));
     }
+    Ok(())
+}
+
+/// At least two samples and [`MIN_DURATION_S`] s of them.
+fn check_duration(signals: &Signals, source: &str) -> Result<()> {
     if signals.len() < 2 {
         return Err(Error::data(source, None, "fewer than two samples"));
     }
@@ -310,9 +407,5 @@ pub(crate) fn assemble(raw: Raw, source: &str, opts: &Options) -> Result<Input> 
             format!("run lasts {duration:.3} s; at least {MIN_DURATION_S} s are required"),
         ));
     }
-    Ok(Input {
-        signals,
-        notes,
-        undeclared,
-    })
+    Ok(())
 }

@@ -162,16 +162,79 @@ pub(crate) fn read(bytes: &[u8], source: &str, opts: &Options) -> Result<Raw> {
         "empty file",
         "cannot read the header",
     )?;
-    let line_of = |r: &csv::StringRecord| r.position().map_or(0, |p| p.line() as usize);
     let header_line = line_of(&header).max(1);
+    let (mut columns, trailing_empty) = header_columns(&header, source, header_line)?;
+    let ncol = columns.len();
+    let mut res: Vec<Option<Vec<f64>>> = columns
+        .iter()
+        .map(|c| is_time(c, opts).then(Vec::new))
+        .collect();
+    let mut lines = Vec::new();
+    let mut first_data = true;
+    for rec in records {
+        let rec = rec?;
+        let line = line_of(&rec);
+        let Some(n) = field_count(&rec, ncol, trailing_empty) else {
+            continue; // blank line
+        };
+        if n != ncol {
+            return Err(Error::data(
+                source,
+                Some(line),
+                format!("{n} fields, expected {ncol} as in the header"),
+            ));
+        }
+        if first_data
+            && rec
+                .iter()
+                .take(n)
+                .all(|c| parse_number(c, decimal_comma).is_none())
+        {
+            // A units row.
+            first_data = false;
+            units_row(&mut columns, &rec, source, line)?;
+            continue;
+        }
+        first_data = false;
+        let cells = rec.iter().take(n);
+        push_samples(&mut columns, &mut res, cells, decimal_comma, source, line);
+        lines.push(line);
+    }
+    for (c, r) in columns.iter_mut().zip(res) {
+        c.resolution = r;
+    }
+    let mut notes = Vec::new();
+    notes.extend(enc_note);
+    notes.extend(layout_note(source, delim, &text));
+    Ok(Raw {
+        columns,
+        timing: Timing::InColumns,
+        lines: Some(lines),
+        notes,
+    })
+}
+
+/// The 1-based file line a record starts on (0 when the `csv` crate gives none).
+fn line_of(r: &csv::StringRecord) -> usize {
+    r.position().map_or(0, |p| p.line() as usize)
+}
+
+/// The columns the header row names (a unit at the end of a header, `Acc Z [m/s^2]`, is the
+/// column's), each answering to its 1-based index and full header too, and whether every line
+/// ends in a delimiter: the empty last column that makes is dropped. Headers must be non-empty
+/// and names distinct.
+fn header_columns(
+    header: &csv::StringRecord,
+    source: &str,
+    header_line: usize,
+) -> Result<(Vec<Column>, bool)> {
     let mut cells: Vec<String> = header.iter().map(str::to_string).collect();
     // A trailing delimiter on every line makes an empty last column: drop it.
     let trailing_empty = cells.len() > 1 && cells.last().is_some_and(|c| c.is_empty());
     if trailing_empty {
         cells.pop();
     }
-    let ncol = cells.len();
-    let mut columns: Vec<Column> = Vec::with_capacity(ncol);
+    let mut columns: Vec<Column> = Vec::with_capacity(cells.len());
     for (i, h) in cells.iter().enumerate() {
         if h.is_empty() {
             return Err(Error::data(
@@ -199,105 +262,113 @@ pub(crate) fn read(bytes: &[u8], source: &str, opts: &Options) -> Result<Raw> {
             ..Column::default()
         });
     }
-    let is_time = |c: &Column| {
-        TIME_NAMES.iter().any(|n| c.name.eq_ignore_ascii_case(n))
-            || opts
-                .columns
-                .iter()
-                .any(|(ch, src)| ch == "t_s" && (c.name == *src || c.aliases.contains(src)))
-    };
-    let timed: Vec<bool> = columns.iter().map(is_time).collect();
-    let mut res: Vec<Option<Vec<f64>>> = timed.iter().map(|&t| t.then(Vec::new)).collect();
-    let mut lines = Vec::new();
-    let mut first_data = true;
-    for rec in records {
-        let rec = rec?;
-        let line = line_of(&rec);
-        let mut n = rec.len();
-        if trailing_empty && n == ncol + 1 && rec.get(ncol).is_some_and(str::is_empty) {
-            n = ncol;
-        }
-        if n == 1 && rec.get(0).is_some_and(str::is_empty) {
-            continue; // blank line
-        }
-        if n != ncol {
-            return Err(Error::data(
-                source,
-                Some(line),
-                format!("{n} fields, expected {ncol} as in the header"),
-            ));
-        }
-        if first_data
-            && rec
-                .iter()
-                .take(n)
-                .all(|c| parse_number(c, decimal_comma).is_none())
-        {
-            // A units row.
-            first_data = false;
-            for (c, u) in columns.iter_mut().zip(rec.iter()) {
-                let u = u
-                    .trim_matches(|ch| matches!(ch, '[' | ']' | '(' | ')'))
-                    .trim();
-                if u.is_empty() {
-                    continue;
-                }
-                match &c.unit {
-                    Some(h) if h != u => {
-                        return Err(Error::data(
-                            source,
-                            Some(line),
-                            format!(
-                                "column `{}`: units row says `{u}`, header says `{h}`",
-                                c.name
-                            ),
-                        ));
-                    }
-                    _ => c.unit = Some(u.to_string()),
-                }
-            }
+    Ok((columns, trailing_empty))
+}
+
+/// True for the time column: named like time ([`TIME_NAMES`]) or mapped by `--column t_s=…`; its
+/// printed resolution is kept for fitting the rate.
+fn is_time(c: &Column, opts: &Options) -> bool {
+    TIME_NAMES.iter().any(|n| c.name.eq_ignore_ascii_case(n))
+        || opts
+            .columns
+            .iter()
+            .any(|(ch, src)| ch == "t_s" && (c.name == *src || c.aliases.contains(src)))
+}
+
+/// The number of fields of a record, not counting the empty one after a trailing delimiter
+/// (`ncol + 1` of them when the header had one too); None for a blank line.
+fn field_count(rec: &csv::StringRecord, ncol: usize, trailing_empty: bool) -> Option<usize> {
+    let mut n = rec.len();
+    if trailing_empty && n == ncol + 1 && rec.get(ncol).is_some_and(str::is_empty) {
+        n = ncol;
+    }
+    if n == 1 && rec.get(0).is_some_and(str::is_empty) {
+        None
+    } else {
+        Some(n)
+    }
+}
+
+/// Takes the units of a units row (the first data line, without any number) at `line`: a cell's
+/// unit, brackets or parentheses stripped, must agree with one the header gives.
+fn units_row(
+    columns: &mut [Column],
+    rec: &csv::StringRecord,
+    source: &str,
+    line: usize,
+) -> Result<()> {
+    for (c, u) in columns.iter_mut().zip(rec.iter()) {
+        let u = u
+            .trim_matches(|ch| matches!(ch, '[' | ']' | '(' | ')'))
+            .trim();
+        if u.is_empty() {
             continue;
         }
-        first_data = false;
-        for (k, cell) in rec.iter().take(n).enumerate() {
-            let c = &mut columns[k];
-            if c.bad.is_some() {
-                continue;
+        match &c.unit {
+            Some(h) if h != u => {
+                return Err(Error::data(
+                    source,
+                    Some(line),
+                    format!(
+                        "column `{}`: units row says `{u}`, header says `{h}`",
+                        c.name
+                    ),
+                ));
             }
-            match parse_number(cell, decimal_comma) {
-                Some(v) => {
-                    c.data.push(v);
-                    if let Some(r) = res[k].as_mut() {
-                        r.push(printed_resolution(cell));
-                    }
+            _ => c.unit = Some(u.to_string()),
+        }
+    }
+    Ok(())
+}
+
+/// Appends the data line's cells to their columns, with their printed resolution to the time
+/// column's (`res`). A cell that is not a number marks its column bad (an error only if the
+/// column is used), which then takes no more samples.
+fn push_samples<'r>(
+    columns: &mut [Column],
+    res: &mut [Option<Vec<f64>>],
+    cells: impl Iterator<Item = &'r str>,
+    decimal_comma: bool,
+    source: &str,
+    line: usize,
+) {
+    for (k, cell) in cells.enumerate() {
+        let c = &mut columns[k];
+        if c.bad.is_some() {
+            continue;
+        }
+        match parse_number(cell, decimal_comma) {
+            Some(v) => {
+                c.data.push(v);
+                if let Some(r) = res[k].as_mut() {
+                    r.push(printed_resolution(cell));
                 }
-                None => {
-                    c.bad = Some(Error::data(
-                        source,
-                        Some(line),
-                        format!(
-                            "column `{}`: `{cell}` is not a number{}",
-                            c.name,
-                            if decimal_comma {
-                                " (decimal point or comma)"
-                            } else {
-                                ""
-                            }
-                        ),
-                    ));
-                    c.data = Vec::new();
-                }
+            }
+            None => {
+                c.bad = Some(Error::data(
+                    source,
+                    Some(line),
+                    format!(
+                        "column `{}`: `{cell}` is not a number{}",
+                        c.name,
+                        if decimal_comma {
+                            " (decimal point or comma)"
+                        } else {
+                            ""
+                        }
+                    ),
+                ));
+                c.data = Vec::new();
             }
         }
-        lines.push(line);
     }
-    for (c, r) in columns.iter_mut().zip(res) {
-        c.resolution = r;
-    }
-    let mut notes = Vec::new();
-    notes.extend(enc_note);
-    if delim != b',' {
-        notes.push(format!(
+}
+
+/// The note on a tab- or semicolon-separated file, and on its decimal commas read as points
+/// when the text has commas; None for comma-separated text.
+fn layout_note(source: &str, delim: u8, text: &str) -> Option<String> {
+    (delim != b',').then(|| {
+        format!(
             "{source}: {}-separated{}",
             if delim == b'\t' { "tab" } else { "semicolon" },
             if text.contains(',') {
@@ -305,13 +376,7 @@ pub(crate) fn read(bytes: &[u8], source: &str, opts: &Options) -> Result<Raw> {
             } else {
                 ""
             }
-        ));
-    }
-    Ok(Raw {
-        columns,
-        timing: Timing::InColumns,
-        lines: Some(lines),
-        notes,
+        )
     })
 }
 

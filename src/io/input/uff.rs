@@ -138,6 +138,18 @@ fn header(rec: &[&str], source: &str, line: usize) -> Result<Header> {
     })
 }
 
+/// What [`read`] has gathered from the datasets so far.
+#[derive(Default)]
+struct Found {
+    columns: Vec<Column>,
+    /// One description per dataset not read as a column, for the note (or the error when none is).
+    skipped: Vec<String>,
+    /// The abscissa increment (s), as printed, and the line of the first dataset that stated it.
+    rate: Option<(f64, String, usize)>,
+    /// Datasets of any number seen.
+    datasets: usize,
+}
+
 /// Reads the dataset-58 time responses of a UFF file.
 pub(crate) fn read(bytes: &[u8], source: &str) -> Result<Raw> {
     let mut c = Cursor {
@@ -145,13 +157,44 @@ pub(crate) fn read(bytes: &[u8], source: &str) -> Result<Raw> {
         pos: 0,
         line: 0,
     };
-    let mut columns: Vec<Column> = Vec::new();
-    let mut skipped = Vec::new();
-    let mut rate: Option<(f64, String, usize)> = None;
-    let mut datasets = 0;
+    let mut found = Found::default();
+    while let Some(h) = dataset_start(&mut c, source)? {
+        let start = c.line;
+        let tokens: Vec<&str> = h.split_whitespace().collect();
+        let Some(kind) = tokens.first().copied() else {
+            continue;
+        };
+        found.datasets += 1;
+        let binary = kind.ends_with('b');
+        if kind.trim_end_matches('b') != "58" {
+            found
+                .skipped
+                .push(format!("dataset {kind} at line {start}"));
+            skip_dataset(&mut c, source, kind, binary, start)?;
+            continue;
+        }
+        let mut rec = Vec::with_capacity(11);
+        for _ in 0..11 {
+            rec.push(c.line().ok_or_else(|| {
+                Error::data(source, Some(c.line), "dataset 58 ends inside its header")
+            })?);
+        }
+        let hd = header(&rec, source, start + 1)?;
+        let data: Vec<f64> = if binary {
+            binary_samples(&mut c, &tokens, &hd, source, start)?
+        } else {
+            ascii_samples(&mut c, &hd, source)?
+        };
+        add_column(&mut found, hd, data, source, start)?;
+    }
+    finish(found, source)
+}
+
+/// The dataset-number line after the next `-1`, or None at the end of the file. Between datasets
+/// only blank lines may stand: anything else is a damaged file (bytes inserted, a cut), and
+/// skipping to the next `-1` would silently drop a dataset.
+fn dataset_start<'a>(c: &mut Cursor<'a>, source: &str) -> Result<Option<&'a str>> {
     while let Some(l) = c.line() {
-        // Between datasets only blank lines may stand: anything else is a damaged file (bytes
-        // inserted, a cut), and skipping to the next `-1` would silently drop a dataset.
         if l.trim().is_empty() {
             continue;
         }
@@ -166,210 +209,274 @@ pub(crate) fn read(bytes: &[u8], source: &str) -> Result<Raw> {
                 ),
             ));
         }
-        let Some(h) = c.line() else { break };
-        let start = c.line;
-        let tokens: Vec<&str> = h.split_whitespace().collect();
-        let Some(kind) = tokens.first().copied() else {
-            continue;
-        };
-        datasets += 1;
-        let binary = kind.ends_with('b');
-        if kind.trim_end_matches('b') != "58" {
-            skipped.push(format!("dataset {kind} at line {start}"));
-            if binary {
-                return Err(Error::data(
-                    source,
-                    Some(start),
-                    format!("binary dataset {kind}: only datasets 58/58b are read"),
-                ));
-            }
-            while let Some(l) = c.line() {
-                if l.trim() == "-1" {
-                    break;
-                }
-            }
-            continue;
+        return Ok(c.line());
+    }
+    Ok(None)
+}
+
+/// Passes over a dataset other than 58 (ASCII: up to its closing `-1`); a binary one is refused,
+/// as its length is not known here.
+fn skip_dataset(
+    c: &mut Cursor,
+    source: &str,
+    kind: &str,
+    binary: bool,
+    start: usize,
+) -> Result<()> {
+    if binary {
+        return Err(Error::data(
+            source,
+            Some(start),
+            format!("binary dataset {kind}: only datasets 58/58b are read"),
+        ));
+    }
+    while let Some(l) = c.line() {
+        if l.trim() == "-1" {
+            break;
         }
-        let mut rec = Vec::with_capacity(11);
-        for _ in 0..11 {
-            rec.push(c.line().ok_or_else(|| {
-                Error::data(source, Some(c.line), "dataset 58 ends inside its header")
-            })?);
+    }
+    Ok(())
+}
+
+/// True when the dataset holds real (single or double), evenly spaced ordinates: the only ones
+/// whose samples are read.
+fn readable(hd: &Header) -> bool {
+    matches!(hd.ord_type, 2 | 4) && hd.even
+}
+
+/// The samples of a 58b dataset: the byte count of its `58b byte-order fp-format n-ascii-lines
+/// n-bytes` line (`tokens`), then that many bytes of IEEE floats, 4 (single) or 8 (double) each,
+/// in little- (1) or big-endian (2) order, then the closing `-1`. Empty when not [`readable`].
+fn binary_samples(
+    c: &mut Cursor,
+    tokens: &[&str],
+    hd: &Header,
+    source: &str,
+    start: usize,
+) -> Result<Vec<f64>> {
+    let order = tokens.get(1).and_then(|t| t.parse::<u32>().ok());
+    let fp = tokens.get(2).and_then(|t| t.parse::<u32>().ok());
+    let nbytes = tokens.get(4).and_then(|t| t.parse::<usize>().ok());
+    let (Some(order @ (1 | 2)), Some(2), Some(nbytes)) = (order, fp, nbytes) else {
+        return Err(Error::data(
+            source,
+            Some(start),
+            "58b header: expected byte order 1 or 2, IEEE format 2 and a byte count",
+        ));
+    };
+    let body =
+        c.b.get(c.pos..c.pos.saturating_add(nbytes))
+            .ok_or_else(|| {
+                Error::data(
+                    source,
+                    Some(start),
+                    format!("58b states {nbytes} bytes of data; the file ends before"),
+                )
+            })?;
+    c.pos += nbytes;
+    let width = if hd.ord_type == 2 { 4 } else { 8 };
+    if readable(hd) && Some(body.len()) != hd.n.checked_mul(width) {
+        return Err(Error::data(
+            source,
+            Some(start),
+            format!(
+                "58b: {} points of {width} bytes expected, {nbytes} bytes stated",
+                hd.n
+            ),
+        ));
+    }
+    binary_end(c, source)?;
+    Ok(if !readable(hd) {
+        Vec::new()
+    } else {
+        decode_floats(body, width, order == 1)
+    })
+}
+
+/// Passes the closing `-1` of binary data, on the same line as the data's end or the next
+/// (blank lines between allowed).
+fn binary_end(c: &mut Cursor, source: &str) -> Result<()> {
+    loop {
+        match c.line() {
+            Some(l) if l.trim() == "-1" => return Ok(()),
+            Some(l) if l.trim().is_empty() => continue,
+            _ => {
+                return Err(Error::data(
+                    source,
+                    Some(c.line),
+                    "58b: expected `-1` after the binary data",
+                ));
+            }
         }
-        let hd = header(&rec, source, start + 1)?;
-        let real = matches!(hd.ord_type, 2 | 4);
-        let timed = matches!(hd.func_type, 0 | 1);
-        let data: Vec<f64> = if binary {
-            let order = tokens.get(1).and_then(|t| t.parse::<u32>().ok());
-            let fp = tokens.get(2).and_then(|t| t.parse::<u32>().ok());
-            let nbytes = tokens.get(4).and_then(|t| t.parse::<usize>().ok());
-            let (Some(order @ (1 | 2)), Some(2), Some(nbytes)) = (order, fp, nbytes) else {
-                return Err(Error::data(
-                    source,
-                    Some(start),
-                    "58b header: expected byte order 1 or 2, IEEE format 2 and a byte count",
-                ));
-            };
-            let body = bytes
-                .get(c.pos..c.pos.saturating_add(nbytes))
-                .ok_or_else(|| {
-                    Error::data(
-                        source,
-                        Some(start),
-                        format!("58b states {nbytes} bytes of data; the file ends before"),
-                    )
-                })?;
-            c.pos += nbytes;
-            let width = if hd.ord_type == 2 { 4 } else { 8 };
-            if real && hd.even && Some(body.len()) != hd.n.checked_mul(width) {
-                return Err(Error::data(
-                    source,
-                    Some(start),
-                    format!(
-                        "58b: {} points of {width} bytes expected, {nbytes} bytes stated",
-                        hd.n
-                    ),
-                ));
-            }
-            // The closing `-1` follows, on the same line as the data's end or the next.
-            loop {
-                match c.line() {
-                    Some(l) if l.trim() == "-1" => break,
-                    Some(l) if l.trim().is_empty() => continue,
-                    _ => {
-                        return Err(Error::data(
-                            source,
-                            Some(c.line),
-                            "58b: expected `-1` after the binary data",
-                        ));
-                    }
-                }
-            }
-            if !(real && hd.even) {
-                Vec::new()
-            } else if width == 4 {
-                body.chunks_exact(4)
-                    .map(|b| {
-                        let a = [b[0], b[1], b[2], b[3]];
-                        let v = if order == 1 {
-                            f32::from_le_bytes(a)
-                        } else {
-                            f32::from_be_bytes(a)
-                        };
-                        v as f64
-                    })
-                    .collect()
-            } else {
-                body.chunks_exact(8)
-                    .map(|b| {
-                        let a: [u8; 8] = b.try_into().expect("8 bytes");
-                        if order == 1 {
-                            f64::from_le_bytes(a)
-                        } else {
-                            f64::from_be_bytes(a)
-                        }
-                    })
-                    .collect()
-            }
-        } else {
-            let width = if hd.ord_type == 2 || hd.ord_type == 5 {
-                13
-            } else {
-                20
-            };
-            let mut v = Vec::with_capacity(hd.n.min(bytes.len() / 8));
-            loop {
-                let Some(l) = c.line() else {
-                    return Err(Error::data(
-                        source,
-                        Some(c.line),
-                        "dataset 58 ends without its closing `-1`",
-                    ));
+    }
+}
+
+/// IEEE floats of `width` bytes (4: single, else double), little-endian when `le`, as f64.
+fn decode_floats(body: &[u8], width: usize, le: bool) -> Vec<f64> {
+    if width == 4 {
+        body.chunks_exact(4)
+            .map(|b| {
+                let a = [b[0], b[1], b[2], b[3]];
+                let v = if le {
+                    f32::from_le_bytes(a)
+                } else {
+                    f32::from_be_bytes(a)
                 };
-                if l.trim() == "-1" {
-                    break;
+                v as f64
+            })
+            .collect()
+    } else {
+        body.chunks_exact(8)
+            .map(|b| {
+                let a: [u8; 8] = b.try_into().expect("8 bytes");
+                if le {
+                    f64::from_le_bytes(a)
+                } else {
+                    f64::from_be_bytes(a)
                 }
-                if !(real && hd.even) {
-                    continue;
-                }
-                let mut k = 0;
-                while k < l.len() {
-                    let cell = l.get(k..(k + width).min(l.len())).unwrap_or("").trim();
-                    k += width;
-                    if cell.is_empty() {
-                        continue;
-                    }
-                    v.push(num(cell).ok_or_else(|| {
-                        Error::data(
-                            source,
-                            Some(c.line),
-                            format!("`{cell}` is not a number (E{width} fields expected)"),
-                        )
-                    })?);
-                }
-            }
-            v
-        };
-        if !(real && hd.even && timed) {
-            skipped.push(format!(
-                "`{}` (function type {}, ordinate type {}, {} spacing)",
-                hd.id1,
-                hd.func_type,
-                hd.ord_type,
-                if hd.even { "even" } else { "uneven" }
-            ));
-            continue;
-        }
-        if data.len() != hd.n {
+            })
+            .collect()
+    }
+}
+
+/// The samples of an ASCII dataset 58 up to its closing `-1`: fixed-width fields of 13 (E13.5,
+/// single) or 20 (E20.12, double) characters. Empty when not [`readable`].
+fn ascii_samples(c: &mut Cursor, hd: &Header, source: &str) -> Result<Vec<f64>> {
+    let width = if hd.ord_type == 2 || hd.ord_type == 5 {
+        13
+    } else {
+        20
+    };
+    let mut v = Vec::with_capacity(hd.n.min(c.b.len() / 8));
+    loop {
+        let Some(l) = c.line() else {
             return Err(Error::data(
                 source,
-                Some(start),
-                format!(
-                    "dataset `{}`: record 7 states {} points, {} found",
-                    hd.id1,
-                    hd.n,
-                    data.len()
-                ),
+                Some(c.line),
+                "dataset 58 ends without its closing `-1`",
             ));
+        };
+        if l.trim() == "-1" {
+            break;
         }
-        if !(hd.dx.is_finite() && hd.dx > 0.0) {
+        if !readable(hd) {
+            continue;
+        }
+        let mut k = 0;
+        while k < l.len() {
+            let cell = l.get(k..(k + width).min(l.len())).unwrap_or("").trim();
+            k += width;
+            if cell.is_empty() {
+                continue;
+            }
+            v.push(num(cell).ok_or_else(|| {
+                Error::data(
+                    source,
+                    Some(c.line),
+                    format!("`{cell}` is not a number (E{width} fields expected)"),
+                )
+            })?);
+        }
+    }
+    Ok(v)
+}
+
+/// Adds the dataset starting at line `start` as a column when it is a real, evenly spaced time
+/// response ([`check_timing`]); notes it as skipped otherwise. `k` and `dataset k` (its 1-based
+/// position among the columns) are its aliases.
+fn add_column(
+    found: &mut Found,
+    hd: Header,
+    data: Vec<f64>,
+    source: &str,
+    start: usize,
+) -> Result<()> {
+    let timed = matches!(hd.func_type, 0 | 1);
+    if !(readable(&hd) && timed) {
+        found.skipped.push(format!(
+            "`{}` (function type {}, ordinate type {}, {} spacing)",
+            hd.id1,
+            hd.func_type,
+            hd.ord_type,
+            if hd.even { "even" } else { "uneven" }
+        ));
+        return Ok(());
+    }
+    check_timing(&mut found.rate, &hd, data.len(), source, start)?;
+    let k = found.columns.len() + 1;
+    let name = column_name(&found.columns, &hd.id1, k);
+    found.columns.push(Column {
+        name,
+        aliases: vec![k.to_string(), format!("dataset {k}")],
+        unit: hd.unit,
+        data,
+        ..Column::default()
+    });
+    Ok(())
+}
+
+/// Checks a time response's `points` samples against its record 7: as many as stated, an
+/// abscissa increment (s) > 0, and the same increment as the first column's, which `rate` keeps
+/// (set here by the first).
+fn check_timing(
+    rate: &mut Option<(f64, String, usize)>,
+    hd: &Header,
+    points: usize,
+    source: &str,
+    start: usize,
+) -> Result<()> {
+    if points != hd.n {
+        return Err(Error::data(
+            source,
+            Some(start),
+            format!(
+                "dataset `{}`: record 7 states {} points, {} found",
+                hd.id1, hd.n, points
+            ),
+        ));
+    }
+    if !(hd.dx.is_finite() && hd.dx > 0.0) {
+        return Err(Error::data(
+            source,
+            Some(start + 7),
+            format!("abscissa increment {} s must be positive", hd.dx),
+        ));
+    }
+    match rate {
+        None => *rate = Some((hd.dx, hd.dx_text.clone(), start)),
+        Some((dx, _, first)) if *dx != hd.dx => {
             return Err(Error::data(
                 source,
                 Some(start + 7),
-                format!("abscissa increment {} s must be positive", hd.dx),
+                format!(
+                    "increment {} s differs from {dx} s of the dataset at line {first}",
+                    hd.dx
+                ),
             ));
         }
-        match &rate {
-            None => rate = Some((hd.dx, hd.dx_text.clone(), start)),
-            Some((dx, _, first)) if *dx != hd.dx => {
-                return Err(Error::data(
-                    source,
-                    Some(start + 7),
-                    format!(
-                        "increment {} s differs from {dx} s of the dataset at line {first}",
-                        hd.dx
-                    ),
-                ));
-            }
-            _ => {}
-        }
-        let k = columns.len() + 1;
-        let name = if hd.id1.is_empty()
-            || hd.id1.eq_ignore_ascii_case("NONE")
-            || columns.iter().any(|c| c.name == hd.id1)
-        {
-            format!("dataset {k}")
-        } else {
-            hd.id1.clone()
-        };
-        columns.push(Column {
-            name,
-            aliases: vec![k.to_string(), format!("dataset {k}")],
-            unit: hd.unit,
-            data,
-            ..Column::default()
-        });
+        _ => {}
     }
+    Ok(())
+}
+
+/// The `k`-th column's name: its `id1` line, else (blank, `NONE` or already taken) `dataset k`.
+fn column_name(columns: &[Column], id1: &str, k: usize) -> String {
+    if id1.is_empty() || id1.eq_ignore_ascii_case("NONE") || columns.iter().any(|c| c.name == id1) {
+        format!("dataset {k}")
+    } else {
+        id1.to_string()
+    }
+}
+
+/// The columns with their sample rate (Hz): 1 / increment, or the whole number of Hz within the
+/// increment's printed precision (E13.5); an error when no dataset made a column.
+fn finish(found: Found, source: &str) -> Result<Raw> {
+    let Found {
+        columns,
+        skipped,
+        rate,
+        datasets,
+    } = found;
     let Some((dx, dx_text, _)) = rate else {
         return Err(Error::data(
             source,
