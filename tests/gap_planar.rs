@@ -194,7 +194,7 @@ fn planar_cushion_relaxation_is_named_with_fore_and_aft_paths_judged() {
                 "{}",
                 d.verdict_text
             );
-            let seat = |x: &wbv::diagnosis::gapmap::Weighted| x.seat_gap_points().abs();
+            let seat = |x: &wbv::diagnosis::gapmap::Weighted| (x.seat_model - x.seat_meas).abs();
             assert!(seat(w) < seat(n) + 1.0, "{}", d.verdict_text);
         }
         None => {

@@ -102,32 +102,20 @@ pub fn rms_phase_deg(cells: &[BandCell], path: Path) -> Option<f64> {
 }
 
 /// Weighted r.m.s. and SEAT figures of a run, measured and predicted, over the analysed band.
-///
-/// A model is compared with the part of the measured seat motion coherent with the base,
-/// γ²_bs·G_seat = |H1|²·G_base: every model here is linear or statistically linearised, and the
-/// best linear approximation of a system driven by Gaussian motion predicts exactly that part
-/// (Bussgang 1952); the incoherent rest (sensor noise, a nonlinearity's distortion) is what no
-/// such prediction carries, reported beside it ([`Weighted::incoherent_percent`]).
 #[derive(Debug, Clone, Serialize, Deserialize)]
 pub struct Weighted {
     /// Measured Wk-weighted seat r.m.s., m/s² (ISO 2631-1 §6.4.2, from the PSD).
     #[serde(deserialize_with = "super::json::f64")]
     pub aw_seat_meas: f64,
-    /// Its part coherent with the base, m/s²: (Σ Wk² γ²_bs G_seat Δf)^½.
-    #[serde(default, deserialize_with = "super::json::f64")]
-    pub aw_seat_coherent: f64,
     /// Predicted Wk-weighted seat r.m.s., m/s² (Σ Wk²|H_bs|² G_base Δf).
     #[serde(deserialize_with = "super::json::f64")]
     pub aw_seat_model: f64,
-    /// (model/coherent − 1)·100, %: the a_w gap a model can close.
+    /// (model/measured − 1)·100, %.
     #[serde(deserialize_with = "super::json::f64")]
     pub aw_gap_percent: f64,
     /// Measured SEAT = a_w,seat / a_w,base · 100, %.
     #[serde(deserialize_with = "super::json::f64")]
     pub seat_meas: f64,
-    /// SEAT of the coherent part, %.
-    #[serde(default, deserialize_with = "super::json::f64")]
-    pub seat_coherent: f64,
     /// Predicted SEAT, %.
     #[serde(deserialize_with = "super::json::f64")]
     pub seat_model: f64,
@@ -136,28 +124,11 @@ pub struct Weighted {
     pub driving_bands: Vec<(f64, f64)>,
 }
 
-impl Weighted {
-    /// SEAT gap, percentage points: predicted SEAT − the coherent part's.
-    pub fn seat_gap_points(&self) -> f64 {
-        self.seat_model - self.seat_coherent
-    }
-
-    /// Share of the measured seat's weighted power incoherent with the base, %:
-    /// 100·(1 − a_w,coherent²/a_w,meas²).
-    pub fn incoherent_percent(&self) -> f64 {
-        100.0 * (1.0 - (self.aw_seat_coherent / self.aw_seat_meas.max(1e-300)).powi(2))
-    }
-}
-
 /// Wk weighted summary of `run` with the base→seat prediction `bs` on the run's bins.
 pub fn weighted(run: &RunSpectra, bs: &[Complex64]) -> Weighted {
     let wk = |f: f64| Weighting::Wk.magnitude(f).powi(2);
     let df = run.df_hz;
     let (bf, bp) = &run.base_psd;
-    let coherence = &run
-        .path(Path::BaseSeat)
-        .expect("base→seat is checked in check_inputs")
-        .coherence;
     let gb: Vec<f64> = run
         .freq_hz
         .iter()
@@ -168,22 +139,19 @@ pub fn weighted(run: &RunSpectra, bs: &[Complex64]) -> Weighted {
         })
         .collect();
     let mut meas = 0.0;
-    let mut coherent = 0.0;
     let mut model = 0.0;
     let mut base = 0.0;
     let mut bands = vec![0.0; (BAND_N.1 - BAND_N.0 + 1) as usize];
     for (b, &f) in run.freq_hz.iter().enumerate() {
         let w = wk(f) * df;
         let dm = w * run.seat_psd[b];
-        let dc = dm * coherence[b].clamp(0.0, 1.0);
         let dp = w * bs[b].norm_sqr() * gb[b];
         meas += dm;
-        coherent += dc;
         model += dp;
         base += w * gb[b];
         let n = (10.0 * f.log10()).round() as i32;
         if let Some(slot) = bands.get_mut((n - BAND_N.0).max(0) as usize) {
-            *slot += dp - dc;
+            *slot += dp - dm;
         }
     }
     let total: f64 = bands.iter().map(|x: &f64| x.abs()).sum::<f64>().max(1e-300);
@@ -194,14 +162,12 @@ pub fn weighted(run: &RunSpectra, bs: &[Complex64]) -> Weighted {
         .collect();
     drive.sort_by(|a, b| b.1.total_cmp(&a.1));
     drive.truncate(3);
-    let (am, ac, ap, ab) = (meas.sqrt(), coherent.sqrt(), model.sqrt(), base.sqrt());
+    let (am, ap, ab) = (meas.sqrt(), model.sqrt(), base.sqrt());
     Weighted {
         aw_seat_meas: am,
-        aw_seat_coherent: ac,
         aw_seat_model: ap,
-        aw_gap_percent: 100.0 * (ap / ac - 1.0),
+        aw_gap_percent: 100.0 * (ap / am - 1.0),
         seat_meas: 100.0 * am / ab,
-        seat_coherent: 100.0 * ac / ab,
         seat_model: 100.0 * ap / ab,
         driving_bands: drive,
     }

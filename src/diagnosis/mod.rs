@@ -144,7 +144,7 @@ pub fn diagnose_with(
         text += &text::second(effect.id(), o.id(), pair);
     }
     let second = second.map(|(_, pair)| pair);
-    let warnings = prepared.warnings;
+    let mut warnings = prepared.warnings;
     // How close a_w and SEAT come on the check run once the named effect(s) are added; an effect
     // that leaves the check run far from the measurement is reported as a partial explanation.
     let mut partial = Vec::new();
@@ -157,8 +157,11 @@ pub fn diagnose_with(
         outcome::named_stage(&named, &ranking.cands, second.as_ref()),
         &decided,
     ) {
+        let linear = std::iter::once(*effect)
+            .chain(*s2)
+            .all(|c| !c.amplitude_dependent());
         match verdict::shortfall(&ranking.null.check, st) {
-            Some(shortfall) => {
+            Some(shortfall) if shortfall.decides(linear) => {
                 partial = outcome::partial_effects(&ranking.cands, &named, second.as_ref());
                 decided = Verdict::Partial {
                     best: *effect,
@@ -168,7 +171,10 @@ pub fn diagnose_with(
                 text = text::partial(&shortfall, &partial, &nominal, &ranking.null.check);
                 named.clear();
             }
-            None => text += &text::iso(&nominal, &ranking.null.check, st),
+            away => {
+                text += &text::iso(&nominal, &ranking.null.check, st);
+                warnings.extend(away.map(|a| text::equivalent_linear_iso(&a)));
+            }
         }
     }
     // A channel's calibration error (an inverted sign, a unit slip) is named first when nothing

@@ -5,13 +5,12 @@ use std::fmt::Write;
 
 fn stage_line(label: &str, s: &Stage) -> String {
     format!(
-        "  {label:<22} reduced χ² {:>8.2}   band gap {:>5.2} dB RMS   a_w gap {:>+6.1} %   SEAT {:>5.1} % (measured {:.1} %, coherent {:.1} %)",
+        "  {label:<22} reduced χ² {:>8.2}   band gap {:>5.2} dB RMS   a_w gap {:>+6.1} %   SEAT {:>5.1} % (measured {:.1} %)",
         s.chi2_red,
         s.gap_db_rms,
         s.weighted.aw_gap_percent,
         s.weighted.seat_model,
-        s.weighted.seat_meas,
-        s.weighted.seat_coherent
+        s.weighted.seat_meas
     )
 }
 

@@ -224,15 +224,14 @@ pub(super) fn second(first: &str, second: &str, pair: &Ranked) -> String {
 /// How close a_w and SEAT come on the check run: nominal → re-fitted → with the effect(s).
 pub(super) fn iso(nominal: &Stage, null: &Stage, with: &Stage) -> String {
     format!(
-        ". On the check run the seat a_w gap goes {:+.1} % (nominal) → {:+.1} % (re-fitted) → {:+.1} % (with the effect), SEAT {:.1} → {:.1} → {:.1} % against {:.1} % measured ({:.1} % coherent with the base, what a linear(ised) model predicts)",
+        ". On the check run the seat a_w gap goes {:+.1} % (nominal) → {:+.1} % (re-fitted) → {:+.1} % (with the effect), SEAT {:.1} → {:.1} → {:.1} % against {:.1} % measured",
         nominal.weighted.aw_gap_percent,
         null.weighted.aw_gap_percent,
         with.weighted.aw_gap_percent,
         nominal.weighted.seat_model,
         null.weighted.seat_model,
         with.weighted.seat_model,
-        with.weighted.seat_meas,
-        with.weighted.seat_coherent
+        with.weighted.seat_meas
     )
 }
 
@@ -310,12 +309,27 @@ pub(super) fn partial(
         }
     };
     format!(
-        "{lead}: {best} {why}. Partial candidates: {list}. Take a_w and SEAT from the re-fitted model (a_w gap {:+.1} % nominal → {:+.1} % re-fitted, SEAT {:.1} → {:.1} % against {:.1} % measured, {:.1} % coherent with the base)",
+        "{lead}: {best} {why}. Partial candidates: {list}. Take a_w and SEAT from the re-fitted model (a_w gap {:+.1} % nominal → {:+.1} % re-fitted, SEAT {:.1} → {:.1} % against {:.1} % measured)",
         nominal.weighted.aw_gap_percent,
         null.weighted.aw_gap_percent,
         nominal.weighted.seat_model,
         null.weighted.seat_model,
-        null.weighted.seat_meas,
-        null.weighted.seat_coherent
+        null.weighted.seat_meas
     )
+}
+
+/// The warning when amplitude-dependent effect(s) move the check run's ISO figures away
+/// ([`Shortfall::decides`]): their equivalent linear model omits the distortion power.
+pub(super) fn equivalent_linear_iso(s: &Shortfall) -> String {
+    match *s {
+        Shortfall::IsoAway {
+            aw_gap_percent: (a0, a1),
+            seat_gap_points: (s0, s1),
+        } => format!(
+            "the named effect fits the frequency responses but its equivalent linear model moves the check run's ISO figures away from the measurement (seat a_w gap {a0:+.1} % → {a1:+.1} %, SEAT gap {s0:+.1} → {s1:+.1} points): a nonlinearity's distortion power is in the measured a_w and not in the linearised prediction, so take a_w and SEAT from the re-fitted model"
+        ),
+        Shortfall::FarAboveNoise { chi2_red } => {
+            format!("the named effect leaves the check run's reduced χ² at {chi2_red:.1}")
+        }
+    }
 }

@@ -75,7 +75,7 @@ impl IsoGaps {
         ];
         IsoGaps {
             aw_percent: stages.map(|s| s.weighted.aw_gap_percent),
-            seat_points: stages.map(|s| s.weighted.seat_gap_points()),
+            seat_points: stages.map(|s| s.weighted.seat_model - s.weighted.seat_meas),
         }
     }
 }

@@ -73,6 +73,18 @@ pub enum Shortfall {
     },
 }
 
+impl Shortfall {
+    /// Whether this shortfall makes the verdict `unexplained` for named effect(s) that are all
+    /// `linear` (or not). A residual far above the noise always does. The ISO figures only for
+    /// linear effects: an amplitude-dependent effect is predicted by its equivalent linear model
+    /// (statistical linearisation), whose seat PSD omits the distortion power the nonlinearity
+    /// adds, so its a_w and SEAT are biased by exactly what the effect is; for it the shift is a
+    /// warning.
+    pub fn decides(&self, linear: bool) -> bool {
+        matches!(self, Shortfall::FarAboveNoise { .. }) || linear
+    }
+}
+
 /// Whether the model with the named effect(s) (`with`) falls short of explaining the check run
 /// where the re-fitted base model gives `null`: its reduced χ² stays far above the noise, or it
 /// moves a_w or SEAT away from the measurement. The χ² rule is checked first: a residual far above
@@ -84,7 +96,7 @@ pub(super) fn shortfall(null: &Stage, with: &Stage) -> Option<Shortfall> {
         });
     }
     let (n, w) = (&null.weighted, &with.weighted);
-    let seat_gap = super::gapmap::Weighted::seat_gap_points;
+    let seat_gap = |s: &super::gapmap::Weighted| s.seat_model - s.seat_meas;
     let (aw, seat) = super::thresholds::ISO_AWAY;
     let away = w.aw_gap_percent.abs() - n.aw_gap_percent.abs() >= aw
         || seat_gap(w).abs() - seat_gap(n).abs() >= seat;

@@ -25,11 +25,9 @@ fn ranked(id: &str, train: f64, check: f64, dbic: f64, dbic_all: f64, closed: f6
             phase_deg_rms: 1.0,
             weighted: Weighted {
                 aw_seat_meas: 1.0,
-                aw_seat_coherent: 1.0,
                 aw_seat_model: 1.0,
                 aw_gap_percent: 0.0,
                 seat_meas: 80.0,
-                seat_coherent: 80.0,
                 seat_model: 80.0,
                 driving_bands: Vec::new(),
             },
@@ -514,7 +512,7 @@ fn a_named_effect_that_leaves_the_check_run_far_from_the_measurement_is_partial(
         let mut s = null.clone();
         s.chi2_red = chi2;
         s.weighted.aw_gap_percent = aw;
-        s.weighted.seat_model = s.weighted.seat_coherent + seat;
+        s.weighted.seat_model = s.weighted.seat_meas + seat;
         s
     };
     // Within the noise's reach and the ISO figures unmoved: explained.
@@ -540,4 +538,19 @@ fn a_named_effect_that_leaves_the_check_run_far_from_the_measurement_is_partial(
     let mut from = null.clone();
     from.weighted.aw_gap_percent = 5.0;
     assert_eq!(shortfall(&from, &stage(3.0, -2.0, 0.0)), None);
+}
+
+#[test]
+fn the_iso_figures_decide_only_for_linear_effects() {
+    use crate::diagnosis::verdict::Shortfall;
+    let far = Shortfall::FarAboveNoise { chi2_red: 300.0 };
+    let away = Shortfall::IsoAway {
+        aw_gap_percent: (0.1, 2.0),
+        seat_gap_points: (0.1, 1.5),
+    };
+    // A residual far above the noise is structure missing, whatever the effect.
+    assert!(far.decides(true) && far.decides(false));
+    // A linear effect's model predicts the seat PSD in full; an equivalent-linear one does not.
+    assert!(away.decides(true));
+    assert!(!away.decides(false));
 }
