@@ -20,6 +20,7 @@ fn gap(c: &mut Criterion) {
             duration_s: Some(120.0),
             noise: Some(0.01),
             force: Some(true),
+            ..CaseOptions::default()
         },
     )
     .expect("case");

@@ -1,7 +1,8 @@
 //! Diagnoses bench cases with one planted truth form, for looking at a form's verdicts.
 //! Usage: `cargo run --release --example gap_form -- FORM STRENGTH [CASES [SEED [FORCE [SPECTRUM
-//! [RATE]]]]]` (FORM as the bench names it, e.g. `logger-drift`, or `none`; FORCE `yes`/`no`,
-//! SPECTRUM one of the bench's kinds, RATE in Hz; default drawn).
+//! [RATE [FLOOR]]]]]]` (FORM as the bench names it, e.g. `logger-drift`, or `none`; FORCE
+//! `yes`/`no`, SPECTRUM one of the bench's kinds, RATE in Hz, FLOOR the base accelerometer's extra
+//! noise floor as a fraction of the base r.m.s.; default drawn).
 
 use rayon::prelude::*;
 use wbv::gap_bench::case::{CaseOptions, make_case_with};
@@ -9,7 +10,7 @@ use wbv::gap_bench::forms::Form;
 
 fn main() -> wbv::Result<()> {
     let mut args = std::env::args().skip(1);
-    let usage = "usage: gap_form FORM STRENGTH [CASES [SEED [FORCE]]]";
+    let usage = "usage: gap_form FORM STRENGTH [CASES [SEED [FORCE [SPECTRUM [RATE [FLOOR]]]]]]";
     let name = args.next().expect(usage);
     let form = Form::ALL.into_iter().find(|f| f.name() == name);
     assert!(form.is_some() || name == "none", "a form name or none");
@@ -24,6 +25,7 @@ fn main() -> wbv::Result<()> {
             .expect("a spectrum")
     });
     let fs_hz: Option<f64> = args.next().map(|s| s.parse().expect("RATE"));
+    let base_floor: Option<f64> = args.next().map(|s| s.parse().expect("FLOOR"));
     let model = wbv::model::catalog::resolve("reference")?;
     let lines: Vec<String> = (0..cases)
         .into_par_iter()
@@ -33,6 +35,7 @@ fn main() -> wbv::Result<()> {
                 force,
                 spectrum,
                 fs_hz,
+                base_floor,
                 ..CaseOptions::default()
             };
             let case = make_case_with(i, seed, &o)?;

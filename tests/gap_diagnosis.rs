@@ -24,6 +24,7 @@ fn null_case() -> Case {
             duration_s: Some(80.0),
             noise: Some(0.01),
             force: Some(true),
+            ..CaseOptions::default()
         },
     )
     .unwrap()
@@ -146,6 +147,7 @@ fn a_road_spectrum_is_diagnosed_on_its_coherent_bands() {
             duration_s: Some(60.0),
             noise: Some(0.03),
             force: Some(false),
+            ..CaseOptions::default()
         },
     )
     .unwrap();
@@ -376,6 +378,7 @@ fn a_preloaded_foam_is_named_by_its_distortion_and_a_linear_foam_is_not() {
                 duration_s: Some(80.0),
                 noise: Some(0.01),
                 force: Some(false),
+                ..CaseOptions::default()
             },
         )
         .unwrap();
@@ -675,6 +678,7 @@ fn hands_on_a_wheel_are_named_an_upper_body_path_and_legs_still_a_lower_one() {
                 duration_s: Some(120.0),
                 noise: Some(0.01),
                 force: Some(force),
+                ..CaseOptions::default()
             },
         )
         .unwrap();

@@ -25,6 +25,7 @@ fn case(form: Form, u: f64, force: bool, force_late: bool, index: usize) -> Case
                     duration_s: Some(90.0),
                     noise: Some(0.01),
                     force: Some(force),
+                    ..CaseOptions::default()
                 },
             )
             .unwrap()

@@ -19,6 +19,7 @@ fn a_two_mode_seat_frame_is_named_as_a_frame_mode_and_a_second_one_under_it() {
             duration_s: Some(90.0),
             noise: Some(0.01),
             force: Some(false),
+            ..CaseOptions::default()
         },
     )
     .unwrap();

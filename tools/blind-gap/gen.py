@@ -856,7 +856,9 @@ def draw_field(seed, index, family, force):
     stay as they were: two data loggers (half the sensor cases become a trigger offset of 1-10 ms or
     a clock drift of 20-200 ppm on the occupant's logger: seat, head and, in 70 % of rigs, the force
     plate); logger faults on a quarter of the cases (dropouts holding the last value, or a spike
-    train); and the rig's wiring stated with --logger in half of the cases."""
+    train); the rig's wiring stated with --logger in half of the cases; and on half of the cases a
+    field logger's MEMS base accelerometer: a white noise floor of 2-6 % of the base's r.m.s. on top
+    of the lab noise (the base's motion falls under it where its spectrum falls)."""
     r = np.random.default_rng([seed, index, 11])
     out = {}
     if family == "sensor" and r.uniform() < 0.5:
@@ -878,6 +880,9 @@ def draw_field(seed, index, family, force):
     if st.uniform() < 0.5:
         on_base = ["a_base_z"] + (["f_seat_z"] if force and "f_seat_z" not in late else [])
         out["stated"] = ["--logger", "rig:" + ",".join(on_base), "--logger", "occupant:" + ",".join(late)]
+    fl = np.random.default_rng([seed, index, 15])
+    if fl.uniform() < 0.5:
+        out["base_floor"] = float(fl.uniform(0.02, 0.06))
     return out
 
 
@@ -1014,6 +1019,9 @@ def make_case(case_dir, seed, index, override=None, model="reference"):
                 continue
             sd = float(np.std(v))
             v = v + noise[ch] * sd * noise_rng.standard_normal(len(v)) + noise[ch] / 3 * sd * pink(noise_rng, len(v), fs)
+            if ch == "a_base_z" and field and field.get("base_floor"):
+                floor_rng = np.random.default_rng([seed, index, 16, r])
+                v = v + field["base_floor"] * sd * floor_rng.standard_normal(len(v))
             if ch in offsets:
                 v = v + offsets[ch]
             if ch == "f_seat_z" and force_static:

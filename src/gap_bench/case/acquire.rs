@@ -43,10 +43,11 @@ pub(super) fn simulate(
     Ok(out)
 }
 
-/// Adds white noise of `level` × channel r.m.s. and drops `f_seat_z` when `force` is false.
+/// Adds white noise of `level` × channel r.m.s. (the base: `base_floor` × its r.m.s. more, in
+/// power) and drops `f_seat_z` when `force` is false.
 pub(super) fn measure(
     s: &Signals,
-    level: f64,
+    (level, base_floor): (f64, f64),
     force: bool,
     rng: &mut ChaCha8Rng,
     name: String,
@@ -62,7 +63,8 @@ pub(super) fn measure(
         if n == "f_seat_z" && !force {
             continue;
         }
-        let sd = level * crate::analysis::figures::rms(d);
+        let extra = if n == "a_base_z" { base_floor } else { 0.0 };
+        let sd = level.hypot(extra) * crate::analysis::figures::rms(d);
         out.push(
             n.clone(),
             d.iter()

@@ -66,6 +66,9 @@ pub struct Nuisance {
     pub rms: [f64; 3],
     /// A logger fault planted on the measured runs ([`logger::FAULTS`]), if any.
     pub logger_fault: Option<&'static str>,
+    /// The base accelerometer's own white noise floor on top of `noise_percent`, % of the base
+    /// r.m.s. (a field logger's MEMS sensor under a road spectrum; 0 = none).
+    pub base_floor_percent: f64,
 }
 
 /// The sealed label of a case.
@@ -238,6 +241,8 @@ pub struct CaseOptions {
     pub noise: Option<f64>,
     /// Whether `f_seat_z` is measured.
     pub force: Option<bool>,
+    /// The base accelerometer's extra noise floor, fraction of the base r.m.s.
+    pub base_floor: Option<f64>,
 }
 
 /// Builds case `index` of a bench with master seed `seed`.
@@ -298,6 +303,16 @@ pub fn make_case_with(index: usize, seed: u64, o: &CaseOptions) -> Result<Case> 
             detail,
         });
     }
+    // Half the road cases measure the base with a field logger's accelerometer: a white floor of
+    // 2–6 % of the base r.m.s. (MEMS, 1–3 mg/√Hz over 100 Hz), under which a road spectrum falls
+    // above ~15 Hz; drawn from its own stream, so the other draws stay.
+    let mut frng = ChaCha8Rng::seed_from_u64(cseed ^ 0xf100_0000_0000_0001);
+    let base_floor = if kind == "road" && frng.random::<f64>() < 0.5 {
+        uniform(&mut frng, 0.02, 0.06)
+    } else {
+        0.0
+    };
+    let base_floor = o.base_floor.unwrap_or(base_floor);
     let mut runs = Vec::new();
     let mut clean_top = None;
     for (j, spec) in specs.iter().enumerate() {
@@ -311,7 +326,7 @@ pub fn make_case_with(index: usize, seed: u64, o: &CaseOptions) -> Result<Case> 
         let role = if j == 2 { "check" } else { "train" };
         let meas = measure(
             &sim,
-            noise,
+            (noise, base_floor),
             force,
             &mut nrng,
             format!("case {index} {role} run {j} ({:.2} m/s²)", rms[j]),
@@ -358,6 +373,7 @@ pub fn make_case_with(index: usize, seed: u64, o: &CaseOptions) -> Result<Case> 
                 mass_error_percent: mass_error,
                 rms,
                 logger_fault,
+                base_floor_percent: 100.0 * base_floor,
             },
             detectability: detect,
         },
