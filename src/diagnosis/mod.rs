@@ -99,10 +99,13 @@ pub fn diagnose_with(
             .cands
             .iter_mut()
             .find(|r| r.id == Candidate::LoggerDrift.id())
-        && let [o, d] = &mut r.params[..]
     {
-        let runs: Vec<&measure::RunSpectra> = tr.iter().chain(std::iter::once(ck)).collect();
-        (o.value, d.value) = clock::oriented((o.value, d.value), trend, &runs);
+        let at = |name: &str| r.params.iter().position(|p| p.name == name);
+        if let (Some(o), Some(d)) = (at("offset_s"), at("drift_ppm")) {
+            let runs: Vec<&measure::RunSpectra> = tr.iter().chain(std::iter::once(ck)).collect();
+            let fitted = (r.params[o].value, r.params[d].value);
+            (r.params[o].value, r.params[d].value) = clock::oriented(fitted, trend, &runs);
+        }
     }
     // The held-out acceptance is taken before the all-run winner's entry is rewritten with its
     // all-run fit (`adopt`): the rules read the accepted best as the held-out run ranked it.

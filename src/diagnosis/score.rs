@@ -36,21 +36,26 @@ pub fn cell(pred: Complex64, meas: Complex64, coherence: f64, segments: usize) -
 /// Appends the data residuals of `v` against `runs` (fitted paths only) to `out`.
 pub fn residuals(v: &Variant, runs: &[RunSpectra], out: &mut Vec<f64>) -> Result<()> {
     for run in runs {
-        let preds = predict(v, run)?;
-        for (pe, pred) in run.paths.iter().zip(&preds) {
-            if !pe.path.fitted() {
-                continue;
-            }
-            for ((&p, &h), &g) in pred.iter().zip(&pe.h1).zip(&pe.coherence) {
-                if trusted(g) {
-                    let (a, c) = cell(p, h, g, run.segments);
-                    out.push(a);
-                    out.push(c);
-                }
+        run_residuals(run, &predict(v, run)?, out);
+    }
+    Ok(())
+}
+
+/// The residuals of one run against the predictions `preds` of its paths (`[path][bin]`, as
+/// [`predict`] gives them), appended to `out`.
+pub fn run_residuals(run: &RunSpectra, preds: &[Vec<Complex64>], out: &mut Vec<f64>) {
+    for (pe, pred) in run.paths.iter().zip(preds) {
+        if !pe.path.fitted() {
+            continue;
+        }
+        for ((&p, &h), &g) in pred.iter().zip(&pe.h1).zip(&pe.coherence) {
+            if trusted(g) {
+                let (a, c) = cell(p, h, g, run.segments);
+                out.push(a);
+                out.push(c);
             }
         }
     }
-    Ok(())
 }
 
 /// Number of residuals (two per trusted fitted cell).
@@ -59,13 +64,6 @@ pub fn residual_count(runs: &[RunSpectra]) -> usize {
         .flat_map(|r| r.paths.iter().filter(|p| p.path.fitted()))
         .map(|p| 2 * p.coherence.iter().filter(|&&g| trusted(g)).count())
         .sum()
-}
-
-/// χ² of `v` on `runs`.
-pub fn chi2(v: &Variant, runs: &[RunSpectra]) -> Result<f64> {
-    let mut r = Vec::new();
-    residuals(v, runs, &mut r)?;
-    Ok(r.iter().map(|x| x * x).sum())
 }
 
 /// Fraction of the structural gap closed, FGC = (D₀ − D)/(D₀ − D_f) with D the reduced χ² after the
