@@ -245,6 +245,8 @@ mod tests {
             base_rms: rms,
             offset_notes: Vec::new(),
             excluded: Vec::new(),
+            base_floor_psd: 0.0,
+            base_motion: Vec::new(),
             paths: coh
                 .iter()
                 .map(|&(path, g)| PathEstimate {

@@ -64,6 +64,14 @@ pub(super) fn locate<'a>(
             peak_hz: gapmap::peak_hz(spec, Path::BaseHead)
                 .or(gapmap::peak_hz(spec, Path::BaseSeat)),
             gap_db_rms,
+            base_floor: (
+                spec.base_floor_psd,
+                spec.freq_hz
+                    .iter()
+                    .zip(&spec.base_motion)
+                    .find(|(_, b)| 20.0 * b.log10() < -0.5)
+                    .map(|(f, _)| *f),
+            ),
         });
         if role == "check" {
             gap_map = cells;

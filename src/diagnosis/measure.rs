@@ -2,6 +2,7 @@
 //! estimated with the same Welch segmentation (Hann, 50 % overlap) so that a gap is never an
 //! estimator artefact (Bendat & Piersol, *Random Data*, 4th ed., §9.2).
 
+use super::input_noise;
 use super::leakage::{self, Quadrature};
 use crate::analysis::spectrum::{Segment, Welch, WelchOptions};
 use crate::error::{Error, Result};
@@ -120,6 +121,11 @@ pub struct RunSpectra {
     pub paths: Vec<PathEstimate>,
     /// Sample ranges left out of every estimate (acquisition faults, [`super::screen`]).
     pub excluded: Vec<Range<usize>>,
+    /// The base accelerometer's white noise floor, (m/s²)²/Hz ([`super::input_noise::floor`]).
+    pub base_floor_psd: f64,
+    /// Share of the base PSD that is motion on each analysis bin, G_uu/G_xx: the factor by which
+    /// the floor biases H1 of every path from the base ([`super::input_noise`]).
+    pub base_motion: Vec<f64>,
 }
 
 impl RunSpectra {
@@ -221,6 +227,14 @@ pub fn estimate(signals: &Signals, excluded: &[Range<usize>]) -> Result<RunSpect
             quadrature,
         });
     }
+    let (g_bb, g_ss) = (pick(&all.gxx), pick(&all.gyy));
+    let from_base: Vec<&[f64]> = paths
+        .iter()
+        .filter(|e| e.path.channels().0 == "a_base_z")
+        .map(|e| e.coherence.as_slice())
+        .collect();
+    let base_floor_psd = input_noise::floor(&g_bb, &from_base);
+    let base_motion = input_noise::motion_share(&g_bb, base_floor_psd);
     let mean = |x: &[f64]| x.iter().sum::<f64>() / x.len().max(1) as f64;
     let rms = crate::analysis::figures::rms;
     let base_rms = (rms(base).powi(2) - mean(base).powi(2)).max(0.0).sqrt();
@@ -243,12 +257,14 @@ pub fn estimate(signals: &Signals, excluded: &[Range<usize>]) -> Result<RunSpect
         duration_s,
         segments: all.segments,
         base_psd: (all.freq_hz.clone(), all.gxx.clone()),
-        seat_psd: pick(&all.gyy),
+        seat_psd: g_ss,
         head_psd,
         base_rms,
         offset_notes,
         paths,
         excluded: excluded.to_vec(),
+        base_floor_psd,
+        base_motion,
     })
 }
 

@@ -18,6 +18,7 @@ pub use crate::numeric::lm as fit;
 mod evidence;
 mod fitting;
 pub mod gapmap;
+mod input_noise;
 mod inputs;
 mod json;
 mod leakage;

@@ -92,6 +92,11 @@ pub struct RunSummary {
     /// Nominal-model gap (replay) RMS per path, dB.
     #[serde(deserialize_with = "super::json::path_values")]
     pub gap_db_rms: Vec<(&'static str, f64)>,
+    /// The base accelerometer's white noise floor, (m/s²)²/Hz,
+    /// and the lowest frequency (Hz) where it biases H1 from the base by more than 0.5 dB
+    /// ([`super::input_noise`]).
+    #[serde(default)]
+    pub base_floor: (f64, Option<f64>),
 }
 
 /// The verdict's identifier as the JSON carries it: a named effect's candidate id, or one of

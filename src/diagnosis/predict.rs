@@ -474,6 +474,15 @@ pub fn predict(v: &Variant, run: &RunSpectra) -> Result<Vec<Vec<Complex64>>> {
             }
         }
     }
+    // The base channel's noise floor biases H1 of every path from the base by the share of its
+    // PSD that is motion ([`super::input_noise`]): the bias is put on the prediction too.
+    for (o, path) in out.iter_mut().zip(&paths) {
+        if path.channels().0 == "a_base_z" {
+            for (h, b) in o.iter_mut().zip(&run.base_motion) {
+                *h *= *b;
+            }
+        }
+    }
     Ok(out)
 }
 

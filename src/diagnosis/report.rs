@@ -94,6 +94,12 @@ fn where_(out: &mut String, d: &Diagnosis) {
             r.peak_hz.map_or("-".into(), |f| format!("{f:.2} Hz")),
             gaps.join(", ")
         );
+        if let (floor, Some(from)) = r.base_floor {
+            let _ = writeln!(
+                out,
+                "        base accelerometer noise floor {floor:.2e} (m/s²)²/Hz: H1 from the base reads > 0.5 dB low from {from:.1} Hz (the predictions carry the same bias)"
+            );
+        }
     }
     if let Some(s) = d.peak_shift_percent_per_doubling {
         let _ = writeln!(out, "  body peak moves {s:+.1} % per doubling of magnitude");
