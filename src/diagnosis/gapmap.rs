@@ -107,7 +107,8 @@ pub struct Weighted {
     /// Measured Wk-weighted seat r.m.s., m/s² (ISO 2631-1 §6.4.2, from the PSD).
     #[serde(deserialize_with = "super::json::f64")]
     pub aw_seat_meas: f64,
-    /// Predicted Wk-weighted seat r.m.s., m/s² (Σ Wk²|H_bs|² G_base Δf).
+    /// Predicted Wk-weighted seat r.m.s., m/s² (Σ Wk²|H_bs|² G_uu Δf, G_uu the base PSD less its noise floor:
+    /// [`super::input_noise`]).
     #[serde(deserialize_with = "super::json::f64")]
     pub aw_seat_model: f64,
     /// (model/measured − 1)·100, %.
@@ -145,7 +146,10 @@ pub fn weighted(run: &RunSpectra, bs: &[Complex64]) -> Weighted {
     for (b, &f) in run.freq_hz.iter().enumerate() {
         let w = wk(f) * df;
         let dm = w * run.seat_psd[b];
-        let dp = w * bs[b].norm_sqr() * gb[b];
+        // The prediction carries the base floor's bias b of H1 (`input_noise`); the seat moves
+        // with the base's motion alone, |H|²·G_uu = |H·b|²·G_xx / b.
+        let motion = run.base_motion.get(b).copied().unwrap_or(1.0);
+        let dp = w * bs[b].norm_sqr() * gb[b] / motion;
         meas += dm;
         model += dp;
         base += w * gb[b];
