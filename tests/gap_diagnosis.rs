@@ -693,37 +693,3 @@ fn hands_on_a_wheel_are_named_an_upper_body_path_and_legs_still_a_lower_one() {
         );
     }
 }
-
-#[test]
-fn a_base_accelerometer_floor_under_a_road_spectrum_is_no_effect() {
-    // Clean road runs at 200 Hz with a force plate and a white floor of 4 % of the base r.m.s. on
-    // the base accelerometer (the bench's acquisition, which shares no code with the estimator):
-    // H1 from the base reads low where the road's motion falls under the floor. Before the floor
-    // was put on the prediction these three were named `sensor-mount-base`.
-    let model = catalog::resolve("reference").unwrap();
-    for i in 0..3 {
-        let case = make_case_with(
-            i,
-            31,
-            &CaseOptions {
-                effects: Some(Vec::new()),
-                spectrum: Some("road"),
-                fs_hz: Some(200.0),
-                force: Some(true),
-                base_floor: Some(0.04),
-                ..CaseOptions::default()
-            },
-        )
-        .unwrap();
-        let d = diagnose(&model, &case.train, &case.check).unwrap();
-        assert_eq!(d.verdict, VerdictId::None, "case {i}: {}", d.verdict_text);
-        // The floor is found: the report says from where it biases H1.
-        assert!(
-            d.runs
-                .iter()
-                .all(|r| r.base_floor.0 > 0.0 && r.base_floor.1.is_some()),
-            "{:?}",
-            d.runs.iter().map(|r| r.base_floor).collect::<Vec<_>>()
-        );
-    }
-}

@@ -41,7 +41,7 @@ pub fn floor(g_bb: &[f64], coherences: &[&[f64]]) -> f64 {
     bound
         .windows(SMOOTH_BINS)
         .map(|w| w.iter().sum::<f64>() / SMOOTH_BINS as f64)
-        .fold(None, |m: Option<f64>, v| Some(m.map_or(v, |m| m.min(v))))
+        .reduce(f64::min)
         .unwrap_or(0.0)
 }
 
