@@ -59,7 +59,11 @@ fn main() -> wbv::Result<()> {
                 d.null.check.chi2_red,
                 top.join(", "),
                 case.label.nuisance.duration_s
-            ))
+            ) + if d.loggers.contains("inferred") {
+                " | force plate on the base's logger (inferred)"
+            } else {
+                ""
+            })
         })
         .collect::<wbv::Result<_>>()?;
     for l in lines {

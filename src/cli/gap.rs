@@ -20,7 +20,8 @@ pub struct Args {
     /// A data logger and the channels it records, `NAME:CH[,CH…]`; repeat for each logger, e.g.
     /// `--logger base:a_base_z --logger cab:a_seat_z,a_head_z,f_seat_z`. A trigger offset or a
     /// clock drift between loggers retimes every channel of the loggers other than the base's.
-    /// Without it the base accelerometer is assumed on one logger and the rest on another.
+    /// Without it the base accelerometer is assumed on one logger and the rest on another, unless
+    /// the data show the force plate on the base's logger (the report says which).
     #[arg(long = "logger", value_name = "NAME:CHANNELS")]
     loggers: Vec<String>,
     /// How to read the runs (applies to every --run and --check).

@@ -80,13 +80,28 @@ pub struct Logger {
     pub transducers: Vec<Transducer>,
 }
 
+/// Where a rig's loggers come from.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Source {
+    /// Stated by the user (`--logger`).
+    Stated,
+    /// Assumed ([`Loggers::default`]): nothing in the data said otherwise.
+    Assumed,
+    /// The force plate put on the base's logger because the data say so: the seat and head paths
+    /// share a lag of `lag_s` that the force plate's does not ([`Loggers::force_on_base`]).
+    Inferred {
+        /// The occupant logger's lag behind the base's, s.
+        lag_s: f64,
+    },
+}
+
 /// The rig's loggers.
-#[derive(Debug, Clone, PartialEq, Eq)]
+#[derive(Debug, Clone, PartialEq)]
 pub struct Loggers {
     /// Every logger; the base accelerometer is on exactly one.
     pub loggers: Vec<Logger>,
-    /// Whether the user stated them (`--logger`) rather than the diagnosis assuming them.
-    pub stated: bool,
+    /// Whether the user stated them, the diagnosis assumed them or inferred them from the data.
+    pub source: Source,
 }
 
 impl Default for Loggers {
@@ -107,7 +122,7 @@ impl Default for Loggers {
                     transducers: vec![Transducer::Seat, Transducer::Head, Transducer::Force],
                 },
             ],
-            stated: false,
+            source: Source::Assumed,
         }
     }
 }
@@ -169,14 +184,38 @@ impl Loggers {
         }
         Ok(Loggers {
             loggers,
-            stated: true,
+            source: Source::Stated,
         })
+    }
+
+    /// Whether the user stated the loggers.
+    pub fn stated(&self) -> bool {
+        self.source == Source::Stated
+    }
+
+    /// The assumed rig with the seat-pan force plate on the base accelerometer's logger (a plate
+    /// wired to the shaker controller's or the vehicle's logger), inferred from the data with a
+    /// lag of `lag_s` on the occupant's logger.
+    pub fn force_on_base(lag_s: f64) -> Loggers {
+        Loggers {
+            loggers: vec![
+                Logger {
+                    name: "base".into(),
+                    transducers: vec![Transducer::Base, Transducer::Force],
+                },
+                Logger {
+                    name: "occupant".into(),
+                    transducers: vec![Transducer::Seat, Transducer::Head],
+                },
+            ],
+            source: Source::Inferred { lag_s },
+        }
     }
 
     /// Checks that stated loggers name every transducer in `channels` (the runs' channel names),
     /// so that no channel's time base is silently assumed.
     pub fn check_covers<'a>(&self, channels: impl IntoIterator<Item = &'a str>) -> Result<()> {
-        if !self.stated {
+        if !self.stated() {
             return Ok(());
         }
         for ch in channels {
@@ -223,10 +262,13 @@ impl Loggers {
             })
             .collect::<Vec<_>>()
             .join("; ");
-        if self.stated {
-            list
-        } else {
-            format!("{list} (assumed; state them with --logger)")
+        match self.source {
+            Source::Stated => list,
+            Source::Assumed => format!("{list} (assumed; state them with --logger)"),
+            Source::Inferred { lag_s } => format!(
+                "{list} (inferred: the seat and head lag the base by {:.1} ms and the force plate does not; state them with --logger)",
+                lag_s * 1e3
+            ),
         }
     }
 }

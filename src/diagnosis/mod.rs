@@ -17,6 +17,7 @@ pub mod distortion;
 pub use crate::numeric::lm as fit;
 mod evidence;
 mod fitting;
+mod force_logger;
 pub mod gapmap;
 mod input_noise;
 mod inputs;
@@ -77,8 +78,6 @@ pub fn diagnose_with(
     for run in train.iter().chain(std::iter::once(check)) {
         loggers.check_covers(run.names.iter().map(String::as_str))?;
     }
-    let off_base = loggers.off_base();
-    let base = Base::of(model, off_base);
     let system = model.system();
     let prepared = prepare::prepare(system, train, check)?;
     let (tr, ck) = (&prepared.train, &prepared.check);
@@ -89,12 +88,18 @@ pub fn diagnose_with(
     let located = locate::locate(system, signals.zip(tr.iter().chain(std::iter::once(ck))))?;
     let nominal = stage(&Variant::plain(system.clone()), ck)?;
     let force_measured = ck.paths.iter().any(|p| p.path == Path::ApparentMass);
+    // The null re-fit does not depend on the loggers (it retimes nothing); the timing
+    // candidates do, so the force plate's logger is inferred before they are fitted.
+    let null_fit = select::fit_null(&Base::of(model, loggers.off_base()), tr)?;
+    let loggers = force_logger::infer(model, loggers, tr, &null_fit, force_measured)?;
+    let off_base = loggers.off_base();
+    let base = Base::of(model, off_base);
     let applicable: Vec<Candidate> = Candidate::ALL
         .into_iter()
         .filter(|c| c.applies_to(system) && (force_measured || !c.reads_force_only()))
         .filter(|c| off_base.any() || !c.retimes_a_logger())
         .collect();
-    let mut ranking = select::rank(&base, &applicable, tr, ck, &nominal, n)?;
+    let mut ranking = select::rank(&base, &applicable, tr, ck, &nominal, n, null_fit)?;
     if let Some(trend) = &prepared.clock
         && let Some(r) = ranking
             .cands

@@ -23,10 +23,16 @@ pub(super) struct Ranking {
     pub fits: Vec<(Candidate, Vec<f64>)>,
 }
 
-/// Fits the null and each of `applicable` on the training runs `tr` (the candidates start at the
-/// null's optimum; the null is then re-fitted from the best candidates' base parameters,
-/// [`refine_null`]), evaluates each on the check run `ck` and ranks them by ΔBIC against the
-/// null. `nominal` is the nominal model's stage: the null's fraction closed is measured from it.
+/// The null re-fit on the training runs `tr`: the base parameters alone, from their nominal values.
+pub(super) fn fit_null(base: &Base, tr: &[RunSpectra]) -> Result<Fitted> {
+    fit_candidate(base, &[], tr, &vec![0.0; base.params.len()])
+}
+
+/// Fits each of `applicable` on the training runs `tr` (the candidates start at the null's
+/// optimum `null_fit`, [`fit_null`]; the null is then re-fitted from the best candidates' base
+/// parameters, [`refine_null`]), evaluates each on the check run `ck` and ranks them by ΔBIC
+/// against the null. `nominal` is the nominal model's stage: the null's fraction closed is
+/// measured from it.
 pub(super) fn rank(
     base: &Base,
     applicable: &[Candidate],
@@ -34,9 +40,9 @@ pub(super) fn rank(
     ck: &RunSpectra,
     nominal: &Stage,
     n: Counts,
+    null_fit: Fitted,
 ) -> Result<Ranking> {
     let nb = base.params.len();
-    let null_fit = fit_candidate(base, &[], tr, &vec![0.0; nb])?;
     let stacks: Vec<Vec<Candidate>> = applicable.iter().map(|&c| vec![c]).collect();
     let fitted = fit_each(base, &stacks, tr, &null_fit.fit.u, Some(ck))?;
     // The null re-fit from the base parameters the best candidates settled at: their fits start

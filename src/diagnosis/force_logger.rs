@@ -1,0 +1,46 @@
+//! Which logger records the seat-pan force plate, inferred from the data when the loggers are not
+//! stated (docs/gap.md §5, acquisition timing). A plate is wired to the occupant's logger in most
+//! rigs and to the base's (the shaker controller's, the vehicle's) in the rest. A trigger offset
+//! between the loggers then lags every path from the base to a transducer of the late logger by
+//! the same phase −2πf·τ: seat and head but not the force when the plate is on the base's logger,
+//! which also puts the slope +2πf·τ on the apparent mass F/a_seat. The two groupings predict
+//! different phases on the force paths, so a constant offset fitted under each tells them apart.
+
+use super::acquisition::Loggers;
+use super::candidate::Candidate;
+use super::fitting::{Base, Fitted, fit_candidate};
+use super::measure::RunSpectra;
+use super::thresholds::{ACCEPT_DELTA_BIC, IDENTIFIABLE_MARGIN};
+use crate::error::Result;
+use crate::model::Model;
+
+/// The loggers to diagnose with: `assumed` unless a constant offset between the loggers fits the
+/// training runs `train` better with the force plate on the base's logger — detected against the
+/// `null` re-fit there (ΔBIC ≤ [`ACCEPT_DELTA_BIC`], in sample) and ahead of the same offset
+/// with the plate on the occupant's logger by [`IDENTIFIABLE_MARGIN`] (both have one parameter,
+/// so ΔBIC is Δχ²). Without a timing effect the offset fits near zero under both and nothing
+/// changes. Stated loggers and runs without a force channel are returned as they are.
+pub(super) fn infer(
+    model: &Model,
+    assumed: &Loggers,
+    train: &[RunSpectra],
+    null: &Fitted,
+    force_measured: bool,
+) -> Result<Loggers> {
+    if assumed.stated() || !force_measured {
+        return Ok(assumed.clone());
+    }
+    let offset = [Candidate::LoggerOffset];
+    let on_base = Loggers::force_on_base(0.0);
+    let fit =
+        |l: &Loggers| fit_candidate(&Base::of(model, l.off_base()), &offset, train, &null.fit.u);
+    let (late, early) = (fit(assumed)?, fit(&on_base)?);
+    let n = super::score::residual_count(train).max(1) as f64;
+    let detected = early.fit.cost - null.fit.cost + n.ln() <= ACCEPT_DELTA_BIC;
+    let ahead = late.fit.cost - early.fit.cost >= IDENTIFIABLE_MARGIN;
+    if !(detected && ahead) {
+        return Ok(assumed.clone());
+    }
+    let lag_s = early.variant.seat.delay_s;
+    Ok(Loggers::force_on_base(lag_s))
+}
