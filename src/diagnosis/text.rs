@@ -285,7 +285,7 @@ pub(super) fn partial(
             aw_gap_percent: (a0, a1),
             seat_gap_points: (s0, s1),
         } => format!(
-            "moves the check run's ISO figures away from the measurement (seat a_w gap {a0:+.1} % → {a1:+.1} %, SEAT gap {s0:+.1} → {s1:+.1} points): its form is not the truth's"
+            "moves the check run's ISO figures away from the measurement (seat a_w gap {a0:+.1} % → {a1:+.1} %, SEAT gap {s0:+.1} → {s1:+.1} points): it fits the responses but not where the seat's frequency weighting counts, so its form, its size or a further effect is off there"
         ),
     };
     let list = partial
