@@ -71,6 +71,10 @@ pub struct IsoToward {
     pub named: usize,
     /// Of those, cases moving both figures toward the measurement.
     pub toward: usize,
+    /// Of those, cases where neither gap grows by the diagnosis's own "away" threshold
+    /// ([`crate::diagnosis::ISO_AWAY`]: 1 % of a_w, 1 SEAT point, below which a shift is not of
+    /// practical size); the rest are the cases the verdict itself flags.
+    pub within_practical: usize,
     /// Median remaining |a_w gap| with the named effect(s), %.
     pub median_aw_gap_percent: Option<f64>,
     /// Median remaining |SEAT gap| with the named effect(s), points.
@@ -86,17 +90,21 @@ fn iso_toward(scores: &[CaseScore]) -> IsoToward {
         .filter(|s| !s.named.is_empty())
         .filter_map(|s| s.iso.as_ref())
         .collect();
-    let toward = named
-        .iter()
-        .filter(|g| {
-            g.aw_percent[2].abs() <= g.aw_percent[1].abs() + TIE
-                && g.seat_points[2].abs() <= g.seat_points[1].abs() + TIE
-        })
-        .count();
+    let within = |(aw, seat): (f64, f64)| {
+        named
+            .iter()
+            .filter(|g| {
+                g.aw_percent[2].abs() <= g.aw_percent[1].abs() + aw
+                    && g.seat_points[2].abs() <= g.seat_points[1].abs() + seat
+            })
+            .count()
+    };
+    let (toward, within_practical) = (within((TIE, TIE)), within(crate::diagnosis::ISO_AWAY));
     let of = |f: fn(&IsoGaps) -> f64| median(named.iter().map(|g| f(g)).collect());
     IsoToward {
         named: named.len(),
         toward,
+        within_practical,
         median_aw_gap_percent: of(|g| g.aw_percent[2].abs()),
         median_seat_gap_points: of(|g| g.seat_points[2].abs()),
     }
@@ -369,10 +377,14 @@ impl Summary {
         );
         let t = &self.iso_toward;
         out += &format!(
-            "Named verdicts moving the check run's seat a_w and SEAT toward the measurement (neither gap growing by more than {TIE}): {} of {} ({}); median remaining |a_w gap| {} %, |SEAT gap| {} points.\n\n",
+            "Named verdicts moving the check run's seat a_w and SEAT toward the measurement (neither gap growing by more than {TIE}): {} of {} ({}); neither growing by the diagnosis's practical size ({} % a_w, {} SEAT point): {} ({}); median remaining |a_w gap| {} %, |SEAT gap| {} points.\n\n",
             t.toward,
             t.named,
             f((t.named > 0).then(|| t.toward as f64 / t.named as f64)),
+            crate::diagnosis::ISO_AWAY.0,
+            crate::diagnosis::ISO_AWAY.1,
+            t.within_practical,
+            f((t.named > 0).then(|| t.within_practical as f64 / t.named as f64)),
             f(t.median_aw_gap_percent),
             f(t.median_seat_gap_points)
         );
