@@ -4,8 +4,7 @@
 //! sign (the mean lag trades offset against drift); the lag of the second half against the first
 //! shows both. A low-pass or a constant offset leaves the halves alike.
 
-use super::measure::{self, MIN_DURATION_S, Path, RunSpectra, h1_sigma};
-use super::predict::SegmentTimes;
+use super::measure::{self, MIN_DURATION_S, Path, h1_sigma};
 use crate::error::Result;
 use crate::signals::Signals;
 use serde::{Deserialize, Serialize};
@@ -148,30 +147,6 @@ pub fn trend(runs: &[(&Signals, &[Range<usize>])]) -> Result<Option<ClockTrend>>
         sigma_ppm: den.recip().sqrt(),
         runs: used,
     }))
-}
-
-/// The fitted (offset s, drift ppm) of `logger-drift` oriented by the halves' trend. On runs of
-/// one length every segment average sees the lag `offset + drift·t_mid` and a loss even in the
-/// drift, so (offset, drift) and (offset + 2·drift·t_mid, −drift) fit exactly alike and the fit's
-/// sign is arbitrary; the halves decide it. Runs of different lengths tell the sign themselves:
-/// left as fitted.
-pub(super) fn oriented(
-    (offset_s, drift_ppm): (f64, f64),
-    trend: &ClockTrend,
-    runs: &[&RunSpectra],
-) -> (f64, f64) {
-    let Some(first) = runs.first() else {
-        return (offset_s, drift_ppm);
-    };
-    let one_length = runs
-        .iter()
-        .all(|r| (r.duration_s / first.duration_s - 1.0).abs() < 0.01);
-    if !one_length || !trend.significant() || drift_ppm * trend.drift_ppm >= 0.0 {
-        return (offset_s, drift_ppm);
-    }
-    let t = SegmentTimes::of(first);
-    let mid = t.first_s + 0.5 * (t.count as f64 - 1.0) * t.hop_s;
-    (offset_s + 2.0 * drift_ppm * 1e-6 * mid, -drift_ppm)
 }
 
 #[cfg(test)]

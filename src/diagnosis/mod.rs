@@ -93,26 +93,13 @@ pub fn diagnose_with(
     let null_fit = select::fit_null(&Base::of(model, loggers.off_base()), tr)?;
     let loggers = force_logger::infer(model, loggers, tr, &null_fit, force_measured)?;
     let off_base = loggers.off_base();
-    let base = Base::of(model, off_base);
+    let base = Base::of(model, off_base).with_clock(prepared.clock.as_ref());
     let applicable: Vec<Candidate> = Candidate::ALL
         .into_iter()
         .filter(|c| c.applies_to(system) && (force_measured || !c.reads_force_only()))
         .filter(|c| off_base.any() || !c.retimes_a_logger())
         .collect();
     let mut ranking = select::rank(&base, &applicable, tr, ck, &nominal, n, null_fit)?;
-    if let Some(trend) = &prepared.clock
-        && let Some(r) = ranking
-            .cands
-            .iter_mut()
-            .find(|r| r.id == Candidate::LoggerDrift.id())
-    {
-        let at = |name: &str| r.params.iter().position(|p| p.name == name);
-        if let (Some(o), Some(d)) = (at("offset_s"), at("drift_ppm")) {
-            let runs: Vec<&measure::RunSpectra> = tr.iter().chain(std::iter::once(ck)).collect();
-            let fitted = (r.params[o].value, r.params[d].value);
-            (r.params[o].value, r.params[d].value) = clock::oriented(fitted, trend, &runs);
-        }
-    }
     // The held-out acceptance is taken before the all-run winner's entry is rewritten with its
     // all-run fit (`adopt`): the rules read the accepted best as the held-out run ranked it.
     let accepted = verdict::held_out_accepted(&ranking.null, &ranking.cands).cloned();

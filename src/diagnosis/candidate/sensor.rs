@@ -98,6 +98,9 @@ pub const LOGGER_OFFSET: Definition = sensor(
     false,
 );
 
+/// The name of `logger-drift`'s rate parameter, ppm.
+pub const DRIFT_PARAM: &str = "drift_ppm";
+
 /// Parts per million, the unit a logger's clock tolerance is quoted in.
 const PPM: f64 = 1e-6;
 
@@ -112,7 +115,7 @@ pub const LOGGER_DRIFT: Definition = sensor(
     || {
         vec![
             Param::new("offset_s", -0.05, 0.05, &[0.0], false),
-            Param::new("drift_ppm", -2000.0, 2000.0, &[-100.0, 100.0], false),
+            Param::new(DRIFT_PARAM, -2000.0, 2000.0, &[-100.0, 100.0], false),
         ]
     },
     always,
