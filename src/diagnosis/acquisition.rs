@@ -266,8 +266,9 @@ impl Loggers {
             Source::Stated => list,
             Source::Assumed => format!("{list} (assumed; state them with --logger)"),
             Source::Inferred { lag_s } => format!(
-                "{list} (inferred: the seat and head lag the base by {:.1} ms and the force plate does not; state them with --logger)",
-                lag_s * 1e3
+                "{list} (inferred: the seat and head {} the base by {:.1} ms and the force plate does not; state them with --logger)",
+                if lag_s < 0.0 { "lead" } else { "lag" },
+                lag_s.abs() * 1e3
             ),
         }
     }
@@ -307,6 +308,24 @@ mod tests {
         let l = Loggers::parse(&specs(&["all:a_base_z,a_seat_z,a_head_z"])).unwrap();
         assert!(!l.off_base().any());
         assert!(Loggers::default().off_base().any());
+    }
+
+    #[test]
+    fn an_inferred_rig_puts_the_force_plate_on_the_base_and_says_why() {
+        let l = Loggers::force_on_base(-0.0082);
+        assert_eq!(
+            l.off_base(),
+            OffBase {
+                seat: true,
+                head: true,
+                force: false
+            }
+        );
+        assert!(!l.stated());
+        assert_eq!(
+            l.describe(),
+            "base: a_base_z, f_seat_z; occupant: a_seat_z, a_head_z (inferred: the seat and head lead the base by 8.2 ms and the force plate does not; state them with --logger)"
+        );
     }
 
     #[test]
