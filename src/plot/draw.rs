@@ -9,6 +9,11 @@ use plotters::coord::ranged1d::{Ranged, ValueFormatter};
 use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, Pos, VPos};
 
+/// A numeric axis of a chart (linear or logarithmic, f64 values, formatted for its tick labels):
+/// the one bound every drawing function puts on its x and y coordinates, stated once.
+trait NumberAxis: Ranged<ValueType = f64> + ValueFormatter<f64> {}
+impl<T: Ranged<ValueType = f64> + ValueFormatter<f64>> NumberAxis for T {}
+
 /// The runs of consecutive drawable points of `s` (finite, > 0 on a log axis, inside the ranges):
 /// a masked or out-of-range point ends a run.
 fn runs(s: &Series, x: (f64, f64), y: (f64, f64), log: (bool, bool)) -> Vec<Vec<(f64, f64)>> {
@@ -175,8 +180,8 @@ fn draw_plot<'a, DB, X, Y>(
 ) -> std::result::Result<(), String>
 where
     DB: DrawingBackend + 'a,
-    X: Ranged<ValueType = f64> + ValueFormatter<f64>,
-    Y: Ranged<ValueType = f64> + ValueFormatter<f64>,
+    X: NumberAxis,
+    Y: NumberAxis,
 {
     ctx.configure_mesh()
         .x_desc(chart.x_label.as_str())
@@ -219,8 +224,8 @@ fn draw_spans<DB, X, Y>(
 ) -> std::result::Result<(), String>
 where
     DB: DrawingBackend,
-    X: Ranged<ValueType = f64> + ValueFormatter<f64>,
-    Y: Ranged<ValueType = f64> + ValueFormatter<f64>,
+    X: NumberAxis,
+    Y: NumberAxis,
 {
     for s in &chart.spans {
         let c = rgb(s.colour);
@@ -267,8 +272,8 @@ fn draw_curves<'a, DB, X, Y>(
 ) -> std::result::Result<(), String>
 where
     DB: DrawingBackend + 'a,
-    X: Ranged<ValueType = f64> + ValueFormatter<f64>,
-    Y: Ranged<ValueType = f64> + ValueFormatter<f64>,
+    X: NumberAxis,
+    Y: NumberAxis,
 {
     for (i, s) in chart.series.iter().enumerate() {
         let c = rgb(s.colour.unwrap_or_else(|| colour::pick(i)));
@@ -299,8 +304,8 @@ fn draw_run<'c, 'a, DB, X, Y>(
 ) -> std::result::Result<&'c mut SeriesAnno<'a, DB>, String>
 where
     DB: DrawingBackend,
-    X: Ranged<ValueType = f64> + ValueFormatter<f64>,
-    Y: Ranged<ValueType = f64> + ValueFormatter<f64>,
+    X: NumberAxis,
+    Y: NumberAxis,
 {
     match style {
         Style::Line => ctx.draw_series(LineSeries::new(run, c.stroke_width(2))),
@@ -359,8 +364,8 @@ fn draw_rules<DB, X, Y>(
 ) -> std::result::Result<(), String>
 where
     DB: DrawingBackend,
-    X: Ranged<ValueType = f64> + ValueFormatter<f64>,
-    Y: Ranged<ValueType = f64> + ValueFormatter<f64>,
+    X: NumberAxis,
+    Y: NumberAxis,
 {
     for r in &chart.rules {
         let c = rgb(r.colour);
@@ -402,8 +407,8 @@ fn draw_notes<DB, X, Y>(
 ) -> std::result::Result<(), String>
 where
     DB: DrawingBackend,
-    X: Ranged<ValueType = f64> + ValueFormatter<f64>,
-    Y: Ranged<ValueType = f64> + ValueFormatter<f64>,
+    X: NumberAxis,
+    Y: NumberAxis,
 {
     for n in &chart.notes {
         let inside = n.x >= x0 && n.x <= x1 && n.y >= y0 && n.y <= y1;
