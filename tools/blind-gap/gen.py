@@ -948,6 +948,14 @@ def make_case(case_dir, seed, index, override=None, model="reference"):
     force_static = bool(rng.uniform() < 0.5)
     noise = {ch: float(rng.uniform(0.005, 0.03)) for ch in ("a_base_z", "a_seat_z", "a_head_z", "f_seat_z")}
     field = draw_field(seed, index, family, force) if override.get("field") else None
+    if field and field.get("logger") and "params" in override:
+        # --like on a field case: its own logger timing, and the wiring stated to match it (a
+        # force plate the experiment adds is on the base's logger unless the case retimed one).
+        field["logger"] = dict(override["params"])
+        if "stated" in field:
+            late = [c for c in field["logger"]["channels"] if force or c != "f_seat_z"]
+            on_base = ["a_base_z"] + (["f_seat_z"] if force and "f_seat_z" not in late else [])
+            field["stated"] = ["--logger", "rig:" + ",".join(on_base), "--logger", "occupant:" + ",".join(late)]
     if field and field.get("logger"):
         form = field["logger"]["form"]
     offsets = {}
@@ -1137,7 +1145,13 @@ def main():
     if a.like:
         with open(a.like) as fh:
             like = json.load(fh)
+        # The case's own effect (a field case's logger form is drawn again by draw_field, which the
+        # same seed and index repeat) and its conditions: a field case stays one.
         override = {"params": like["params"], "strength": like["strength_scale"]}
+        if like["family"] != "none":
+            override.update(family=like["family"], form=like["form"])
+        if like["nuisances"].get("field") is not None:
+            override["field"] = True
         for kv in a.set:
             k, v = kv.split("=", 1)
             override[k] = v if k == "spectrum" else (bool(int(v)) if k == "force_plate" else float(v))
@@ -1153,7 +1167,8 @@ def main():
         os.makedirs(d, exist_ok=True)
         tr = make_case(d, a.seed, i, override, a.model)
         if override and a.like:
-            tr["override"] = {k: v for k, v in override.items() if k not in ("params", "strength")}
+            tr["override"] = {k: v for k, v in override.items()
+                              if k not in ("params", "strength", "family", "form", "field")}
             with open(os.path.join(d, "truth.json"), "w") as fh:
                 json.dump(tr, fh, indent=1, default=float)
         if tr["nuisances"]["layout"]["time"] == "none":
