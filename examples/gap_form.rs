@@ -59,7 +59,12 @@ fn main() -> wbv::Result<()> {
                 d.null.check.chi2_red,
                 top.join(", "),
                 case.label.nuisance.duration_s
-            ) + if d.loggers.contains("inferred") {
+            ) + if d.loggers.as_ref().is_some_and(|l| {
+                matches!(
+                    l.source,
+                    wbv::diagnosis::acquisition::Source::Inferred { .. }
+                )
+            }) {
                 " | force plate on the base's logger (inferred)"
             } else {
                 ""

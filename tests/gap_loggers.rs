@@ -4,7 +4,7 @@
 //! simulation rate before sampling; the candidates predict the same effect in the frequency
 //! domain and share no code with that.
 
-use wbv::diagnosis::acquisition::Loggers;
+use wbv::diagnosis::acquisition::{Loggers, Source};
 use wbv::diagnosis::{Diagnosis, diagnose, diagnose_with};
 use wbv::gap_bench::case::{Case, CaseOptions, make_case_with};
 use wbv::gap_bench::forms::Form;
@@ -68,7 +68,8 @@ fn a_trigger_offset_with_the_force_plate_on_the_late_logger_is_a_logger_offset()
     // The named effect brings the check run's a_w toward the measurement.
     let st = d.named_stage().expect("named");
     assert!(st.weighted.aw_gap_percent.abs() <= d.null.check.weighted.aw_gap_percent.abs() + 0.5);
-    assert!(d.loggers.contains("assumed"), "{}", d.loggers);
+    let rig = d.loggers.as_ref().expect("loggers");
+    assert_eq!(rig.source, Source::Assumed, "{}", rig.describe());
     // Stated as one logger for every channel, no timing between loggers is fitted at all.
     let one = Loggers::parse(&["all:a_base_z,a_seat_z,a_head_z,f_seat_z".to_string()]).unwrap();
     let d = diagnose_with(&model, &c.train, &c.check, &one).unwrap();
@@ -101,11 +102,16 @@ fn a_drifting_clock_with_the_force_plate_on_the_base_logger_is_inferred_or_state
     // the same runs left a reduced χ² of 20–30 on the check run with the drift named.
     let d = diagnose(&model, &c.train, &c.check).unwrap();
     assert_eq!(d.verdict.as_str(), "logger-drift", "{}", d.verdict_text);
+    let rig = d.loggers.as_ref().expect("loggers");
+    let Source::Inferred { lag_s } = rig.source else {
+        panic!("{}", rig.describe())
+    };
+    assert_eq!(rig.off_base(), Loggers::force_on_base(lag_s).off_base());
     assert!(
-        d.loggers
+        rig.describe()
             .starts_with("base: a_base_z, f_seat_z; occupant: a_seat_z, a_head_z (inferred"),
         "{}",
-        d.loggers
+        rig.describe()
     );
     // The rate the verdict quotes (the runs' halves') and the fitted one agree with the planted.
     let halves = d.clock.expect("a clock trend").drift_ppm;
@@ -135,9 +141,13 @@ fn a_drifting_clock_with_the_force_plate_on_the_base_logger_is_inferred_or_state
     .unwrap();
     let d = diagnose_with(&model, &c.train, &c.check, &stated).unwrap();
     assert_eq!(d.verdict.as_str(), "logger-drift", "{}", d.verdict_text);
-    assert!(
-        d.loggers.starts_with("rig: a_base_z, f_seat_z"),
-        "{}",
-        d.loggers
-    );
+    let rig = d.loggers.as_ref().expect("loggers");
+    assert_eq!(rig, &stated, "{}", rig.describe());
+    // The JSON carries the rig as a structure; a file from an earlier wbv, which wrote its report
+    // line instead, reads back to the same rig (`wbv report --gap`).
+    let mut json = serde_json::to_value(&d).unwrap();
+    assert_eq!(json["loggers"]["source"], "stated");
+    json["loggers"] = serde_json::Value::String(rig.describe());
+    let earlier: Diagnosis = serde_json::from_value(json).unwrap();
+    assert_eq!(earlier.loggers.as_ref(), Some(rig));
 }

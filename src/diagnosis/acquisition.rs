@@ -6,10 +6,12 @@
 //! [`super::candidate::sensor::LOGGER_DRIFT`]) act on the channels [`Loggers::off_base`] returns.
 
 use crate::error::{Error, Result};
+use serde::{Deserialize, Serialize};
 
 /// A transducer of a gap run: an accelerometer (triaxial at the seat and head: one time base for
-/// its axes) or the seat-pan force plate.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+/// its axes) or the seat-pan force plate. Written in JSON as its vertical channel's name.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(into = "&'static str", try_from = "String")]
 pub enum Transducer {
     /// The base (floor, platform) accelerometer, `a_base_z`.
     Base,
@@ -52,6 +54,19 @@ impl Transducer {
     }
 }
 
+impl From<Transducer> for &'static str {
+    fn from(t: Transducer) -> Self {
+        t.channel()
+    }
+}
+
+impl TryFrom<String> for Transducer {
+    type Error = String;
+    fn try_from(name: String) -> std::result::Result<Self, String> {
+        Transducer::of_channel(&name).ok_or_else(|| format!("unknown transducer channel `{name}`"))
+    }
+}
+
 /// The transducers recorded on another logger than the base accelerometer: the ones a trigger
 /// offset or a clock drift between the loggers retimes.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -72,16 +87,18 @@ impl OffBase {
 }
 
 /// One logger: a name and the transducers it records.
-#[derive(Debug, Clone, PartialEq, Eq)]
+#[derive(Debug, Clone, PartialEq, Eq, Serialize, Deserialize)]
 pub struct Logger {
     /// The name given with `--logger NAME:…`, or `base` / `occupant` when assumed.
     pub name: String,
-    /// What it records.
+    /// What it records (in JSON `channels`, by their vertical channels' names).
+    #[serde(rename = "channels")]
     pub transducers: Vec<Transducer>,
 }
 
 /// Where a rig's loggers come from.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
 pub enum Source {
     /// Stated by the user (`--logger`).
     Stated,
@@ -96,7 +113,7 @@ pub enum Source {
 }
 
 /// The rig's loggers.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct Loggers {
     /// Every logger; the base accelerometer is on exactly one.
     pub loggers: Vec<Logger>,
@@ -186,6 +203,46 @@ impl Loggers {
             loggers,
             source: Source::Stated,
         })
+    }
+
+    /// The loggers of a report line [`Loggers::describe`] wrote (the JSON of wbv before the
+    /// loggers were written as a structure): `NAME: CH, CH; NAME: CH` and, unless stated, a
+    /// parenthesis saying `assumed` or `inferred … by X ms`. `None` for an empty or foreign line.
+    pub fn from_description(text: &str) -> Option<Loggers> {
+        let (list, note) = match text.split_once(" (") {
+            Some((l, n)) => (l, Some(n)),
+            None => (text, None),
+        };
+        let loggers = list
+            .split("; ")
+            .map(|l| {
+                let (name, chans) = l.split_once(": ")?;
+                let transducers = chans
+                    .split(", ")
+                    .map(Transducer::of_channel)
+                    .collect::<Option<Vec<_>>>()?;
+                Some(Logger {
+                    name: name.to_string(),
+                    transducers,
+                })
+            })
+            .collect::<Option<Vec<_>>>()?;
+        let source = match note {
+            None => Source::Stated,
+            Some(n) if n.starts_with("inferred") => {
+                let ms = n
+                    .split(" by ")
+                    .nth(1)
+                    .and_then(|r| r.split(" ms").next())
+                    .and_then(|v| v.parse::<f64>().ok())?;
+                let sign = if n.contains(" lead ") { -1.0 } else { 1.0 };
+                Source::Inferred {
+                    lag_s: sign * ms / 1e3,
+                }
+            }
+            Some(_) => Source::Assumed,
+        };
+        Some(Loggers { loggers, source })
     }
 
     /// Whether the user stated the loggers.
@@ -326,6 +383,28 @@ mod tests {
             l.describe(),
             "base: a_base_z, f_seat_z; occupant: a_seat_z, a_head_z (inferred: the seat and head lead the base by 8.2 ms and the force plate does not; state them with --logger)"
         );
+    }
+
+    #[test]
+    fn loggers_read_back_from_json_and_from_the_report_line_of_earlier_files() {
+        let rigs = [
+            Loggers::default(),
+            Loggers::force_on_base(-0.0082),
+            Loggers::force_on_base(0.0031),
+            Loggers::parse(&specs(&["rig:a_base_z,f_seat_z", "cab:a_seat_z,a_head_z"])).unwrap(),
+        ];
+        for l in rigs {
+            let json = serde_json::to_string(&l).unwrap();
+            assert_eq!(serde_json::from_str::<Loggers>(&json).unwrap(), l, "{json}");
+            // The line keeps the lag to 0.1 ms.
+            let back = Loggers::from_description(&l.describe()).expect("a report line");
+            assert_eq!((&back.loggers, back.describe()), (&l.loggers, l.describe()));
+        }
+        let json = serde_json::to_value(Loggers::force_on_base(-0.0082)).unwrap();
+        assert_eq!(json["loggers"][0]["channels"][1], "f_seat_z");
+        assert_eq!(json["source"]["inferred"]["lag_s"], -0.0082);
+        assert_eq!(Loggers::from_description(""), None);
+        assert_eq!(Loggers::from_description("rig: a_knee_z"), None);
     }
 
     #[test]

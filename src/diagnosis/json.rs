@@ -75,3 +75,21 @@ pub(super) fn role<'de, D: Deserializer<'de>>(d: D) -> Result<&'static str, D::E
         ))),
     }
 }
+
+/// The loggers as written now (a structure) or as earlier files wrote them (the report line,
+/// [`super::acquisition::Loggers::from_description`]); an empty line reads as none.
+pub(super) fn loggers<'de, D: Deserializer<'de>>(
+    d: D,
+) -> Result<Option<super::acquisition::Loggers>, D::Error> {
+    #[derive(Deserialize)]
+    #[serde(untagged)]
+    enum Written {
+        Typed(super::acquisition::Loggers),
+        Line(String),
+    }
+    Ok(match Option::<Written>::deserialize(d)? {
+        Some(Written::Typed(l)) => Some(l),
+        Some(Written::Line(text)) => super::acquisition::Loggers::from_description(&text),
+        None => None,
+    })
+}

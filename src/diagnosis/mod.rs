@@ -186,7 +186,7 @@ pub fn diagnose_with(
         partial,
         channel_errors,
         data_faults: prepared.data_faults,
-        loggers: loggers.describe(),
+        loggers: Some(loggers),
         clock: prepared.clock,
         named,
         bands: located.bands,

@@ -177,10 +177,15 @@ pub struct Diagnosis {
     /// handled; see [`super::screen`].
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub data_faults: Vec<DataFault>,
-    /// Which logger records which transducer, as stated with `--logger` or assumed: the timing
-    /// candidates retime the loggers other than the base's ([`super::acquisition`]).
-    #[serde(default)]
-    pub loggers: String,
+    /// Which logger records which transducer, as stated with `--logger`, assumed or inferred
+    /// from the data: the timing candidates retime the loggers other than the base's
+    /// ([`super::acquisition`]). `None` in files from before wbv wrote it.
+    #[serde(
+        default,
+        skip_serializing_if = "Option::is_none",
+        deserialize_with = "super::json::loggers"
+    )]
+    pub loggers: Option<super::acquisition::Loggers>,
     /// How the lag of the seat and head behind the base moves between the runs' halves: a
     /// drifting logger clock ([`super::clock`]).
     #[serde(default, skip_serializing_if = "Option::is_none")]

@@ -64,8 +64,8 @@ pub fn text(d: &Diagnosis) -> String {
             list(&b.not_judged_hz)
         );
     }
-    if !d.loggers.is_empty() {
-        let _ = writeln!(out, "loggers: {}", d.loggers);
+    if let Some(loggers) = &d.loggers {
+        let _ = writeln!(out, "loggers: {}", loggers.describe());
     }
     where_(&mut out, d);
     which(&mut out, d);
