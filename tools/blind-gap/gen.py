@@ -952,6 +952,8 @@ def make_case(case_dir, seed, index, override=None, model="reference"):
         # --like on a field case: its own logger timing, and the wiring stated to match it (a
         # force plate the experiment adds is on the base's logger unless the case retimed one).
         field["logger"] = dict(override["params"])
+        if "stated" in field and not override.get("stated", True):
+            del field["stated"]
         if "stated" in field:
             late = [c for c in field["logger"]["channels"] if force or c != "f_seat_z"]
             on_base = ["a_base_z"] + (["f_seat_z"] if force and "f_seat_z" not in late else [])
@@ -1126,7 +1128,8 @@ def main():
     ap.add_argument("--force", action="store_true", help="replace existing case directories")
     ap.add_argument("--like", help="controlled experiment: a case's truth.json whose effect is reused")
     ap.add_argument("--set", action="append", default=[], metavar="KEY=VALUE",
-                    help="with --like: fs_hz=N, spectrum=KIND, force_plate=0|1, base_dc=M/S2")
+                    help="with --like: fs_hz=N, spectrum=KIND, force_plate=0|1, base_dc=M/S2, "
+                         "stated=0 (a field case's wiring not stated)")
     ap.add_argument("--family", choices=sorted(FAMILIES), help="study set: every case gets this effect family")
     ap.add_argument("--form", help="study set: every case gets this form (implies its family)")
     ap.add_argument("--field", action="store_true",
@@ -1154,7 +1157,7 @@ def main():
             override["field"] = True
         for kv in a.set:
             k, v = kv.split("=", 1)
-            override[k] = v if k == "spectrum" else (bool(int(v)) if k == "force_plate" else float(v))
+            override[k] = v if k == "spectrum" else (bool(int(v)) if k in ("force_plate", "stated") else float(v))
         a.seed, a.first, a.cases = like["seed"], like["case"], 1
         a.model = like.get("model", "reference")
     if a.field:
