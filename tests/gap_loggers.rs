@@ -151,3 +151,32 @@ fn a_drifting_clock_with_the_force_plate_on_the_base_logger_is_inferred_or_state
     let earlier: Diagnosis = serde_json::from_value(json).unwrap();
     assert_eq!(earlier.loggers.as_ref(), Some(rig));
 }
+
+#[test]
+fn a_structural_gap_with_a_force_plate_keeps_one_rig_assumed() {
+    // A missing viscera mode with a force plate and one time base: a sub-millisecond lag on seat and
+    // head alone also bends the phase toward the missing mode, and before the inference asked the
+    // lag to explain the runs on its own, 4 of these 6 cases were read as two loggers.
+    let model = catalog::resolve("reference").unwrap();
+    for i in 0..3 {
+        let c = make_case_with(
+            i,
+            5,
+            &CaseOptions {
+                effects: Some(vec![(Form::Viscera, 0.8)]),
+                force: Some(true),
+                ..CaseOptions::default()
+            },
+        )
+        .unwrap();
+        let d = diagnose(&model, &c.train, &c.check).unwrap();
+        assert_eq!(
+            d.verdict.as_str(),
+            "body-mode",
+            "case {i}: {}",
+            d.verdict_text
+        );
+        let rig = d.loggers.as_ref().expect("loggers");
+        assert_eq!(rig.source, Source::Assumed, "case {i}: {}", rig.describe());
+    }
+}
