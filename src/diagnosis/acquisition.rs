@@ -369,15 +369,11 @@ mod tests {
 
     #[test]
     fn an_inferred_rig_puts_the_force_plate_on_the_base_and_says_why() {
+        // The same wiring as a rig stated with the plate on the base's logger.
         let l = Loggers::force_on_base(-0.0082);
-        assert_eq!(
-            l.off_base(),
-            OffBase {
-                seat: true,
-                head: true,
-                force: false
-            }
-        );
+        let stated =
+            Loggers::parse(&specs(&["a:a_base_z,f_seat_z", "b:a_seat_z,a_head_z"])).unwrap();
+        assert_eq!(l.off_base(), stated.off_base());
         assert!(!l.stated());
         assert_eq!(
             l.describe(),

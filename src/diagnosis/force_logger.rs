@@ -8,6 +8,7 @@
 
 use super::acquisition::Loggers;
 use super::candidate::Candidate;
+use super::evidence::Counts;
 use super::fitting::{Base, Fitted, fit_candidate};
 use super::measure::RunSpectra;
 use super::thresholds::{ACCEPT_DELTA_BIC, GAP_CHI2, IDENTIFIABLE_MARGIN};
@@ -20,12 +21,13 @@ use crate::model::Model;
 /// with the plate on the occupant's logger by [`IDENTIFIABLE_MARGIN`] (both have one parameter,
 /// so ΔBIC is Δχ²), and leaving the training runs' reduced χ² within [`GAP_CHI2`] (the timing is
 /// the whole gap). Without a timing effect the offset fits near zero under both and nothing
-/// changes. Stated loggers and runs without a force channel are returned as they are.
+/// changes. Stated loggers and runs without a force channel are returned as they are. `n` holds
+/// the training runs' residual count.
 pub(super) fn infer(
     model: &Model,
     assumed: &Loggers,
     train: &[RunSpectra],
-    null: &Fitted,
+    (null, n): (&Fitted, Counts),
     force_measured: bool,
 ) -> Result<Loggers> {
     if assumed.stated() || !force_measured {
@@ -36,7 +38,7 @@ pub(super) fn infer(
     let fit =
         |l: &Loggers| fit_candidate(&Base::of(model, l.off_base()), &offset, train, &null.fit.u);
     let (late, early) = (fit(assumed)?, fit(&on_base)?);
-    let n = super::score::residual_count(train).max(1) as f64;
+    let n = n.train;
     let detected = early.fit.cost - null.fit.cost + n.ln() <= ACCEPT_DELTA_BIC;
     let ahead = late.fit.cost - early.fit.cost >= IDENTIFIABLE_MARGIN;
     // A logger's timing is all the gap there is: with another effect in the runs (a structure,

@@ -91,7 +91,7 @@ pub fn diagnose_with(
     // The null re-fit does not depend on the loggers (it retimes nothing); the timing
     // candidates do, so the force plate's logger is inferred before they are fitted.
     let null_fit = select::fit_null(&Base::of(model, loggers.off_base()), tr)?;
-    let loggers = force_logger::infer(model, loggers, tr, &null_fit, force_measured)?;
+    let loggers = force_logger::infer(model, loggers, tr, (&null_fit, n), force_measured)?;
     let off_base = loggers.off_base();
     let base = Base::of(model, off_base).with_clock(prepared.clock.as_ref());
     let applicable: Vec<Candidate> = Candidate::ALL
