@@ -282,3 +282,81 @@ fn stacked_configurations_have_the_expected_structure() {
     assert_eq!(adhoc.chain().unwrap().links, full.chain().unwrap().links);
     assert!(catalog::resolve("cushion-seed001+seed001-table1").is_err());
 }
+
+/// A backrest force is the backrest link's share of the body's inertia: one mass m on a seat link
+/// k_s and a backrest link k_b to the frame (both rigid to the base) moves as
+/// X = −m/(k_s + k_b − ω²m) per unit base acceleration, and the backrest pushes it with
+/// f_back_z = −k_b·X = m·k_b/(k_s + k_b − ω²m): m·k_b/(k_s + k_b) of the static inertial load.
+#[test]
+fn a_backrest_link_s_force_is_its_share_of_the_body_s_inertia() {
+    let (m, ks, kb) = (50.0, 40_000.0, 10_000.0);
+    let text = format!(
+        r#"
+name = "leaning"
+description = "one mass on a seat and a backrest"
+[[mass]]
+name = "m"
+m = {m}
+[[link]]
+name = "seat"
+between = ["m", "base"]
+type = "kelvin-voigt"
+k = {ks}
+c = 0.0
+[[link]]
+name = "back"
+between = ["m", "base"]
+role = "backrest"
+type = "kelvin-voigt"
+k = {kb}
+c = 0.0
+[measure]
+seat = "base"
+head = "m"
+interface = ["seat"]
+"#
+    );
+    let model = catalog::parse(&text, "leaning.toml").unwrap();
+    let s = model.system();
+    let back = s
+        .channel_index("f_back_z")
+        .expect("a backrest link gives f_back_z");
+    assert!(s.channels[back].measured);
+    for f in [0.01, 1.0, 3.0, 10.0] {
+        let w = 2.0 * PI * f;
+        let (ch, _) = frf::solve_full(s, f).unwrap();
+        let expect = Complex64::new(m * kb / (ks + kb - w * w * m), 0.0);
+        assert!(
+            close(ch[back], expect, 1e-10),
+            "{f} Hz: {} vs {expect}",
+            ch[back]
+        );
+    }
+    // The seat-pan force carries the rest: f_seat + f_back = m·(a_base + ẍ), the body's inertia.
+    let seat = s.channel_index("f_seat_z").unwrap();
+    let (ch, x) = frf::solve_full(s, 3.0).unwrap();
+    let w = 2.0 * PI * 3.0;
+    let inertia = m * (1.0 - w * w * x[0]);
+    assert!(close(ch[seat] + ch[back], inertia, 1e-10));
+    // A backrest link pushes the body above it; one from the base up is refused with its key.
+    let upside_down = text.replace(
+        r#"between = ["m", "base"]
+role"#,
+        r#"between = ["base", "m"]
+role"#,
+    );
+    let err = catalog::parse(&upside_down, "leaning.toml")
+        .unwrap_err()
+        .to_string();
+    assert!(
+        err.contains("link[1] (back).between") && err.contains("from the body"),
+        "{err}"
+    );
+    // Without a backrest link there is no channel: recordings of other models are unchanged.
+    assert!(
+        one_dof("type = \"kelvin-voigt\"\nk = 1e4\nc = 10.0")
+            .system()
+            .channel_index("f_back_z")
+            .is_none()
+    );
+}

@@ -150,6 +150,9 @@ fn measured_description(name: &str) -> &'static str {
         "f_seat_z" => {
             "dynamic seat-surface force on the body (compression positive, static weight removed), N"
         }
+        "f_back_z" => {
+            "dynamic vertical backrest force on the body (up positive, static load removed), N"
+        }
         _ => "measured-run channel",
     }
 }

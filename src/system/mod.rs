@@ -145,6 +145,29 @@ pub enum Rule {
     },
 }
 
+/// The measured-run name of the backrest force channel ([`backrest_force`]).
+pub const BACKREST_FORCE: &str = "f_back_z";
+
+/// The vertical force of the backrest on the body, `f_back_z = −Σ t_l` over the links of role
+/// [`Role::Backrest`] (N, up positive, static load removed): a chain link's tension `t` pulls its
+/// upper end, the body, down (`model::chain::system`). It is what the load cells of an
+/// instrumented backrest read in the vertical direction (Nawayseh & Griffin, "Tri-axial forces at
+/// the seat and backrest during whole-body vertical vibration", JSV 277 (2004) 309–326); a seat
+/// without a backrest reads zero.
+pub fn backrest_force(links: &[Link]) -> Channel {
+    Channel {
+        name: BACKREST_FORCE.into(),
+        unit: "N",
+        measured: true,
+        rule: Rule::Force {
+            links: (links.iter().enumerate())
+                .filter(|(_, l)| l.role == Role::Backrest)
+                .map(|(i, _)| (i, -1.0))
+                .collect(),
+        },
+    }
+}
+
 /// A named output of the system.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Channel {

@@ -5,12 +5,14 @@
 //!
 //! Channels: `a_base_z`, `a_seat_z` (the seat mass, or the base for a rigid seat), `a_head_z` when a
 //! head is defined, `f_seat_z = −Σ t_interface` (the seat-surface force on the body, static weight
-//! removed) when interface links are defined. Responses: `stht = head/seat`, `seat`,
+//! removed) when interface links are defined, `f_back_z` (the backrest's vertical force on the
+//! body, [`crate::system::backrest_force`]) when backrest links are. Responses: `stht = head/seat`, `seat`,
 //! `apms = f_seat_z/seat` (kg), `dpmi = iω·apms` (N·s/m), `t_<mass>`.
 
 use super::{Chain, Node};
 use crate::system::{
     Channel, Dof, Link, Output, ResponseDef, Role, Rule, Scene, SceneBody, System, Unit,
+    backrest_force,
 };
 use nalgebra::{DMatrix, DVector};
 
@@ -129,6 +131,9 @@ impl Chain {
                     times_i_omega,
                 });
             }
+        }
+        if links.iter().any(|l| l.role == Role::Backrest) {
+            channels.push(backrest_force(&links));
         }
         for (i, m) in self.masses.iter().enumerate() {
             responses.push(ResponseDef {

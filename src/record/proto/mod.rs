@@ -45,6 +45,8 @@ pub struct Measured {
     pub a_seat_x: Option<f64>,
     #[prost(double, optional, tag = "7")]
     pub a_head_x: Option<f64>,
+    #[prost(double, optional, tag = "8")]
+    pub f_back_z: Option<f64>,
 }
 
 /// `wbv.MassState` of `proto/wbv.proto`.
@@ -227,6 +229,7 @@ mod tests {
             "wbv.Measured",
             &[
                 "t", "a_base_z", "a_seat_z", "a_head_z", "f_seat_z", "a_seat_x", "a_head_x",
+                "f_back_z",
             ],
         );
         expect("wbv.MassState", &["x", "v", "a", "x_abs", "v_abs", "a_abs"]);
@@ -241,6 +244,7 @@ mod tests {
             f_seat_z: Some(5.0),
             a_seat_x: Some(6.0),
             a_head_x: Some(7.0),
+            f_back_z: Some(8.0),
         };
         let mut table = ProtoTable::new(WBV_FDS, "wbv.Measured").unwrap();
         table.add(&m.encode_to_vec()).unwrap();

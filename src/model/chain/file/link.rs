@@ -25,6 +25,13 @@ pub(super) fn link(cx: &Checker<'_>, i: usize, ls: &LinkSpec, masses: &[Mass]) -
             "a link must join two different nodes".into(),
         ));
     }
+    // f_back_z = −t reads the force on the upper node: the body leans on the backrest below it.
+    if ls.role.as_deref() == Some("backrest") && a == crate::model::chain::Node::Base {
+        return Err(cx.err(
+            format!("{key}.between"),
+            "a backrest link runs from the body (upper) to the frame or base (lower)".into(),
+        ));
+    }
     let damping = |ck: &str, c: Option<f64>, k: f64| -> Result<f64> {
         match (c, ls.zeta, ls.reference_mass) {
             (Some(c), None, None) => cx.non_negative(format!("{key}.{ck}"), c, "N·s/m"),
@@ -121,6 +128,6 @@ pub(super) fn link(cx: &Checker<'_>, i: usize, ls: &LinkSpec, masses: &[Mass]) -
         b,
         element,
         law,
-        role: cx.role(format!("{key}.role"), &ls.role)?,
+        role: cx.role(format!("{key}.role"), &ls.role, true)?,
     })
 }

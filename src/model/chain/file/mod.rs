@@ -14,6 +14,7 @@
 //! type = "kelvin-voigt"  # or "maxwell", "zener"
 //! k = 310000.0           # N/m
 //! c = 400.0              # N·s/m (or zeta + reference_mass)
+//! # role = "backrest"    # a link body → frame whose force is recorded as f_back_z
 //! [measure]
 //! seat = "base"          # the seat surface: a mass or "base"
 //! head = "head"
@@ -77,16 +78,21 @@ impl Checker<'_> {
         }
     }
 
-    /// The role of a mass or link (`body` when not given).
-    fn role(&self, key: String, r: &Option<String>) -> Result<Role> {
+    /// The role of a mass or link (`body` when not given); a link may also be a `backrest` (from
+    /// the body to the seat frame: its force is recorded as `f_back_z`).
+    fn role(&self, key: String, r: &Option<String>, link: bool) -> Result<Role> {
         match r.as_deref() {
             None | Some("body") => Ok(Role::Body),
             Some("cushion") => Ok(Role::Cushion),
             Some("suspension") => Ok(Role::Suspension),
             Some("frame") => Ok(Role::Frame),
+            Some("backrest") if link => Ok(Role::Backrest),
             Some(other) => Err(self.err(
                 key,
-                format!("unknown role `{other}`; expected body, cushion, suspension or frame"),
+                format!(
+                    "unknown role `{other}`; expected body, cushion, suspension or frame{}",
+                    if link { " (or backrest)" } else { "" }
+                ),
             )),
         }
     }
@@ -182,7 +188,7 @@ pub fn parse(text: &str, file: &str, resolve: &dyn Fn(&str) -> Result<Chain>) ->
         masses.push(Mass {
             name: ms.name.clone(),
             m: cx.positive(format!("{key}.m"), Some(ms.m), "kg")?,
-            role: cx.role(format!("{key}.role"), &ms.role)?,
+            role: cx.role(format!("{key}.role"), &ms.role, false)?,
         });
     }
 
