@@ -19,7 +19,8 @@ pub enum Transducer {
     Seat,
     /// The head accelerometer, `a_head_z` (and `a_head_x`).
     Head,
-    /// The seat-pan force plate, `f_seat_z`.
+    /// The seat-pan force plate, `f_seat_z`, and an instrumented backrest's load cells,
+    /// `f_back_z`, taken as read through the same conditioning and logger.
     Force,
 }
 
@@ -38,7 +39,7 @@ impl Transducer {
             "a_base_z" => Some(Transducer::Base),
             "a_seat_z" | "a_seat_x" => Some(Transducer::Seat),
             "a_head_z" | "a_head_x" => Some(Transducer::Head),
-            "f_seat_z" => Some(Transducer::Force),
+            "f_seat_z" | "f_back_z" => Some(Transducer::Force),
             _ => None,
         }
     }
@@ -169,12 +170,12 @@ impl Loggers {
             for ch in channels.split(',').map(str::trim).filter(|c| !c.is_empty()) {
                 let t = Transducer::of_channel(ch).ok_or_else(|| {
                     bad(format!(
-                        "unknown channel `{ch}` (expected a_base_z, a_seat_z, a_seat_x, a_head_z, a_head_x or f_seat_z)"
+                        "unknown channel `{ch}` (expected a_base_z, a_seat_z, a_seat_x, a_head_z, a_head_x, f_seat_z or f_back_z)"
                     ))
                 })?;
                 if let Some(other) = loggers.iter().find(|l| l.transducers.contains(&t)) {
                     return Err(bad(format!(
-                        "`{ch}` is already on logger `{}`: a transducer has one time base",
+                        "`{ch}` is already on logger `{}` through its transducer (a triaxial accelerometer's axes, or the seat and backrest force cells, which wbv reads through one conditioning): a transducer has one time base",
                         other.name
                     )));
                 }

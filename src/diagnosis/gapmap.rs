@@ -48,12 +48,18 @@ pub fn band_cells(run: &RunSpectra, pred: &[Vec<Complex64>]) -> Vec<BandCell> {
             let bins: Vec<usize> = (0..run.freq_hz.len())
                 .filter(|&b| run.freq_hz[b] >= lo && run.freq_hz[b] < hi)
                 .collect();
+            // A band the model predicts nothing in (a backrest force without a backrest) has no
+            // gap in dB; the residuals carry it as a 100 % gap (`score::cell`).
+            let predicted = |b: usize| pv[b].norm() > 0.0;
+            if !bins.is_empty() && !bins.iter().any(|&b| predicted(b)) {
+                continue;
+            }
             let nb = bins.len().max(1) as f64;
             let coh = bins.iter().map(|&b| pe.coherence[b]).sum::<f64>() / nb;
             let good: Vec<usize> = bins
                 .iter()
                 .copied()
-                .filter(|&b| trusted(pe.coherence[b]))
+                .filter(|&b| trusted(pe.coherence[b]) && predicted(b))
                 .collect();
             let ng = good.len().max(1) as f64;
             let z: Complex64 = good
@@ -81,11 +87,18 @@ pub fn band_cells(run: &RunSpectra, pred: &[Vec<Complex64>]) -> Vec<BandCell> {
     out
 }
 
-/// RMS of the trusted band gaps of `path`, dB (`None` without trusted bands).
+/// RMS of the trusted band gaps of `path`, dB (`None` without trusted bands); of every path a
+/// model predicts whatever it lacks when `path` is `None` (not a backrest force, which a model
+/// without a backrest does not predict at all), so that stages compare on the same cells.
 pub fn rms_gap_db(cells: &[BandCell], path: Option<Path>) -> Option<f64> {
+    let always = |name: &str| {
+        Path::ALL
+            .iter()
+            .any(|p| p.name() == name && !p.may_vanish())
+    };
     let v: Vec<f64> = cells
         .iter()
-        .filter(|c| c.trusted && path.is_none_or(|p| p.name() == c.path))
+        .filter(|c| c.trusted && path.map_or(always(c.path), |p| p.name() == c.path))
         .map(|c| c.gap_db * c.gap_db)
         .collect();
     (!v.is_empty()).then(|| (v.iter().sum::<f64>() / v.len() as f64).sqrt())

@@ -6,6 +6,7 @@ use super::measure::{Path, RunSpectra};
 use super::outcome::ChannelError;
 use super::*;
 use crate::error::{Error, Result};
+use crate::system::Role;
 use num_complex::Complex64;
 
 pub(super) fn paths_of(r: &RunSpectra) -> Vec<Path> {
@@ -14,13 +15,19 @@ pub(super) fn paths_of(r: &RunSpectra) -> Vec<Path> {
 
 /// Leaves out of every run the paths whose channels `system` does not yield (a triaxial
 /// accelerometer's fore-aft axis under a vertical model), with one warning naming them: the
-/// model cannot be judged there, and the rest of the run still can.
+/// model cannot be judged there, and the rest of the run still can. A model without a backrest is
+/// judged on a measured backrest force: it predicts none; one whose backrest is a contact it does
+/// not resolve vertically (a planar model's) is not.
 pub(super) fn keep_modelled<'a>(
     runs: impl IntoIterator<Item = &'a mut RunSpectra>,
     system: &crate::system::System,
     warnings: &mut Vec<String>,
 ) {
+    let no_backrest = !system.links.iter().any(|l| l.role == Role::Backrest);
     let modelled = |p: Path| {
+        if p == Path::BackrestMass && no_backrest {
+            return true;
+        }
         let (x, y) = p.channels();
         [x, y]
             .iter()

@@ -35,6 +35,7 @@ pub(super) fn locate<'a>(
     let last = runs.len().saturating_sub(1);
     let mut summaries = Vec::new();
     let mut gap_map = Vec::new();
+    let mut bands = Vec::new();
     for (i, (sig, spec)) in runs.into_iter().enumerate() {
         let role = if i == last { "check" } else { "train" };
         let sim = replay::replay(
@@ -47,7 +48,12 @@ pub(super) fn locate<'a>(
         let pred: Vec<_> = spec
             .paths
             .iter()
-            .map(|p| ss.path(p.path).map(|q| q.h1.clone()))
+            .map(|p| match ss.path(p.path) {
+                Some(q) => Some(q.h1.clone()),
+                // A model without a backrest carries no backrest force.
+                None if p.path.may_vanish() => Some(vec![Default::default(); spec.freq_hz.len()]),
+                None => None,
+            })
             .collect::<Option<Vec<_>>>()
             .ok_or_else(|| {
                 Error::parameter("model", "the model does not yield the run's channels")
@@ -74,13 +80,19 @@ pub(super) fn locate<'a>(
             ),
         });
         if role == "check" {
+            // Which bands are judged depends on the measured coherence alone: the cells against
+            // a unit prediction, which also covers a path the model predicts nothing on.
+            let unit: Vec<Vec<_>> = (spec.paths.iter())
+                .map(|_| vec![num_complex::Complex64::new(1.0, 0.0); spec.freq_hz.len()])
+                .collect();
+            bands = coverage(&gapmap::band_cells(spec, &unit));
             gap_map = cells;
         }
     }
     Ok(Located {
         peak_shift: magnitude_trend(&summaries),
         classification: gapmap::classify(&gap_map),
-        bands: coverage(&gap_map),
+        bands,
         runs: summaries,
         gap_map,
     })

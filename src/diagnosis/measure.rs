@@ -37,17 +37,23 @@ pub enum Path {
     BaseSeatX,
     /// Vertical base to fore-and-aft head acceleration a_head_x/a_base_z (1).
     BaseHeadX,
+    /// The backrest's vertical apparent mass f_back_z/a_base_z in kg: the load cells of an
+    /// instrumented backrest on the frame that moves with the base (Nawayseh & Griffin, JSV 277
+    /// (2004) 309–326). A model without a backrest predicts zero, so its residual is linear in
+    /// the ratio ([`Path::may_vanish`]).
+    BackrestMass,
 }
 
 impl Path {
     /// Every path, in report order.
-    pub const ALL: [Path; 6] = [
+    pub const ALL: [Path; 7] = [
         Path::BaseSeat,
         Path::SeatHead,
         Path::BaseHead,
         Path::ApparentMass,
         Path::BaseSeatX,
         Path::BaseHeadX,
+        Path::BackrestMass,
     ];
     /// Short name used in reports and JSON.
     pub fn name(self) -> &'static str {
@@ -58,6 +64,7 @@ impl Path {
             Path::ApparentMass => "apparent-mass",
             Path::BaseSeatX => "base-seat-x",
             Path::BaseHeadX => "base-head-x",
+            Path::BackrestMass => "backrest-mass",
         }
     }
     /// Input and output channel names.
@@ -69,7 +76,13 @@ impl Path {
             Path::ApparentMass => ("a_seat_z", "f_seat_z"),
             Path::BaseSeatX => ("a_base_z", "a_seat_x"),
             Path::BaseHeadX => ("a_base_z", "a_head_x"),
+            Path::BackrestMass => ("a_base_z", crate::system::BACKREST_FORCE),
         }
+    }
+    /// Whether a model can predict the path as zero (a seat without a backrest carries no
+    /// backrest force), where the log-ratio of the prediction to the measurement is −∞.
+    pub fn may_vanish(self) -> bool {
+        self == Path::BackrestMass
     }
     /// Whether the path is used in fitting (base→head is the product of the first two).
     pub fn fitted(self) -> bool {

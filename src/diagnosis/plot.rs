@@ -31,8 +31,24 @@ fn zero_db() -> Vec<Rule> {
 pub fn charts(d: &Diagnosis) -> (Chart, Vec<Chart>) {
     let mut paths: Vec<&str> = d.gap_map.iter().map(|c| c.path).collect();
     paths.dedup();
+    let unpredicted: Vec<&str> = (paths.iter().copied())
+        .filter(|p| !d.gap_map.iter().any(|c| c.path == *p && c.trusted))
+        .filter(|p| {
+            d.null
+                .check
+                .cells
+                .iter()
+                .all(|c| c.path != *p || !c.trusted)
+        })
+        .collect();
     let map = Chart {
         title: "gap map, nominal model replayed (trusted bands)".into(),
+        subtitle: (!unpredicted.is_empty()).then(|| {
+            format!(
+                "not drawn: {} (the model predicts nothing there)",
+                unpredicted.join(", ")
+            )
+        }),
         x_label: "frequency [Hz]".into(),
         y_label: "measured / model [dB]".into(),
         log_x: true,
@@ -53,8 +69,23 @@ pub fn charts(d: &Diagnosis) -> (Chart, Vec<Chart>) {
             for r in d.candidates.iter().take(2) {
                 stages.push((format!("+ {}", r.id), &r.check));
             }
+            // A stage with no trusted cell on a judged path predicts nothing there (no backrest
+            // force without a backrest): said, not drawn.
+            let judged = |s: &Stage| s.cells.iter().any(|c| c.path == *path && c.trusted);
+            let silent: Vec<&str> = (stages.iter())
+                .filter(|(_, s)| !judged(s))
+                .map(|(l, _)| l.as_str())
+                .collect();
+            let subtitle =
+                (!silent.is_empty() && stages.iter().any(|(_, s)| judged(s))).then(|| {
+                    format!(
+                        "{}: predict nothing on this path (a 100 % gap)",
+                        silent.join(", ")
+                    )
+                });
             Chart {
                 title: format!("{path}: gap on the check run"),
+                subtitle,
                 x_label: "frequency [Hz]".into(),
                 y_label: "measured / model [dB]".into(),
                 log_x: true,

@@ -367,6 +367,9 @@ struct Taps {
     force: Option<usize>,
     seat_x: Option<usize>,
     head_x: Option<usize>,
+    /// The backrest force from the system's backrest links as they are now (a candidate adds
+    /// some; none: zero), not from a channel built before ([`crate::system::backrest_force`]).
+    backrest: crate::system::Rule,
 }
 
 impl Taps {
@@ -382,6 +385,7 @@ impl Taps {
             force: system.channel_index("f_seat_z"),
             seat_x: system.channel_index("a_seat_x"),
             head_x: system.channel_index("a_head_x"),
+            backrest: crate::system::backrest_force(&system.links).rule,
         })
     }
 }
@@ -398,7 +402,7 @@ fn path_values(
     times: &SegmentTimes,
     out: &mut [Complex64],
 ) -> Result<()> {
-    let (ch, _) = solve_point(system, f)?;
+    let (ch, x) = solve_point(system, f)?;
     let seat = ch[taps.seat_z];
     let response = |c: &Channel| c.response_in(f, times);
     let (lb, ls, lh) = (response(&v.base), response(&v.seat), response(&v.head));
@@ -427,6 +431,17 @@ fn path_values(
             }
             Path::BaseSeatX => tap(taps.seat_x)? * ls / lb,
             Path::BaseHeadX => tap(taps.head_x)? * lh / lb,
+            // The backrest's load cells are read through the force plate's conditioning and
+            // logger (its lag, drift and low-pass), not its top plate or mount.
+            Path::BackrestMass => {
+                let cells = Channel {
+                    mount: None,
+                    ..v.force
+                };
+                let force =
+                    crate::response::frf::channel_value(system, &taps.backrest, 2.0 * PI * f, &x);
+                force * response(&cells) / lb
+            }
         };
     }
     Ok(())

@@ -143,10 +143,6 @@ fn where_(out: &mut String, d: &Diagnosis) {
     for c in &d.classification {
         let _ = writeln!(out, "  - {c}");
     }
-    let _ = writeln!(
-        out,
-        "  gap map of the check run (dB, measured vs model; '·' = coherence < 0.8):"
-    );
     let mut paths: Vec<&str> = d.gap_map.iter().map(|c| c.path).collect();
     paths.dedup();
     let bands: Vec<f64> = d
@@ -155,19 +151,29 @@ fn where_(out: &mut String, d: &Diagnosis) {
         .filter(|c| c.path == paths[0])
         .map(|c| c.band_hz)
         .collect();
+    // A band with no cell is one the model predicts nothing in (`gapmap::band_cells`).
+    let cell = |p: &str, b: f64| d.gap_map.iter().find(|c| c.path == p && c.band_hz == b);
+    let unpredicted = paths
+        .iter()
+        .any(|p| bands.iter().any(|&b| cell(p, b).is_none()));
+    let _ = writeln!(
+        out,
+        "  gap map of the check run (dB, measured vs model; '·' = coherence < 0.8{}):",
+        if unpredicted {
+            "; 'none' = the model predicts nothing there, e.g. no backrest force without a backrest"
+        } else {
+            ""
+        }
+    );
     let head: Vec<String> = bands.iter().map(|b| format!("{b:>6}")).collect();
     let _ = writeln!(out, "    {:<14}{}", "band Hz", head.join(""));
     for p in &paths {
-        let row: Vec<String> = d
-            .gap_map
+        let row: Vec<String> = bands
             .iter()
-            .filter(|c| c.path == *p)
-            .map(|c| {
-                if c.trusted {
-                    format!("{:>+6.1}", c.gap_db)
-                } else {
-                    format!("{:>6}", "·")
-                }
+            .map(|&b| match cell(p, b) {
+                Some(c) if c.trusted => format!("{:>+6.1}", c.gap_db),
+                Some(_) => format!("{:>6}", "·"),
+                None => format!("{:>6}", "none"),
             })
             .collect();
         let _ = writeln!(out, "    {:<14}{}", p, row.join(""));

@@ -5,9 +5,11 @@
 //! A cell is one (run, path, bin) with coherence ≥ [`MIN_COHERENCE`]; it contributes the real and
 //! imaginary part of ln(H_model/H_meas) — the log-magnitude ratio and the phase difference in rad —
 //! each divided by σ = √(σ_H1² + σ_floor²), σ_H1 from [`h1_sigma`]. A right model then gives a
-//! reduced χ² near 1 (docs/gap.md §6.3).
+//! reduced χ² near 1 (docs/gap.md §6.3). On a path a model may predict as zero (a backrest force
+//! without a backrest, [`Path::may_vanish`]) the cell is the relative error H_model/H_meas − 1
+//! instead, equal to the log-ratio to first order near a right model and −1 (a 100 % gap) at zero.
 
-use super::measure::{MIN_COHERENCE, RunSpectra, h1_sigma};
+use super::measure::{MIN_COHERENCE, Path, RunSpectra, h1_sigma};
 use super::predict::{Variant, predict};
 use crate::error::Result;
 use num_complex::Complex64;
@@ -22,10 +24,21 @@ pub fn trusted(coherence: f64) -> bool {
     coherence >= MIN_COHERENCE
 }
 
-/// The per-cell weighted log-ratio residual of a prediction against a measurement.
-pub fn cell(pred: Complex64, meas: Complex64, coherence: f64, segments: usize) -> (f64, f64) {
+/// The per-cell weighted residual of a prediction against a measurement on `path`: the log-ratio,
+/// or the relative error where the path may vanish.
+pub fn cell(
+    path: Path,
+    pred: Complex64,
+    meas: Complex64,
+    coherence: f64,
+    segments: usize,
+) -> (f64, f64) {
     let s = (h1_sigma(coherence, segments).powi(2) + FLOOR * FLOOR).sqrt();
-    let z = (pred / meas).ln();
+    let z = if path.may_vanish() {
+        pred / meas - 1.0
+    } else {
+        (pred / meas).ln()
+    };
     if z.re.is_finite() && z.im.is_finite() {
         (z.re / s, z.im / s)
     } else {
@@ -50,7 +63,7 @@ pub fn run_residuals(run: &RunSpectra, preds: &[Vec<Complex64>], out: &mut Vec<f
         }
         for ((&p, &h), &g) in pred.iter().zip(&pe.h1).zip(&pe.coherence) {
             if trusted(g) {
-                let (a, c) = cell(p, h, g, run.segments);
+                let (a, c) = cell(pe.path, p, h, g, run.segments);
                 out.push(a);
                 out.push(c);
             }
@@ -98,9 +111,20 @@ mod tests {
         // |pred/meas| = 1.1, phase +0.1 rad; coherence 1 leaves σ = FLOOR.
         let meas = Complex64::new(2.0, 0.0);
         let pred = meas * Complex64::from_polar(1.1, 0.1);
-        let (a, b) = cell(pred, meas, 1.0, 50);
+        let (a, b) = cell(Path::BaseSeat, pred, meas, 1.0, 50);
         assert!((a - 1.1f64.ln() / FLOOR).abs() < 1e-9);
         assert!((b - 0.1 / FLOOR).abs() < 1e-9);
+    }
+
+    #[test]
+    fn a_vanishing_prediction_is_a_finite_100_percent_gap() {
+        // No backrest: the residual is −1/σ, finite, where the log-ratio is −∞.
+        let meas = Complex64::new(0.0, 3.0);
+        let (a, b) = cell(Path::BackrestMass, Complex64::new(0.0, 0.0), meas, 1.0, 50);
+        assert!((a + 1.0 / FLOOR).abs() < 1e-9 && b.abs() < 1e-12, "{a} {b}");
+        // Near a right model it is the log-ratio to first order: 1 % high reads 0.01, not ln 1.01.
+        let (a, _) = cell(Path::BackrestMass, meas * 1.01, meas, 1.0, 50);
+        assert!((a * FLOOR - 0.01).abs() < 1e-12 && (a * FLOOR - 1.01f64.ln()).abs() < 1e-4);
     }
 
     #[test]

@@ -15,7 +15,7 @@ use crate::signals::Signals;
 use std::ops::Range;
 
 /// The channels the diagnosis reads.
-const CHANNELS: [&str; 4] = ["a_base_z", "a_seat_z", "a_head_z", "f_seat_z"];
+const CHANNELS: [&str; 5] = ["a_base_z", "a_seat_z", "a_head_z", "f_seat_z", "f_back_z"];
 
 /// Fewest clean Welch segments a run must keep: with L averages the coherence is biased by about
 /// 1/L and the H1 error grows as 1/√L (Bendat & Piersol, Table 9.6); below 12 the coherence mask
@@ -106,7 +106,8 @@ pub(super) fn screen(s: &Signals) -> Result<Screened> {
     let mut dropped: Vec<String> = Vec::new();
     let mut left = clean(&found)?;
     while left.0 < MIN_CLEAN_SEGMENTS {
-        let optional = |i: usize| matches!(s.names[i].as_str(), "a_head_z" | "f_seat_z");
+        let optional =
+            |i: usize| matches!(s.names[i].as_str(), "a_head_z" | "f_seat_z" | "f_back_z");
         let worst = found
             .iter()
             .enumerate()

@@ -69,7 +69,7 @@ const SEPARATIONS: [Separation; 11] = [
     },
     Separation {
         applies: |a, b| either(a, b, Backrest),
-        measurement: "a run without backrest contact, or a backrest force (a backrest drives the torso past the seat pan)",
+        measurement: "a run without backrest contact, or the backrest's vertical force f_back_z (only a backrest carries it: it drives the torso past the seat pan)",
     },
     Separation {
         applies: |a, b| either(a, b, ThighSupport),
