@@ -1,8 +1,9 @@
 //! Diagnoses bench cases with one planted truth form, for looking at a form's verdicts.
 //! Usage: `cargo run --release --example gap_form -- FORM STRENGTH [CASES [SEED [FORCE [SPECTRUM
-//! [RATE [FLOOR]]]]]]` (FORM as the bench names it, e.g. `logger-drift`, or `none`; FORCE
+//! [RATE [FLOOR [BACK]]]]]]]` (FORM as the bench names it, e.g. `logger-drift`, or `none`; FORCE
 //! `yes`/`no`, SPECTRUM one of the bench's kinds, RATE in Hz, FLOOR the base accelerometer's extra
-//! noise floor as a fraction of the base r.m.s.; default drawn).
+//! noise floor as a fraction of the base r.m.s., BACK `yes`/`no` whether a planted backrest's force
+//! `f_back_z` is measured; default drawn).
 
 use rayon::prelude::*;
 use wbv::gap_bench::case::{CaseOptions, make_case_with};
@@ -10,7 +11,8 @@ use wbv::gap_bench::forms::Form;
 
 fn main() -> wbv::Result<()> {
     let mut args = std::env::args().skip(1);
-    let usage = "usage: gap_form FORM STRENGTH [CASES [SEED [FORCE [SPECTRUM [RATE [FLOOR]]]]]]";
+    let usage =
+        "usage: gap_form FORM STRENGTH [CASES [SEED [FORCE [SPECTRUM [RATE [FLOOR [BACK]]]]]]]";
     let name = args.next().expect(usage);
     let form = Form::ALL.into_iter().find(|f| f.name() == name);
     assert!(form.is_some() || name == "none", "a form name or none");
@@ -26,6 +28,7 @@ fn main() -> wbv::Result<()> {
     });
     let fs_hz: Option<f64> = args.next().map(|s| s.parse().expect("RATE"));
     let base_floor: Option<f64> = args.next().map(|s| s.parse().expect("FLOOR"));
+    let backrest_force = args.next().map(|s| s == "yes");
     let model = wbv::model::catalog::resolve("reference")?;
     let lines: Vec<String> = (0..cases)
         .into_par_iter()
@@ -36,6 +39,7 @@ fn main() -> wbv::Result<()> {
                 spectrum,
                 fs_hz,
                 base_floor,
+                backrest_force,
                 ..CaseOptions::default()
             };
             let case = make_case_with(i, seed, &o)?;

@@ -44,11 +44,12 @@ pub(super) fn simulate(
 }
 
 /// Adds white noise of `level` × channel r.m.s. (the base: `base_floor` × its r.m.s. more, in
-/// power) and drops `f_seat_z` when `force` is false.
+/// power), drops `f_seat_z` when `force.0` is false and keeps `f_back_z` only when `force.1` is
+/// true.
 pub(super) fn measure(
     s: &Signals,
     (level, base_floor): (f64, f64),
-    force: bool,
+    force: (bool, bool),
     rng: &mut ChaCha8Rng,
     name: String,
 ) -> Result<Signals> {
@@ -56,11 +57,11 @@ pub(super) fn measure(
     for (n, d) in s.names.iter().zip(&s.data) {
         if !matches!(
             n.as_str(),
-            "a_base_z" | "a_seat_z" | "a_head_z" | "f_seat_z"
+            "a_base_z" | "a_seat_z" | "a_head_z" | "f_seat_z" | "f_back_z"
         ) {
             continue;
         }
-        if n == "f_seat_z" && !force {
+        if (n == "f_seat_z" && !force.0) || (n == "f_back_z" && !force.1) {
             continue;
         }
         let extra = if n == "a_base_z" { base_floor } else { 0.0 };

@@ -2,6 +2,7 @@
 //! units of the H1 estimate's standard error.
 
 use super::*;
+use num_complex::Complex64;
 
 /// The bench's Welch resolution for a run of `duration_s`: 0.25 Hz, coarser for short runs so that
 /// every estimate has ≥ 23 averages.
@@ -22,14 +23,20 @@ pub(super) fn detectability(truth: &Signals, without: &Signals, measured: &Signa
         ("a_base_z", "a_seat_z"),
         ("a_seat_z", "a_head_z"),
         ("a_seat_z", "f_seat_z"),
+        ("a_base_z", "f_back_z"),
     ] {
         let (Some(mx), Some(my)) = (measured.get(x), measured.get(y)) else {
             continue;
         };
         let m = w.cross(mx, my)?;
         let a = w.cross(truth.require(x)?, truth.require(y)?)?;
-        let b = w.cross(without.require(x)?, without.require(y)?)?;
-        let (coh, ha, hb) = (m.coherence(), a.h1(), b.h1());
+        let (coh, ha) = (m.coherence(), a.h1());
+        // A backrest force the system without the effect does not have changes by 100 %: the
+        // relative change 1 − H_without/H_truth stands for the log-ratio there.
+        let hb = match without.get(y) {
+            Some(wy) => w.cross(without.require(x)?, wy)?.h1(),
+            None => vec![Complex64::new(0.0, 0.0); ha.len()],
+        };
         let l = m.segments.max(1) as f64;
         let (mut sum, mut n) = (0.0, 0usize);
         for i in 0..m.freq_hz.len() {
@@ -39,7 +46,11 @@ pub(super) fn detectability(truth: &Signals, without: &Signals, measured: &Signa
             }
             let g = coh[i];
             let var = (1.0 - g) / (2.0 * g * l) + 1e-4;
-            let z = (ha[i] / hb[i]).ln();
+            let z = if hb[i].norm() > 0.0 {
+                (ha[i] / hb[i]).ln()
+            } else {
+                Complex64::new(1.0, 0.0)
+            };
             if z.re.is_finite() && z.im.is_finite() {
                 sum += z.norm_sqr() / var;
                 n += 1;

@@ -69,6 +69,9 @@ pub struct Nuisance {
     /// The base accelerometer's own white noise floor on top of `noise_percent`, % of the base
     /// r.m.s. (a field logger's MEMS sensor under a road spectrum; 0 = none).
     pub base_floor_percent: f64,
+    /// Whether the backrest's vertical force `f_back_z` is measured (half the cases with a planted
+    /// backrest: what a backrest study adds to the z-only channels).
+    pub backrest_force: bool,
 }
 
 /// The sealed label of a case.
@@ -243,6 +246,8 @@ pub struct CaseOptions {
     pub force: Option<bool>,
     /// The base accelerometer's extra noise floor, fraction of the base r.m.s.
     pub base_floor: Option<f64>,
+    /// Whether a planted backrest's force `f_back_z` is measured.
+    pub backrest_force: Option<bool>,
 }
 
 /// Builds case `index` of a bench with master seed `seed`.
@@ -313,6 +318,11 @@ pub fn make_case_with(index: usize, seed: u64, o: &CaseOptions) -> Result<Case> 
         0.0
     };
     let base_floor = o.base_floor.unwrap_or(base_floor);
+    // Half the cases with a backrest instrument it (its own stream too).
+    let mut brng = ChaCha8Rng::seed_from_u64(cseed ^ 0xbac4_0000_0000_0001);
+    let has_backrest = effects.iter().any(|(f, _)| *f == Form::Backrest);
+    let backrest_force = has_backrest && brng.random::<f64>() < 0.5;
+    let backrest_force = has_backrest && o.backrest_force.unwrap_or(backrest_force);
     let mut runs = Vec::new();
     let mut clean_top = None;
     for (j, spec) in specs.iter().enumerate() {
@@ -327,7 +337,7 @@ pub fn make_case_with(index: usize, seed: u64, o: &CaseOptions) -> Result<Case> 
         let meas = measure(
             &sim,
             (noise, base_floor),
-            force,
+            (force, backrest_force),
             &mut nrng,
             format!("case {index} {role} run {j} ({:.2} m/s²)", rms[j]),
         )?;
@@ -374,6 +384,7 @@ pub fn make_case_with(index: usize, seed: u64, o: &CaseOptions) -> Result<Case> 
                 rms,
                 logger_fault,
                 base_floor_percent: 100.0 * base_floor,
+                backrest_force,
             },
             detectability: detect,
         },

@@ -388,6 +388,11 @@ pub fn plant(
             for ch in &late {
                 planted.sensors.push((ch.to_string(), clock.clone()));
             }
+            // An instrumented backrest's load cells (a backrest case's `f_back_z`) go with the
+            // force plate's conditioning, on the occupant's logger without a plate.
+            if !force || force_late {
+                planted.sensors.push(("f_back_z".into(), clock.clone()));
+            }
             format!("{clock:?} on {}", late.join(", "))
         }
         Form::FrameTwoMode => frame::plant_two_mode(u, rng, model)?,
