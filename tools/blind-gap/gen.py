@@ -787,10 +787,11 @@ RATES = (256, 500, 512, 1000, 1024, 2000)
 DAQ_NAMES = {"a_base_z": ["CH1 Floor Z", "Base Acc Z", "Acc Z base", "Plattform Z"],
              "a_seat_z": ["CH2 Seat pad Z", "SAE pad Az", "Acc Z seat", "Sitz Z"],
              "a_head_z": ["CH3 Bite bar Z", "Head Az", "Acc Z head", "Kopf Z"],
-             "f_seat_z": ["CH4 Force plate Fz", "Fz plate", "Force Z seat", "Kraft Z"]}
+             "f_seat_z": ["CH4 Force plate Fz", "Fz plate", "Force Z seat", "Kraft Z"],
+             "f_back_z": ["CH5 Backrest Fz", "Fz back", "Force Z backrest", "Kraft Z Lehne"]}
 
 
-def outputs_for(plant, force):
+def outputs_for(plant, force, back=False):
     out = {"a_seat_z": ("acc", "cushion"), "a_head_z": ("acc", "head"),
            "defl_cushion": ("lin", plant.deflection_row("cushion", plant.links["cushion"][1]), 0.0),
            "defl_k4": ("lin", plant.deflection_row("pelvis", "cushion"), 0.0)}
@@ -799,6 +800,10 @@ def outputs_for(plant, force):
         row = -k4 * plant.deflection_row("pelvis", "cushion") - c4 * plant.rate_row("pelvis", "cushion")
         on_k4 = plant.nonlinear is not None and plant.nonlinear[0] == "pelvis"
         out["f_seat_z"] = ("lin", row, 1.0 if on_k4 else 0.0)
+    if back and "extra" in plant.links and plant.links["extra"][0] == "upper_torso":
+        # an instrumented backrest: the vertical force of the back link on the upper torso, up positive
+        node, _, kb, cb = plant.links["extra"]
+        out["f_back_z"] = ("lin", -kb * plant.deflection_row(node, None) - cb * plant.rate_row(node, None), 0.0)
     if "suspension" in plant.links:  # suspension stroke and its rate (seed001-full)
         out["defl_susp"] = ("lin", plant.deflection_row("seat_frame", None), 0.0)
         out["defl_susp_rate"] = ("lin", plant.rate_row("seat_frame", None), 0.0)
@@ -947,6 +952,10 @@ def make_case(case_dir, seed, index, override=None, model="reference"):
     force = bool(override.get("force_plate", force))
     force_static = bool(rng.uniform() < 0.5)
     noise = {ch: float(rng.uniform(0.005, 0.03)) for ch in ("a_base_z", "a_seat_z", "a_head_z", "f_seat_z")}
+    # an instrumented backrest (--backrest-force) on backrest cases; its noise from its own stream
+    back = bool(override.get("backrest_force")) and form == "backrest"
+    if back:
+        noise["f_back_z"] = float(np.random.default_rng([seed, index, 21]).uniform(0.005, 0.03))
     field = draw_field(seed, index, family, force) if override.get("field") else None
     if field and field.get("logger") and "params" in override:
         # --like on a field case: its own logger timing, and the wiring stated to match it (a
@@ -994,7 +1003,7 @@ def make_case(case_dir, seed, index, override=None, model="reference"):
                 effs_fine.append(None)
                 continue
             plant = build_plant(subject, family, form, params, A, sigma)
-            effs_fine.append(simulate(plant, u, 1 / ffs, outputs_for(plant, force)))
+            effs_fine.append(simulate(plant, u, 1 / ffs, outputs_for(plant, force, back)))
         runs_clean, twins_out = [], []
         for (u, tw, ef) in zip(bases, twins_fine, effs_fine):
             ch = {"a_base_z": u, **{k: v for k, v in (ef or tw).items() if not k.startswith("defl")}}
@@ -1020,12 +1029,12 @@ def make_case(case_dir, seed, index, override=None, model="reference"):
         params = draw_effect(rng, family, form, strength)
     # sensors, offsets, force plate static weight, noise
     body_w = G * sum(v for k, v in subject[0].items() if k != "cushion")
-    layout = draw_layout(rng, force)
+    layout = draw_layout(rng, force, back)
     files = []
     for r, (y, T_i) in enumerate(zip(runs_clean, durs)):
         chans = {}
         for ch, v in y.items():
-            if ch != "a_base_z" and ch not in ("a_seat_z", "a_head_z", "f_seat_z"):
+            if ch != "a_base_z" and ch not in ("a_seat_z", "a_head_z", "f_seat_z", "f_back_z"):
                 continue
             sd = float(np.std(v))
             v = v + noise[ch] * sd * noise_rng.standard_normal(len(v)) + noise[ch] / 3 * sd * pink(noise_rng, len(v), fs)
@@ -1046,7 +1055,7 @@ def make_case(case_dir, seed, index, override=None, model="reference"):
              "strength_scale": strength, "detectability": det, "twin_sigma_high_run": sigma,
              "subject": {"masses_kg": subject[0], "links": {k: {"k": v[2], "c": v[3]} for k, v in subject[1].items()}},
              "nuisances": {"fs_hz": fs, "fine_rate_hz": ffs, "spectrum": spectrum, "magnitudes_ms2": list(mags),
-                           "durations_s": durs, "force_plate": force,
+                           "durations_s": durs, "force_plate": force, "backrest_force": back,
                            "force_static_weight": force and force_static, "noise_frac": noise,
                            "dc_offsets_ms2": offsets, "layout": layout, "field": field},
              "runs": files, "run_order": "run-low, run-high are --run; check-mid is --check"}
@@ -1060,8 +1069,8 @@ def make_case(case_dir, seed, index, override=None, model="reference"):
     return truth
 
 
-def draw_layout(rng, force):
-    chans = ["a_base_z", "a_seat_z", "a_head_z"] + (["f_seat_z"] if force else [])
+def draw_layout(rng, force, back=False):
+    chans = ["a_base_z", "a_seat_z", "a_head_z"] + (["f_seat_z"] if force else []) + (["f_back_z"] if back else [])
     daq_names = bool(rng.uniform() < 0.5)
     u = rng.uniform()
     units = "ms2" if u < 0.6 else ("g-option" if u < 0.85 or not daq_names else "g-header")
@@ -1132,6 +1141,8 @@ def main():
                          "stated=0 (a field case's wiring not stated)")
     ap.add_argument("--family", choices=sorted(FAMILIES), help="study set: every case gets this effect family")
     ap.add_argument("--form", help="study set: every case gets this form (implies its family)")
+    ap.add_argument("--backrest-force", action="store_true",
+                    help="backrest cases also measure the backrest's vertical force f_back_z")
     ap.add_argument("--field", action="store_true",
                     help="vehicle field conditions: two data loggers, logger faults, --logger stated in half")
     ap.add_argument("--model", choices=sorted(MODELS), default="reference",
@@ -1157,11 +1168,14 @@ def main():
             override["field"] = True
         for kv in a.set:
             k, v = kv.split("=", 1)
-            override[k] = v if k == "spectrum" else (bool(int(v)) if k in ("force_plate", "stated") else float(v))
+            override[k] = v if k == "spectrum" else (
+                bool(int(v)) if k in ("force_plate", "stated", "backrest_force") else float(v))
         a.seed, a.first, a.cases = like["seed"], like["case"], 1
         a.model = like.get("model", "reference")
     if a.field:
         override = dict(override or {}, field=True)
+    if a.backrest_force:
+        override = dict(override or {}, backrest_force=True)
     os.makedirs(a.outdir, exist_ok=True)
     for i in range(a.first, a.first + a.cases):
         d = os.path.join(a.outdir, "case-%03d" % i)
