@@ -289,34 +289,14 @@ fn stacked_configurations_have_the_expected_structure() {
 /// f_back_z = −k_b·X = m·k_b/(k_s + k_b − ω²m): m·k_b/(k_s + k_b) of the static inertial load.
 #[test]
 fn a_backrest_link_s_force_is_its_share_of_the_body_s_inertia() {
+    // one_dof's mass of 50 kg on its seat link `l`, and a backrest link after it.
     let (m, ks, kb) = (50.0, 40_000.0, 10_000.0);
-    let text = format!(
-        r#"
-name = "leaning"
-description = "one mass on a seat and a backrest"
-[[mass]]
-name = "m"
-m = {m}
-[[link]]
-name = "seat"
-between = ["m", "base"]
-type = "kelvin-voigt"
-k = {ks}
-c = 0.0
-[[link]]
-name = "back"
-between = ["m", "base"]
-role = "backrest"
-type = "kelvin-voigt"
-k = {kb}
-c = 0.0
-[measure]
-seat = "base"
-head = "m"
-interface = ["seat"]
-"#
-    );
-    let model = catalog::parse(&text, "leaning.toml").unwrap();
+    let with_back = |between: &str| {
+        format!(
+            "type = \"kelvin-voigt\"\nk = {ks}\nc = 0.0\n[[link]]\nname = \"back\"\nbetween = {between}\nrole = \"backrest\"\ntype = \"kelvin-voigt\"\nk = {kb}\nc = 0.0"
+        )
+    };
+    let model = one_dof(&with_back(r#"["m", "base"]"#));
     let s = model.system();
     let back = s
         .channel_index("f_back_z")
@@ -339,13 +319,11 @@ interface = ["seat"]
     let inertia = m * (1.0 - w * w * x[0]);
     assert!(close(ch[seat] + ch[back], inertia, 1e-10));
     // A backrest link pushes the body above it; one from the base up is refused with its key.
-    let upside_down = text.replace(
-        r#"between = ["m", "base"]
-role"#,
-        r#"between = ["base", "m"]
-role"#,
+    let text = format!(
+        "name = \"x\"\ndescription = \"x\"\n[[mass]]\nname = \"m\"\nm = {m}\n[[link]]\nname = \"l\"\nbetween = [\"m\", \"base\"]\n{}\n[measure]\nseat = \"base\"\ninterface = [\"l\"]\n",
+        with_back(r#"["base", "m"]"#)
     );
-    let err = catalog::parse(&upside_down, "leaning.toml")
+    let err = catalog::parse(&text, "leaning.toml")
         .unwrap_err()
         .to_string();
     assert!(
