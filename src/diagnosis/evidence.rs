@@ -6,10 +6,10 @@
 //! −2 ln L = χ² up to a constant and BIC = χ² + k ln n (Schwarz, Ann. Stat. 6 (1978) 461–464).
 
 use super::candidate::Candidate;
-use super::fitting::{Base, Fitted, fit_candidate};
+use super::fitting::{Base, Fitted, build, fit_candidate};
 use super::gapmap;
 use super::measure::{Path, RunSpectra};
-use super::outcome::{Estimate, Ranked, Stage};
+use super::outcome::{Estimate, IsoSigma, Ranked, Stage};
 use super::predict::{self, Variant};
 use super::score;
 use crate::error::Result;
@@ -37,13 +37,65 @@ pub fn stage(v: &Variant, check: &RunSpectra) -> Result<Stage> {
             .filter_map(|&p| gapmap::rms_phase_deg(&cells, p))
             .fold(0.0, f64::max),
         weighted: match v.without_drift() {
-            // A lag changes no power spectrum: the seat's PSD (and so a_w and SEAT) follows |H|²
-            // without the magnitude a drifting lag's average costs H1.
-            Some(steady) => gapmap::weighted(check, &predict::predict(&steady, check)?[bs]),
+            Some(_) => weighted(v, check)?,
             None => gapmap::weighted(check, &pred[bs]),
         },
+        iso_sigma: None,
         cells,
     })
+}
+
+/// The seat a_w and SEAT of `v` on `check` (ISO 2631-1 §6.4.2). A lag changes no power spectrum:
+/// the seat's PSD follows |H|² without the magnitude a drifting lag's average costs H1, so a
+/// drift is left out.
+fn weighted(v: &Variant, check: &RunSpectra) -> Result<gapmap::Weighted> {
+    let bs = (check.paths.iter())
+        .position(|p| p.path == Path::BaseSeat)
+        .expect("checked in check_inputs");
+    let steady = v.without_drift();
+    Ok(gapmap::weighted(
+        check,
+        &predict::predict(steady.as_ref().unwrap_or(v), check)?[bs],
+    ))
+}
+
+/// Standard errors of the seat a_w gap and SEAT of the fit `ft` of `cands` on `check`: the
+/// gradients by forward differences of a tenth of each parameter's standard error, propagated
+/// through the full covariance (the marginal errors alone miss that masses trade against
+/// stiffnesses). `None` when the covariance is singular.
+pub(super) fn iso_sigma(
+    base: &Base,
+    cands: &[Candidate],
+    ft: &Fitted,
+    check: &RunSpectra,
+    at: &gapmap::Weighted,
+) -> Result<Option<IsoSigma>> {
+    let Some(cov) = &ft.fit.covariance else {
+        return Ok(None);
+    };
+    let u = &ft.fit.u;
+    let mut g_aw = vec![0.0; u.len()];
+    let mut g_seat = vec![0.0; u.len()];
+    for i in 0..u.len() {
+        let s = ft.fit.sigma_u[i];
+        if !(s.is_finite() && s > 0.0) {
+            continue;
+        }
+        let h = 0.1 * s;
+        let mut v = u.clone();
+        v[i] += h;
+        let w = weighted(&build(base, cands, &v, ft.variant.rms_ref)?, check)?;
+        g_aw[i] = (w.aw_gap_percent - at.aw_gap_percent) / h;
+        g_seat[i] = (w.seat_model - at.seat_model) / h;
+    }
+    let quad = |g: &[f64]| {
+        let g = nalgebra::DVector::from_column_slice(g);
+        (g.transpose() * cov * &g)[(0, 0)].max(0.0).sqrt()
+    };
+    Ok(Some(IsoSigma {
+        aw_percent: quad(&g_aw),
+        seat_points: quad(&g_seat),
+    }))
 }
 
 /// Fraction of the training runs' structural gap that `c` closes against the null re-fit,
@@ -178,7 +230,18 @@ pub(super) fn fit_each(
         .par_iter()
         .map(|s| {
             let ft = fit_candidate(base, s, runs, warm)?;
-            let st = check.map(|c| stage(&ft.variant, c)).transpose()?;
+            let mut st = check.map(|c| stage(&ft.variant, c)).transpose()?;
+            // Only a model within the noise's reach whose a_w or SEAT misses the measurement by
+            // the practical size can be judged to move them away (`verdict::shortfall`).
+            if let (Some(st), Some(c)) = (st.as_mut(), check) {
+                let w = &st.weighted;
+                let (aw, seat) = super::thresholds::ISO_AWAY;
+                let misses =
+                    w.aw_gap_percent.abs() >= aw || (w.seat_model - w.seat_meas).abs() >= seat;
+                if misses && st.chi2_red <= super::thresholds::EXPLAINED_CHI2 {
+                    st.iso_sigma = iso_sigma(base, s, &ft, c, w)?;
+                }
+            }
             Ok((ft, st))
         })
         .collect()

@@ -41,8 +41,8 @@ mod verdict;
 
 pub use candidate::separating_measurement;
 pub use outcome::{
-    BandCoverage, ChannelError, DataFault, Diagnosis, Estimate, PartialEffect, Ranked, RunSummary,
-    Stage, VerdictId,
+    BandCoverage, ChannelError, DataFault, Diagnosis, Estimate, IsoSigma, PartialEffect, Ranked,
+    RunSummary, Stage, VerdictId,
 };
 
 pub use evidence::stage;

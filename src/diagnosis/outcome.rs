@@ -35,8 +35,24 @@ pub struct Stage {
     pub phase_deg_rms: f64,
     /// Weighted r.m.s. and SEAT gap.
     pub weighted: Weighted,
+    /// Standard errors of the seat a_w gap and of SEAT that the fitted parameters' uncertainty
+    /// gives ([`super::evidence::iso_sigma`]); computed where a shift away from the measurement is
+    /// possible at all, else `None`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub iso_sigma: Option<IsoSigma>,
     /// The per-band gap map.
     pub cells: Vec<BandCell>,
+}
+
+/// Standard errors of a fitted model's ISO figures on the check run, from its parameters'
+/// covariance: σ² = gᵀ·C·g, g the figure's gradient in the fitted parameters (first-order
+/// propagation; JCGM 100:2008, GUM §5.1.2).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct IsoSigma {
+    /// Of the seat a_w gap, % (of the measured a_w).
+    pub aw_percent: f64,
+    /// Of SEAT, percentage points.
+    pub seat_points: f64,
 }
 
 /// One fitted candidate.

@@ -284,8 +284,13 @@ pub(super) fn partial(
         Shortfall::IsoAway {
             aw_gap_percent: (a0, a1),
             seat_gap_points: (s0, s1),
+            sigma,
         } => format!(
-            "moves the check run's ISO figures away from the measurement (seat a_w gap {a0:+.1} % → {a1:+.1} %, SEAT gap {s0:+.1} → {s1:+.1} points): it fits the responses but not where the seat's frequency weighting counts, so its form, its size or a further effect is off there"
+            "moves the check run's ISO figures away from the measurement (seat a_w gap {a0:+.1} % → {a1:+.1} %, SEAT gap {s0:+.1} → {s1:+.1} points{}): it fits the responses but not where the seat's frequency weighting counts, so its form, its size or a further effect is off there",
+            sigma.map_or(String::new(), |s| format!(
+                "; its fitted parameters give these ±{:.2} % and ±{:.2} points, so the move is the form's, not the fit's scatter",
+                s.aw_percent, s.seat_points
+            ))
         ),
     };
     let list = partial
@@ -325,6 +330,7 @@ pub(super) fn equivalent_linear_iso(s: &Shortfall) -> String {
         Shortfall::IsoAway {
             aw_gap_percent: (a0, a1),
             seat_gap_points: (s0, s1),
+            ..
         } => format!(
             "the named effect fits the frequency responses but its equivalent linear model moves the check run's ISO figures away from the measurement (seat a_w gap {a0:+.1} % → {a1:+.1} %, SEAT gap {s0:+.1} → {s1:+.1} points): a nonlinearity's distortion power is in the measured a_w and not in the linearised prediction, so take a_w and SEAT from the re-fitted model"
         ),

@@ -176,6 +176,11 @@ pub struct Fit {
     pub cost: f64,
     /// Standard errors of u (from the curvature), `NaN` where not identifiable.
     pub sigma_u: Vec<f64>,
+    /// Covariance of u, s²·(JᵀJ)⁻¹ with s² = max(cost/(n − p), 1) (the residuals' scale, never
+    /// below the noise they are weighted by); `None` where JᵀJ is singular. Masses trade against
+    /// stiffnesses, so a figure that depends on several parameters needs the off-diagonal terms,
+    /// not [`Fit::sigma_u`] alone (Bates & Watts, *Nonlinear Regression Analysis*, 1988, §2.3).
+    pub covariance: Option<DMatrix<f64>>,
     /// Function evaluations used.
     pub evaluations: usize,
 }
@@ -327,14 +332,16 @@ where
     let jtj = jac.transpose() * &jac;
     let dof = (r.len() as f64 - p as f64).max(1.0);
     let s2 = (c / dof).max(1.0);
-    let sigma_u = match jtj.clone().try_inverse() {
-        Some(inv) => (0..p).map(|i| (s2 * inv[(i, i)]).max(0.0).sqrt()).collect(),
+    let covariance = jtj.try_inverse().map(|inv| inv * s2);
+    let sigma_u = match &covariance {
+        Some(cov) => (0..p).map(|i| cov[(i, i)].max(0.0).sqrt()).collect(),
         None => vec![f64::NAN; p],
     };
     Ok(Fit {
         u,
         cost: c,
         sigma_u,
+        covariance,
         evaluations: evals,
     })
 }
@@ -342,6 +349,35 @@ where
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn the_covariance_of_a_straight_line_is_the_textbook_one() {
+        // y = a + b·t with unit-weighted residuals that fit exactly (s² = 1): var b = 1/S_tt,
+        // var a = 1/n + t̄²/S_tt, cov(a, b) = −t̄/S_tt with S_tt = Σ(t − t̄)² (Draper & Smith,
+        // Applied Regression Analysis, §1.4). Intercept and slope trade: the covariance is
+        // negative, which the marginal errors alone do not show.
+        let t: Vec<f64> = (0..20).map(|i| 1.0 + 0.5 * i as f64).collect();
+        let f = |u: &[f64]| -> Result<Vec<f64>> {
+            Ok(t.iter()
+                .map(|t| u[0] + u[1] * t - (2.0 + 0.3 * t))
+                .collect())
+        };
+        let s = Settings::default();
+        let fit = levenberg_marquardt(&f, &[0.0, 0.0], &[-10.0, -10.0], &[10.0, 10.0], &s).unwrap();
+        let cov = fit.covariance.expect("a straight line is identifiable");
+        let n = t.len() as f64;
+        let mean = t.iter().sum::<f64>() / n;
+        let stt: f64 = t.iter().map(|t| (t - mean).powi(2)).sum();
+        for (got, want) in [
+            (cov[(1, 1)], 1.0 / stt),
+            (cov[(0, 0)], 1.0 / n + mean * mean / stt),
+            (cov[(0, 1)], -mean / stt),
+            (cov[(1, 0)], -mean / stt),
+        ] {
+            assert!((got - want).abs() < 1e-6 * want.abs(), "{got} vs {want}");
+        }
+        assert!((fit.sigma_u[1] - (1.0 / stt).sqrt()).abs() < 1e-9);
+    }
 
     #[test]
     fn recovers_an_exponential_decay_and_its_standard_errors() {

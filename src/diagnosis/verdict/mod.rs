@@ -64,12 +64,15 @@ pub enum Shortfall {
         chi2_red: f64,
     },
     /// The effect(s) move the check run's seat a_w gap or SEAT gap away from the measurement by
-    /// at least [`super::thresholds::ISO_AWAY`].
+    /// at least [`super::thresholds::ISO_AWAY`] and by more than twice the standard error their
+    /// fitted parameters give the figure ([`super::outcome::IsoSigma`]).
     IsoAway {
         /// Seat a_w gap, %, re-fitted → with the effect(s).
         aw_gap_percent: (f64, f64),
         /// SEAT gap, points, re-fitted → with the effect(s).
         seat_gap_points: (f64, f64),
+        /// The standard errors of the figures with the effect(s), when computed.
+        sigma: Option<super::outcome::IsoSigma>,
     },
 }
 
@@ -87,8 +90,10 @@ impl Shortfall {
 
 /// Whether the model with the named effect(s) (`with`) falls short of explaining the check run
 /// where the re-fitted base model gives `null`: its reduced χ² stays far above the noise, or it
-/// moves a_w or SEAT away from the measurement. The χ² rule is checked first: a residual far above
-/// the noise means structure is missing whatever the ISO figures do.
+/// moves a_w or SEAT away from the measurement by the practical size and beyond what its own
+/// parameters' uncertainty allows (2σ, about 95 %: a move inside it is the fit's scatter, not the
+/// form's bias). The χ² rule is checked first: a residual far above the noise means structure is
+/// missing whatever the ISO figures do.
 pub(super) fn shortfall(null: &Stage, with: &Stage) -> Option<Shortfall> {
     if with.chi2_red > super::thresholds::EXPLAINED_CHI2 {
         return Some(Shortfall::FarAboveNoise {
@@ -98,11 +103,15 @@ pub(super) fn shortfall(null: &Stage, with: &Stage) -> Option<Shortfall> {
     let (n, w) = (&null.weighted, &with.weighted);
     let seat_gap = |s: &super::gapmap::Weighted| s.seat_model - s.seat_meas;
     let (aw, seat) = super::thresholds::ISO_AWAY;
-    let away = w.aw_gap_percent.abs() - n.aw_gap_percent.abs() >= aw
-        || seat_gap(w).abs() - seat_gap(n).abs() >= seat;
+    let (s_aw, s_seat) = with
+        .iso_sigma
+        .map_or((0.0, 0.0), |s| (s.aw_percent, s.seat_points));
+    let away = w.aw_gap_percent.abs() - n.aw_gap_percent.abs() >= aw.max(2.0 * s_aw)
+        || seat_gap(w).abs() - seat_gap(n).abs() >= seat.max(2.0 * s_seat);
     away.then_some(Shortfall::IsoAway {
         aw_gap_percent: (n.aw_gap_percent, w.aw_gap_percent),
         seat_gap_points: (seat_gap(n), seat_gap(w)),
+        sigma: with.iso_sigma,
     })
 }
 

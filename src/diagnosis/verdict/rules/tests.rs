@@ -20,6 +20,7 @@ fn ranked(id: &str, train: f64, check: f64, dbic: f64, dbic_all: f64, closed: f6
         probability: 0.0,
         fraction_closed: closed,
         check: Stage {
+            iso_sigma: None,
             chi2_red: check,
             gap_db_rms: 0.3,
             phase_deg_rms: 1.0,
@@ -540,6 +541,21 @@ fn a_named_effect_that_leaves_the_check_run_far_from_the_measurement_is_partial(
     let mut from = null.clone();
     from.weighted.aw_gap_percent = 5.0;
     assert_eq!(shortfall(&from, &stage(3.0, -2.0, 0.0)), None);
+    // A move inside twice the standard error the fitted parameters give is their scatter; the
+    // same move with a tight fit is the form's.
+    let with_sigma = |aw_sigma: f64| {
+        let mut s = stage(3.0, 2.0 * ISO_AWAY.0, 0.0);
+        s.iso_sigma = Some(crate::diagnosis::outcome::IsoSigma {
+            aw_percent: aw_sigma,
+            seat_points: 0.1,
+        });
+        s
+    };
+    assert_eq!(shortfall(&null, &with_sigma(1.2 * ISO_AWAY.0)), None);
+    assert!(matches!(
+        shortfall(&null, &with_sigma(0.5 * ISO_AWAY.0)),
+        Some(Shortfall::IsoAway { sigma: Some(_), .. })
+    ));
 }
 
 #[test]
@@ -549,6 +565,7 @@ fn the_iso_figures_decide_only_for_linear_effects() {
     let away = Shortfall::IsoAway {
         aw_gap_percent: (0.1, 2.0),
         seat_gap_points: (0.1, 1.5),
+        sigma: None,
     };
     // A residual far above the noise is structure missing, whatever the effect.
     assert!(far.decides(true) && far.decides(false));
