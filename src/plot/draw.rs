@@ -194,10 +194,16 @@ where
         .light_line_style(RGBColor(238, 238, 238))
         .draw()
         .map_err(message)?;
-    draw_spans(&mut ctx, chart, x, y)?;
-    draw_curves(&mut ctx, chart, x, y)?;
-    draw_rules(&mut ctx, chart, x, y)?;
-    draw_notes(&mut ctx, chart, x, y)?;
+    let mut plot = Plot {
+        ctx: &mut ctx,
+        chart,
+        x,
+        y,
+    };
+    plot.spans()?;
+    plot.curves()?;
+    plot.rules()?;
+    plot.notes()?;
     if chart.series.iter().any(|s| !s.label.is_empty()) {
         ctx.configure_series_labels()
             .position(if chart.legend_low {
@@ -214,81 +220,135 @@ where
     Ok(())
 }
 
-/// The shaded bands (a range of x or of y, clipped to the axes) with their labels at the band's
-/// left end (x) or at its middle on the y axis (geometric middle on a log axis).
-fn draw_spans<DB, X, Y>(
-    ctx: &mut ChartContext<'_, DB, Cartesian2d<X, Y>>,
-    chart: &Chart,
-    (x0, x1): (f64, f64),
-    (y0, y1): (f64, f64),
-) -> std::result::Result<(), String>
-where
-    DB: DrawingBackend,
-    X: NumberAxis,
-    Y: NumberAxis,
-{
-    for s in &chart.spans {
-        let c = rgb(s.colour);
-        let (from, to) = match s.axis {
-            Axis::X => (s.from.max(x0), s.to.min(x1)),
-            Axis::Y => (s.from.max(y0), s.to.min(y1)),
-        };
-        if from >= to {
-            continue;
-        }
-        let rect = match s.axis {
-            Axis::X => [(from, y0), (to, y1)],
-            Axis::Y => [(x0, from), (x1, to)],
-        };
-        ctx.draw_series(std::iter::once(Rectangle::new(rect, c.mix(0.16).filled())))
-            .map_err(message)?;
-        let at = match s.axis {
-            Axis::X => (from, y1),
-            Axis::Y => (
-                x0,
-                if chart.log_y {
-                    (from * to).sqrt()
-                } else {
-                    0.5 * (from + to)
-                },
-            ),
-        };
-        let style = anchored(12, &c.mix(0.9), HPos::Left, VPos::Center);
-        ctx.draw_series(std::iter::once(
-            EmptyElement::at(at) + Text::new(format!(" {}", s.label), (2, 0), style),
-        ))
-        .map_err(message)?;
-    }
-    Ok(())
-}
-
-/// The series, each as its runs of drawable points ([`runs`]) in its colour (or the palette's
-/// `i`-th), the first run of a labelled series entered in the legend.
-fn draw_curves<'a, DB, X, Y>(
-    ctx: &mut ChartContext<'a, DB, Cartesian2d<X, Y>>,
-    chart: &Chart,
+/// One chart's plotting area: the plotters context, the chart and its axis ranges `(lo, hi)` in
+/// data units, drawn onto in layers.
+struct Plot<'c, 'a, DB: DrawingBackend, X: NumberAxis, Y: NumberAxis> {
+    ctx: &'c mut ChartContext<'a, DB, Cartesian2d<X, Y>>,
+    chart: &'c Chart,
     x: (f64, f64),
     y: (f64, f64),
-) -> std::result::Result<(), String>
+}
+
+impl<'a, DB, X, Y> Plot<'_, 'a, DB, X, Y>
 where
     DB: DrawingBackend + 'a,
     X: NumberAxis,
     Y: NumberAxis,
 {
-    for (i, s) in chart.series.iter().enumerate() {
-        let c = rgb(s.colour.unwrap_or_else(|| colour::pick(i)));
-        let mut labelled = false;
-        for run in runs(s, x, y, (chart.log_x, chart.log_y)) {
-            let anno = draw_run(ctx, s.style, run, c, chart.log_y, y)?;
-            if !labelled && !s.label.is_empty() {
-                labelled = true;
-                let style = s.style;
-                anno.label(s.label.as_str())
-                    .legend(move |p| legend_mark(style, c, p));
+    /// The shaded bands (a range of x or of y, clipped to the axes) with their labels at the band's
+    /// left end (x) or at its middle on the y axis (geometric middle on a log axis).
+    fn spans(&mut self) -> std::result::Result<(), String> {
+        let ((x0, x1), (y0, y1)) = (self.x, self.y);
+        for s in &self.chart.spans {
+            let c = rgb(s.colour);
+            let (from, to) = match s.axis {
+                Axis::X => (s.from.max(x0), s.to.min(x1)),
+                Axis::Y => (s.from.max(y0), s.to.min(y1)),
+            };
+            if from >= to {
+                continue;
+            }
+            let rect = match s.axis {
+                Axis::X => [(from, y0), (to, y1)],
+                Axis::Y => [(x0, from), (x1, to)],
+            };
+            self.ctx
+                .draw_series(std::iter::once(Rectangle::new(rect, c.mix(0.16).filled())))
+                .map_err(message)?;
+            let at = match s.axis {
+                Axis::X => (from, y1),
+                Axis::Y => (
+                    x0,
+                    if self.chart.log_y {
+                        (from * to).sqrt()
+                    } else {
+                        0.5 * (from + to)
+                    },
+                ),
+            };
+            let style = anchored(12, &c.mix(0.9), HPos::Left, VPos::Center);
+            self.ctx
+                .draw_series(std::iter::once(
+                    EmptyElement::at(at) + Text::new(format!(" {}", s.label), (2, 0), style),
+                ))
+                .map_err(message)?;
+        }
+        Ok(())
+    }
+
+    /// The series, each as its runs of drawable points ([`runs`]) in its colour (or the palette's
+    /// `i`-th), the first run of a labelled series entered in the legend.
+    fn curves(&mut self) -> std::result::Result<(), String> {
+        let (x, y) = (self.x, self.y);
+        for (i, s) in self.chart.series.iter().enumerate() {
+            let c = rgb(s.colour.unwrap_or_else(|| colour::pick(i)));
+            let mut labelled = false;
+            for run in runs(s, x, y, (self.chart.log_x, self.chart.log_y)) {
+                let anno = draw_run(self.ctx, s.style, run, c, self.chart.log_y, y)?;
+                if !labelled && !s.label.is_empty() {
+                    labelled = true;
+                    let style = s.style;
+                    anno.label(s.label.as_str())
+                        .legend(move |p| legend_mark(style, c, p));
+                }
             }
         }
+        Ok(())
     }
-    Ok(())
+
+    /// The dashed reference lines across the axes (those inside the range), each labelled at its top
+    /// end (x) or right end (y), in its colour.
+    fn rules(&mut self) -> std::result::Result<(), String> {
+        let ((x0, x1), (y0, y1)) = (self.x, self.y);
+        for r in &self.chart.rules {
+            let c = rgb(r.colour);
+            let (pts, at) = match r.axis {
+                Axis::X => (vec![(r.at, y0), (r.at, y1)], (r.at, y1)),
+                Axis::Y => (vec![(x0, r.at), (x1, r.at)], (x1, r.at)),
+            };
+            let inside = match r.axis {
+                Axis::X => r.at >= x0 && r.at <= x1,
+                Axis::Y => r.at >= y0 && r.at <= y1,
+            };
+            if !inside {
+                continue;
+            }
+            self.ctx
+                .draw_series(DashedLineSeries::new(pts, 4, 4, c.stroke_width(1)))
+                .map_err(message)?;
+            let (h, v, dx, dy) = match r.axis {
+                Axis::X => (HPos::Left, VPos::Top, 3, 3),
+                Axis::Y => (HPos::Right, VPos::Top, -3, -2),
+            };
+            let style = anchored(12, &c, h, v);
+            // plotters' bitmap text sits about a line lower than its anchor says; this offset
+            // keeps the label above the line in PNG and SVG alike.
+            let dy = if r.axis == Axis::Y { -28 } else { dy };
+            self.ctx
+                .draw_series(std::iter::once(
+                    EmptyElement::at(at) + Text::new(r.label.clone(), (dx, dy), style),
+                ))
+                .map_err(message)?;
+        }
+        Ok(())
+    }
+
+    /// The text notes at their data points (those inside the axes), 6 px right and `dy` px down.
+    fn notes(&mut self) -> std::result::Result<(), String> {
+        let ((x0, x1), (y0, y1)) = (self.x, self.y);
+        for n in &self.chart.notes {
+            let inside = n.x >= x0 && n.x <= x1 && n.y >= y0 && n.y <= y1;
+            if inside {
+                self.ctx
+                    .draw_series(std::iter::once(
+                        EmptyElement::at((n.x, n.y))
+                            + Text::new(n.text.clone(), (6, n.dy), ("sans-serif", 12)),
+                    ))
+                    .map_err(message)?;
+            }
+        }
+        Ok(())
+    }
 }
 
 /// One run of points in `style`: a 2 px line, a 7-on 5-off dashed line, 3 px dots, a ribbon
@@ -352,75 +412,6 @@ fn legend_mark<DB: DrawingBackend>(
         .into_dyn(),
         _ => PathElement::new(vec![(x, y), (x + 20, y)], c.stroke_width(2)).into_dyn(),
     }
-}
-
-/// The dashed reference lines across the axes (those inside the range), each labelled at its top
-/// end (x) or right end (y), in its colour.
-fn draw_rules<DB, X, Y>(
-    ctx: &mut ChartContext<'_, DB, Cartesian2d<X, Y>>,
-    chart: &Chart,
-    (x0, x1): (f64, f64),
-    (y0, y1): (f64, f64),
-) -> std::result::Result<(), String>
-where
-    DB: DrawingBackend,
-    X: NumberAxis,
-    Y: NumberAxis,
-{
-    for r in &chart.rules {
-        let c = rgb(r.colour);
-        let (pts, at) = match r.axis {
-            Axis::X => (vec![(r.at, y0), (r.at, y1)], (r.at, y1)),
-            Axis::Y => (vec![(x0, r.at), (x1, r.at)], (x1, r.at)),
-        };
-        let inside = match r.axis {
-            Axis::X => r.at >= x0 && r.at <= x1,
-            Axis::Y => r.at >= y0 && r.at <= y1,
-        };
-        if !inside {
-            continue;
-        }
-        ctx.draw_series(DashedLineSeries::new(pts, 4, 4, c.stroke_width(1)))
-            .map_err(message)?;
-        let (h, v, dx, dy) = match r.axis {
-            Axis::X => (HPos::Left, VPos::Top, 3, 3),
-            Axis::Y => (HPos::Right, VPos::Top, -3, -2),
-        };
-        let style = anchored(12, &c, h, v);
-        // plotters' bitmap text sits about a line lower than its anchor says; this offset
-        // keeps the label above the line in PNG and SVG alike.
-        let dy = if r.axis == Axis::Y { -28 } else { dy };
-        ctx.draw_series(std::iter::once(
-            EmptyElement::at(at) + Text::new(r.label.clone(), (dx, dy), style),
-        ))
-        .map_err(message)?;
-    }
-    Ok(())
-}
-
-/// The text notes at their data points (those inside the axes), 6 px right and `dy` px down.
-fn draw_notes<DB, X, Y>(
-    ctx: &mut ChartContext<'_, DB, Cartesian2d<X, Y>>,
-    chart: &Chart,
-    (x0, x1): (f64, f64),
-    (y0, y1): (f64, f64),
-) -> std::result::Result<(), String>
-where
-    DB: DrawingBackend,
-    X: NumberAxis,
-    Y: NumberAxis,
-{
-    for n in &chart.notes {
-        let inside = n.x >= x0 && n.x <= x1 && n.y >= y0 && n.y <= y1;
-        if inside {
-            ctx.draw_series(std::iter::once(
-                EmptyElement::at((n.x, n.y))
-                    + Text::new(n.text.clone(), (6, n.dy), ("sans-serif", 12)),
-            ))
-            .map_err(message)?;
-        }
-    }
-    Ok(())
 }
 
 /// Something drawable on any plotters backend, written by [`write_figure`] or [`svg_string`].
