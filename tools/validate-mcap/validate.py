@@ -31,7 +31,7 @@ def reject_constant(name):
 
 # Fields of the per-step wbv messages (proto/wbv.proto); State/Links hold one of these per mass/link.
 WBV_FIELDS = {
-    "wbv.Measured": {"t", "a_base_z", "a_seat_z", "a_head_z", "f_seat_z", "a_seat_x", "a_head_x"},
+    "wbv.Measured": {"t", "a_base_z", "a_seat_z", "a_head_z", "f_seat_z", "a_seat_x", "a_head_x", "f_back_z"},
     "wbv.MassState": {"x", "v", "a", "x_abs", "v_abs", "a_abs"},
     "wbv.LinkState": {"deflection", "force"},
     "wbv.LinkForce": {"force"},
