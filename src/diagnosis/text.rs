@@ -167,7 +167,7 @@ fn held_out(
         b.probability,
         size(b),
         if practically_small(b) {
-            " — detected but practically small"
+            " — detected, but practically small in these figures"
         } else {
             ""
         }
