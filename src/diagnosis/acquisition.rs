@@ -289,6 +289,29 @@ impl Loggers {
         Ok(())
     }
 
+    /// The loggers as far as the runs record them: transducers `channels` does not carry left
+    /// out, and loggers left with none dropped (so the report does not list a force plate the
+    /// runs do not have).
+    pub fn recording<'a>(&self, channels: impl IntoIterator<Item = &'a str>) -> Loggers {
+        let have: Vec<Transducer> = channels
+            .into_iter()
+            .filter_map(Transducer::of_channel)
+            .collect();
+        Loggers {
+            loggers: (self.loggers.iter())
+                .map(|l| Logger {
+                    name: l.name.clone(),
+                    transducers: (l.transducers.iter())
+                        .filter(|t| have.contains(t))
+                        .copied()
+                        .collect(),
+                })
+                .filter(|l| !l.transducers.is_empty())
+                .collect(),
+            source: self.source,
+        }
+    }
+
     /// The logger recording `t`.
     pub fn logger_of(&self, t: Transducer) -> Option<&Logger> {
         self.loggers.iter().find(|l| l.transducers.contains(&t))
@@ -380,6 +403,21 @@ mod tests {
             l.describe(),
             "base: a_base_z, f_seat_z; occupant: a_seat_z, a_head_z (inferred: the seat and head lead the base by 8.2 ms and the force plate does not; state them with --logger)"
         );
+    }
+
+    #[test]
+    fn the_report_lists_only_the_transducers_the_runs_record() {
+        let l = Loggers::default().recording(["time", "a_base_z", "a_seat_z", "a_head_z"]);
+        assert_eq!(
+            l.describe(),
+            "base: a_base_z; occupant: a_seat_z, a_head_z (assumed; state them with --logger)"
+        );
+        let l = Loggers::force_on_base(0.0031).recording(["a_base_z", "a_seat_z"]);
+        assert_eq!(l.loggers.len(), 2);
+        assert_eq!(l.loggers[1].transducers, vec![Transducer::Seat]);
+        // A seat channel alone on its logger: that logger is dropped when the run lacks it.
+        let l = Loggers::parse(&specs(&["a:a_base_z,a_head_z", "b:a_seat_z"])).unwrap();
+        assert_eq!(l.recording(["a_base_z", "a_head_z"]).loggers.len(), 1);
     }
 
     #[test]

@@ -93,6 +93,7 @@ pub fn diagnose_with(
     let null_fit = select::fit_null(&Base::of(model, loggers.off_base()), tr)?;
     let loggers = force_logger::infer(model, loggers, tr, (&null_fit, n), force_measured)?;
     let off_base = loggers.off_base();
+    let recorded = loggers.recording(prepared.check_signals().names.iter().map(String::as_str));
     let base = Base::of(model, off_base).with_clock(prepared.clock.as_ref());
     let applicable: Vec<Candidate> = Candidate::ALL
         .into_iter()
@@ -186,7 +187,7 @@ pub fn diagnose_with(
         partial,
         channel_errors,
         data_faults: prepared.data_faults,
-        loggers: Some(loggers),
+        loggers: Some(recorded),
         clock: prepared.clock,
         named,
         bands: located.bands,
