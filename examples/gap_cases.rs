@@ -16,8 +16,11 @@ fn main() -> wbv::Result<()> {
             let s = wbv::gap_bench::run_case(i, seed)?;
             let planted: Vec<&str> = s.label.effects.iter().map(|e| e.form.name()).collect();
             let iso = s.iso.map_or("-".into(), |g| {
+                let sigma = g.sigma.map_or(String::new(), |s| {
+                    format!(" (σ {:.2} %, {:.2} pts)", s[0], s[1])
+                });
                 format!(
-                    "a_w {:+.2} {:+.2} {:+.2} % | SEAT {:+.2} {:+.2} {:+.2} pts",
+                    "a_w {:+.2} {:+.2} {:+.2} % | SEAT {:+.2} {:+.2} {:+.2} pts{sigma}",
                     g.aw_percent[0],
                     g.aw_percent[1],
                     g.aw_percent[2],

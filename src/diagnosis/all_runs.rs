@@ -10,7 +10,7 @@
 //! closes part of the all-run structural gap.
 
 use super::candidate::Candidate;
-use super::evidence::{delta_bic_refit, fit_each, sizes, stage, training_closed};
+use super::evidence::{delta_bic_refit, fit_each, fitted_stage, sizes, training_closed};
 use super::fitting::{Base, Fitted, estimates, fit_candidate};
 use super::measure::RunSpectra;
 use super::outcome::Ranked;
@@ -51,7 +51,7 @@ impl AllRuns {
         check: &RunSpectra,
         ranking: &mut Ranking,
     ) -> Result<()> {
-        let st = stage(&fitted.variant, check)?;
+        let st = fitted_stage(base, &[self.candidate], fitted, check)?;
         let (aw, seat, db) = sizes(&st, &ranking.null.check);
         if let Some(r) = ranking
             .cands

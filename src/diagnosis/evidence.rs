@@ -36,9 +36,10 @@ pub fn stage(v: &Variant, check: &RunSpectra) -> Result<Stage> {
             .iter()
             .filter_map(|&p| gapmap::rms_phase_deg(&cells, p))
             .fold(0.0, f64::max),
-        weighted: match v.without_drift() {
-            Some(_) => weighted(v, check)?,
-            None => gapmap::weighted(check, &pred[bs]),
+        weighted: if v.drifts() {
+            weighted(v, check)?
+        } else {
+            gapmap::weighted(check, &pred[bs])
         },
         iso_sigma: None,
         cells,
@@ -96,6 +97,23 @@ pub(super) fn iso_sigma(
         aw_percent: quad(&g_aw),
         seat_points: quad(&g_seat),
     }))
+}
+
+/// The stage on `check` of the fit `ft` of `cands`, with the standard errors of its ISO figures
+/// when its residual is within reach of the noise: beyond [`super::thresholds::EXPLAINED_CHI2`]
+/// the covariance s²(JᵀJ)⁻¹ no longer describes the parameters' scatter, the figures being off by
+/// the form, not the fit.
+pub(super) fn fitted_stage(
+    base: &Base,
+    cands: &[Candidate],
+    ft: &Fitted,
+    check: &RunSpectra,
+) -> Result<Stage> {
+    let mut st = stage(&ft.variant, check)?;
+    if st.chi2_red <= super::thresholds::EXPLAINED_CHI2 {
+        st.iso_sigma = iso_sigma(base, cands, ft, check, &st.weighted)?;
+    }
+    Ok(st)
 }
 
 /// Fraction of the training runs' structural gap that `c` closes against the null re-fit,
@@ -230,18 +248,7 @@ pub(super) fn fit_each(
         .par_iter()
         .map(|s| {
             let ft = fit_candidate(base, s, runs, warm)?;
-            let mut st = check.map(|c| stage(&ft.variant, c)).transpose()?;
-            // Only a model within the noise's reach whose a_w or SEAT misses the measurement by
-            // the practical size can be judged to move them away (`verdict::shortfall`).
-            if let (Some(st), Some(c)) = (st.as_mut(), check) {
-                let w = &st.weighted;
-                let (aw, seat) = super::thresholds::ISO_AWAY;
-                let misses =
-                    w.aw_gap_percent.abs() >= aw || (w.seat_model - w.seat_meas).abs() >= seat;
-                if misses && st.chi2_red <= super::thresholds::EXPLAINED_CHI2 {
-                    st.iso_sigma = iso_sigma(base, s, &ft, c, w)?;
-                }
-            }
+            let st = check.map(|c| fitted_stage(base, s, &ft, c)).transpose()?;
             Ok((ft, st))
         })
         .collect()

@@ -199,14 +199,20 @@ impl Variant {
     /// power spectra (a lag changes none) without the loss of magnitude that averaging a drifting
     /// lag over a run costs H1 ([`Channel::response_in`]).
     pub fn without_drift(&self) -> Option<Variant> {
-        let chans = [&self.base, &self.seat, &self.head, &self.force];
-        chans.iter().any(|c| c.drift != 0.0).then(|| {
+        self.drifts().then(|| {
             let mut v = self.clone();
             for c in [&mut v.base, &mut v.seat, &mut v.head, &mut v.force] {
                 c.drift = 0.0;
             }
             v
         })
+    }
+
+    /// Whether any channel's clock drifts.
+    pub fn drifts(&self) -> bool {
+        [&self.base, &self.seat, &self.head, &self.force]
+            .iter()
+            .any(|c| c.drift != 0.0)
     }
 
     /// A variant with ideal sensors.

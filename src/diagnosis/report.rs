@@ -3,14 +3,15 @@
 use super::{Diagnosis, Ranked, Stage};
 use std::fmt::Write;
 
+/// A stage's figures; a_w and SEAT with their standard errors from the fitted parameters where
+/// known ([`super::IsoSigma`]).
 fn stage_line(label: &str, s: &Stage) -> String {
+    let (aw_sigma, seat_sigma) = super::text::iso_sigmas(s);
+    let aw = format!("{:>+6.1}{aw_sigma} %", s.weighted.aw_gap_percent);
+    let seat = format!("{:>5.1}{seat_sigma} %", s.weighted.seat_model);
     format!(
-        "  {label:<22} reduced χ² {:>8.2}   band gap {:>5.2} dB RMS   a_w gap {:>+6.1} %   SEAT {:>5.1} % (measured {:.1} %)",
-        s.chi2_red,
-        s.gap_db_rms,
-        s.weighted.aw_gap_percent,
-        s.weighted.seat_model,
-        s.weighted.seat_meas
+        "  {label:<22} reduced χ² {:>8.2}   band gap {:>5.2} dB RMS   a_w gap {aw:<15}   SEAT {seat:<14} (measured {:.1} %)",
+        s.chi2_red, s.gap_db_rms, s.weighted.seat_meas
     )
 }
 

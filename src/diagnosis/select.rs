@@ -3,7 +3,9 @@
 //! effect. The all-run judgement of amplitude-dependent effects is [`super::all_runs`].
 
 use super::candidate::{Candidate, Family};
-use super::evidence::{Counts, Figures, bic_check, delta_bic_all, fit_each, ranked, stage, weigh};
+use super::evidence::{
+    Counts, Figures, bic_check, delta_bic_all, fit_each, fitted_stage, ranked, weigh,
+};
 use super::fitting::{Base, Fitted, estimates, fit_candidate, refine_null};
 use super::measure::RunSpectra;
 use super::outcome::{Ranked, Stage};
@@ -50,7 +52,7 @@ pub(super) fn rank(
     // valley would hand every candidate a gain that is only the optimiser's (masses trade against
     // stiffnesses, so the base has several valleys).
     let null_fit = refine_null(base, tr, null_fit, &fitted)?;
-    let null_stage = stage(&null_fit.variant, ck)?;
+    let null_stage = fitted_stage(base, &[], &null_fit, ck)?;
     let null_bic = bic_check(&null_stage, nb, n);
     let nominal_floor = score::gap_floor(nominal.chi2_red);
     let mut null = ranked(

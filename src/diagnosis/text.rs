@@ -222,9 +222,21 @@ pub(super) fn second(first: &str, second: &str, pair: &Ranked) -> String {
 }
 
 /// How close a_w and SEAT come on the check run: nominal → re-fitted → with the effect(s).
+/// " ± σ" of a stage's a_w gap (%) and SEAT (points), empty where not known.
+pub(super) fn iso_sigmas(s: &Stage) -> (String, String) {
+    s.iso_sigma.map_or((String::new(), String::new()), |e| {
+        (
+            format!(" ± {:.2}", e.aw_percent),
+            format!(" ± {:.2}", e.seat_points),
+        )
+    })
+}
+
+/// With the standard errors of the model with the effect(s) where known.
 pub(super) fn iso(nominal: &Stage, null: &Stage, with: &Stage) -> String {
+    let (aw_sigma, seat_sigma) = iso_sigmas(with);
     format!(
-        ". On the check run the seat a_w gap goes {:+.1} % (nominal) → {:+.1} % (re-fitted) → {:+.1} % (with the effect), SEAT {:.1} → {:.1} → {:.1} % against {:.1} % measured",
+        ". On the check run the seat a_w gap goes {:+.1} % (nominal) → {:+.1} % (re-fitted) → {:+.1}{aw_sigma} % (with the effect), SEAT {:.1} → {:.1} → {:.1}{seat_sigma} % against {:.1} % measured",
         nominal.weighted.aw_gap_percent,
         null.weighted.aw_gap_percent,
         with.weighted.aw_gap_percent,

@@ -64,6 +64,9 @@ pub struct IsoGaps {
     pub aw_percent: [f64; 3],
     /// SEAT gap (SEAT = a_w,seat / a_w,base · 100 %), percentage points.
     pub seat_points: [f64; 3],
+    /// Standard errors of the third model's a_w gap (%) and SEAT (points) from its fitted
+    /// parameters' covariance, when within reach of the noise ([`crate::diagnosis::IsoSigma`]).
+    pub sigma: Option<[f64; 2]>,
 }
 
 impl IsoGaps {
@@ -76,6 +79,7 @@ impl IsoGaps {
         IsoGaps {
             aw_percent: stages.map(|s| s.weighted.aw_gap_percent),
             seat_points: stages.map(|s| s.weighted.seat_model - s.weighted.seat_meas),
+            sigma: stages[2].iso_sigma.map(|s| [s.aw_percent, s.seat_points]),
         }
     }
 }
