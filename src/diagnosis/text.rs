@@ -210,7 +210,12 @@ fn distortion(e: &Evidence, b: &Ranked, responses: &super::outcome::VerdictId) -
 /// The second effect's clause: what the forward-selected pair closes beyond the named effect.
 pub(super) fn second(first: &str, second: &str, pair: &Ranked) -> String {
     let what = if first == second {
-        format!("a second {second} (a second mode of the frame, under the first)")
+        // A frame on legs of unequal stiffness under an off-centre load has its bounce and pitch
+        // coupled: both modes move the pan vertically, so vertical channels see two frame modes
+        // whichever it is.
+        format!(
+            "a second {second} (a second mode of the frame, under the first: its bounce and pitch, or two bending modes, which vertical channels cannot tell apart; a fore-and-aft accelerometer on the seat pan, or a second vertical one off its centre, can)"
+        )
     } else {
         format!("a second effect, {second},")
     };

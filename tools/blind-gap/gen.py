@@ -265,6 +265,9 @@ FAMILIES = {
     "missing-dof": ["seat-frame", "viscera"],
     "sensor": ["delay", "mount", "lowpass", "gain"],
 }
+# Forms reached only by a study set (--form): the random rotation above stays as it was, so the
+# cases of earlier seeds are drawn the same.
+STUDY_FORMS = {"missing-dof": ["rocking-frame"]}
 
 
 def prony_fractional(kf, alpha, f0, rng_lo=0.2, rng_hi=100.0, n=8):
@@ -338,6 +341,10 @@ def draw_effect(rng, family, form, strength):
     elif family == "missing-dof":
         if form == "seat-frame":
             p = {"m_kg": rng.uniform(3, 10), "f_loaded_hz": rng.uniform(20, 45), "zeta": rng.uniform(0.03, 0.15) / strength}
+        elif form == "rocking-frame":
+            p = {"m_kg": rng.uniform(4, 12), "front_mass_share": rng.uniform(0.3, 0.5),
+                 "front_load_share": rng.uniform(0.15, 0.4), "rear_leg_share": rng.uniform(0.55, 0.8),
+                 "f_loaded_hz": rng.uniform(15, 28), "zeta": rng.uniform(0.03, 0.1) / strength}
         else:
             p = {"host": str(rng.choice(["upper_torso", "lower_torso"])), "m_kg": min(8.0, rng.uniform(2, 5) * strength),
                  "f_hz": rng.uniform(4, 10), "zeta": rng.uniform(0.15, 0.4)}
@@ -386,6 +393,23 @@ def frame_stiffness(masses, links, f_target):
         if best is None or err < best[0]:
             best = (err, float(kf), me, f, share)
     return best[1:]
+
+
+def leg_modes(masses, links, kf, rho):
+    """Undamped modes of the plant with a rear leg rho·kf and a front leg (1 - rho)·kf under the
+    frame: (frequency Hz, share of strain energy in the legs) per mode."""
+    pl = Plant(masses, dict(links, leg_rear=("frame_rear", None, rho * kf, 0.0),
+                            leg_front=("frame_front", None, (1 - rho) * kf, 0.0)))
+    nm = len(pl.names)
+    A, _, _ = pl.matrices()
+    K = -np.diag(pl.m) @ A[nm:2 * nm, :nm]
+    w2, phi = linalg.eigh(K, np.diag(pl.m))
+    r, f = pl.idx("frame_rear"), pl.idx("frame_front")
+    out = []
+    for q in range(nm):
+        legs = rho * kf * phi[r, q] ** 2 + (1 - rho) * kf * phi[f, q] ** 2
+        out.append((math.sqrt(max(w2[q], 0.0)) / (2 * np.pi), float(legs / (phi[:, q] @ K @ phi[:, q]))))
+    return out
 
 
 def build_plant(subject, family, form, p, A_rms, sigma):
@@ -475,6 +499,27 @@ def build_plant(subject, family, form, p, A_rms, sigma):
             kf, m_eff, f_act, share = frame_stiffness(masses, links, p["f_loaded_hz"])
             links["frame"] = ("frame", None, kf, 2 * p["zeta"] * math.sqrt(kf * m_eff))
             p["frame_mode_actual_hz"], p["frame_strain_share"], p["k_frame_N_per_m"] = f_act, share, kf
+        elif form == "rocking-frame":
+            # A frame on a rear and a front leg, its mass lumped at the two (its bounce and pitch are
+            # the two ends' vertical motions), under a cushion carried at both: with the occupant's
+            # load off the frame's middle and unequal legs, bounce and pitch couple and both modes
+            # reach the seat pad, which reads only vertical motion.
+            m, sm, w, rho = p["m_kg"], p["front_mass_share"], p["front_load_share"], p["rear_leg_share"]
+            masses["frame_front"], masses["frame_rear"] = m * sm, m * (1 - sm)
+            i, _, k, c = links["cushion"]
+            links["cushion"] = (i, "frame_rear", k * (1 - w), c * (1 - w))
+            links["cushion_front"] = (i, "frame_front", k * w, c * w)
+            best = None
+            for kf in np.geomspace(1e4, 1e9, 300):
+                frame = sorted(f for f, share in leg_modes(masses, links, kf, rho) if share >= 0.4)
+                if frame:
+                    err = abs(math.log(frame[0] / p["f_loaded_hz"]))
+                    if best is None or err < best[0]:
+                        best = (err, float(kf), frame)
+            _, kf, frame = best
+            for name, node, kl in (("leg_rear", "frame_rear", rho * kf), ("leg_front", "frame_front", (1 - rho) * kf)):
+                links[name] = (node, None, kl, 2 * p["zeta"] * kl / (2 * np.pi * frame[0]))
+            p["frame_modes_hz"], p["k_legs_N_per_m"] = [float(f) for f in frame], kf
         else:
             host = p["host"]
             masses[host] = masses[host] - p["m_kg"]
@@ -1150,7 +1195,7 @@ def main():
     a = ap.parse_args()
     override = None
     if a.form:
-        fam = [f for f, forms in FAMILIES.items() if a.form in forms]
+        fam = [f for f, forms in list(FAMILIES.items()) + list(STUDY_FORMS.items()) if a.form in forms]
         if not fam or (a.family and a.family != fam[0]):
             ap.error("--form %s is not a form of %s" % (a.form, a.family or "any family"))
         a.family = fam[0]
