@@ -69,8 +69,12 @@ pub struct Summary {
 pub struct IsoToward {
     /// Cases naming an effect.
     pub named: usize,
-    /// Of those, cases moving both figures toward the measurement.
+    /// Of those, cases moving both figures toward the measurement against the re-fitted base
+    /// model (the verdict's own comparison, `verdict::shortfall`).
     pub toward: usize,
+    /// Of those, cases moving both figures toward the measurement against the model as given
+    /// (the nominal model: what the user had before the diagnosis).
+    pub toward_nominal: usize,
     /// Of those, cases where neither gap grows by the diagnosis's own "away" threshold
     /// ([`crate::diagnosis::ISO_AWAY`]: 1 % of a_w, 1 SEAT point, below which a shift is not of
     /// practical size); the rest are the cases the verdict itself flags.
@@ -90,20 +94,22 @@ fn iso_toward(scores: &[CaseScore]) -> IsoToward {
         .filter(|s| !s.named.is_empty())
         .filter_map(|s| s.iso.as_ref())
         .collect();
-    let within = |(aw, seat): (f64, f64)| {
+    // `from`: 0 the nominal model, 1 the re-fitted one; the named model is the third.
+    let within = |from: usize, (aw, seat): (f64, f64)| {
         named
             .iter()
             .filter(|g| {
-                g.aw_percent[2].abs() <= g.aw_percent[1].abs() + aw
-                    && g.seat_points[2].abs() <= g.seat_points[1].abs() + seat
+                g.aw_percent[2].abs() <= g.aw_percent[from].abs() + aw
+                    && g.seat_points[2].abs() <= g.seat_points[from].abs() + seat
             })
             .count()
     };
-    let (toward, within_practical) = (within((TIE, TIE)), within(crate::diagnosis::ISO_AWAY));
+    let (toward, within_practical) = (within(1, (TIE, TIE)), within(1, crate::diagnosis::ISO_AWAY));
     let of = |f: fn(&IsoGaps) -> f64| median(named.iter().map(|g| f(g)).collect());
     IsoToward {
         named: named.len(),
         toward,
+        toward_nominal: within(0, (TIE, TIE)),
         within_practical,
         median_aw_gap_percent: of(|g| g.aw_percent[2].abs()),
         median_seat_gap_points: of(|g| g.seat_points[2].abs()),
@@ -406,9 +412,11 @@ impl Summary {
         );
         let t = &self.iso_toward;
         out += &format!(
-            "Named verdicts moving the check run's seat a_w and SEAT toward the measurement (neither gap growing by more than {TIE}): {} of {} ({}); neither growing by the diagnosis's practical size ({} % a_w, {} SEAT point): {} ({}); median remaining |a_w gap| {} %, |SEAT gap| {} points.\n\n",
-            t.toward,
+            "Named verdicts moving the check run's seat a_w and SEAT toward the measurement (neither gap growing by more than {TIE}) against the model as given: {} of {} ({}); against the re-fitted base model: {} ({}); neither growing against the re-fitted model by the diagnosis's practical size ({} % a_w, {} SEAT point): {} ({}); median remaining |a_w gap| {} %, |SEAT gap| {} points.\n\n",
+            t.toward_nominal,
             t.named,
+            f((t.named > 0).then(|| t.toward_nominal as f64 / t.named as f64)),
+            t.toward,
             f((t.named > 0).then(|| t.toward as f64 / t.named as f64)),
             crate::diagnosis::ISO_AWAY.0,
             crate::diagnosis::ISO_AWAY.1,
