@@ -61,36 +61,29 @@ fn link_to_base(id: &str, s: &System, t: usize, f_hz: f64, zeta: f64) -> Link {
 /// A limb between the body point `t` and the base (legs from the pelvis to the floor, arms from the
 /// shoulders to a wheel): a coordinate of `limb.1` kg called `limb.0`, moved by the base as `t`
 /// is, joined to `t` by the spring–damper `joint` and to the base by the contact `contact`, each
-/// given as (name, frequency in Hz, ζ) and tuned on the limb's mass: k = m·(2πf)², c = 2ζ·m·2πf.
-/// With `t` held the limb rests on both in parallel, ω² = (2π)²·(f_joint² + f_contact²). Every
-/// added part carries `role`.
+/// given as (name, frequency in Hz) and tuned on the limb's mass with ζ [`SUPPORT_ZETA`]:
+/// k = m·(2πf)², c = 2ζ·m·2πf. With `t` held the limb rests on both in parallel,
+/// ω² = (2π)²·(f_joint² + f_contact²). Every added part carries `role`.
 fn add_limb(
     s: &mut System,
     t: usize,
     role: Role,
     limb: (&str, f64),
-    joint: (&str, f64, f64),
-    contact: (&str, f64, f64),
+    joint: (&str, f64),
+    contact: (&str, f64),
 ) {
     let ((name, m), body) = (limb, s.dofs[t].name.clone());
     let j = add_dof(s, name, role, m, s.r[t], s.r_x[t]);
-    for (link, nodes, row, f, zeta) in [
+    for (link, nodes, row, f) in [
         (
             joint.0,
             (body.as_str(), name),
             vec![(t, 1.0), (j, -1.0)],
             joint.1,
-            joint.2,
         ),
-        (
-            contact.0,
-            (name, "base"),
-            vec![(j, 1.0)],
-            contact.1,
-            contact.2,
-        ),
+        (contact.0, (name, "base"), vec![(j, 1.0)], contact.1),
     ] {
-        let l = kv_link(link, nodes, row, m, f, zeta);
+        let l = kv_link(link, nodes, row, m, f, SUPPORT_ZETA);
         s.links.push(Link { role, ..l });
     }
 }
@@ -141,8 +134,7 @@ pub const FEET: Definition = Definition {
     apply: |v, p| {
         let s = &mut v.system;
         let t = target_or_err(FEET.id, Target::LowerBody, s)?;
-        let z = SUPPORT_ZETA;
-        let (legs, knee, heel) = (("legs", p[0]), ("knee", p[1], z), ("heel", p[2], z));
+        let (legs, knee, heel) = (("legs", p[0]), ("knee", p[1]), ("heel", p[2]));
         add_limb(s, t, Role::Footrest, legs, knee, heel);
         Ok(())
     },
@@ -151,9 +143,8 @@ pub const FEET: Definition = Definition {
 };
 
 /// Hands on a steering wheel or a grab handle that moves with the floor (issue 39): an arms mass
-/// split off the upper body (the heaviest body mass: upper torso and shoulders, whose mass holds
-/// the arms; the body's total mass is kept), joined to it by a shoulder–arm spring–damper and to
-/// the base by the grip (`add_limb`): with the torso held,
+/// joined to the upper body (the heaviest body mass: upper torso and shoulders) by a shoulder–arm
+/// spring–damper and to the base by the grip (`add_limb`): with the torso held,
 /// ω² = (2π)²·(f_shoulder² + f_grip²), k = m_arms·(2πf)², c = 2·0.3·m_arms·2πf. The path enters
 /// the body at the top of the spine, next to the head, where a lower-body path (feet, thighs)
 /// enters at the pelvis under the seat-pan force: with a head channel or `f_seat_z` the two shape
@@ -162,9 +153,8 @@ pub const FEET: Definition = Definition {
 /// Bounds and starts (assumptions, not fitted to a study here): segment-mass fractions of about
 /// 2.8 % (upper arm), 1.6 % (forearm) and 0.6 % (hand) of body mass (Dempster's, as tabulated by
 /// Winter, *Biomechanics and Motor Control of Human Movement*) give two arms about 10 % of a 75 kg
-/// occupant, 7–8 kg, a quarter of a 28 kg upper torso, of which the part that moves with the grip
-/// rather than the shoulder is less: the share of the upper body's mass starts at 0.15, bounds
-/// 0.03–0.5 (a share, so the body keeps a mass whatever the re-fitted torso). The shoulder–arm suspension of the torso is soft (the arms hang
+/// occupant, 7–8 kg, of which the part that moves with the grip rather than the shoulder is less:
+/// start 4 kg, bounds 1–15 kg. The shoulder–arm suspension of the torso is soft (the arms hang
 /// from muscles), 0.5–25 Hz on the arms mass with starts at 2 and 5 Hz as for the knee; the grip
 /// (palm and finger tissue on a rim) is stiffer, 3–80 Hz, start 20 Hz. Hand position changes the
 /// seated vertical apparent mass and its resonance (Wang, Rakheja and Boileau 2004, Int. J. Ind.
@@ -176,7 +166,7 @@ pub const HANDS: Definition = Definition {
     family: Family::SupportPath,
     params: || {
         vec![
-            Param::new("arms_share", 0.03, 0.5, &[0.15], true),
+            Param::new("m_arms_kg", 1.0, 15.0, &[4.0], true),
             Param::new("f_shoulder_hz", 0.5, 25.0, &[2.0, 5.0], true),
             Param::new("f_grip_hz", 3.0, 80.0, &[20.0], true),
         ]
@@ -185,10 +175,7 @@ pub const HANDS: Definition = Definition {
     apply: |v, p| {
         let s = &mut v.system;
         let t = target_or_err(HANDS.id, Target::UpperBody, s)?;
-        let m_arms = p[0] * s.m[(t, t)];
-        s.m[(t, t)] -= m_arms;
-        let (arms, shoulder) = (("arms", m_arms), ("shoulder", p[1], SUPPORT_ZETA));
-        let grip = ("grip", p[2], SUPPORT_ZETA);
+        let (arms, shoulder, grip) = (("arms", p[0]), ("shoulder", p[1]), ("grip", p[2]));
         add_limb(s, t, Role::Handle, arms, shoulder, grip);
         Ok(())
     },
@@ -274,21 +261,15 @@ mod tests {
     }
 
     #[test]
-    fn hands_support_splits_an_arms_mass_off_the_shoulders_onto_the_base() {
+    fn hands_support_adds_an_arms_mass_between_the_shoulders_and_the_base() {
         let s = system("reference");
         let v = Candidate::HandsSupport
-            .apply(&s, &[0.25, 5.0, 20.0])
+            .apply(&s, &[4.0, 5.0, 20.0])
             .unwrap();
         let t = &v.system;
         assert_eq!(t.dof(), s.dof() + 1);
         let j = t.dof() - 1;
-        // A quarter of the upper torso's 28.49 kg moves with the grip; the body's mass is kept.
-        let u = s.dofs.iter().position(|d| d.name == "upper_torso").unwrap();
-        let m_arms = 0.25 * s.m[(u, u)];
-        assert!((m_arms - 7.1225).abs() < 1e-9, "{m_arms}");
-        assert_eq!((t.m[(j, j)], t.r[j]), (m_arms, 1.0));
-        assert!((t.m[(u, u)] - 0.75 * s.m[(u, u)]).abs() < 1e-12);
-        assert!((t.m.trace() - s.m.trace()).abs() < 1e-9);
+        assert_eq!((t.m[(j, j)], t.r[j]), (4.0, 1.0));
         let hand: Vec<&Link> = t.links.iter().filter(|l| l.role == Role::Handle).collect();
         // The shoulder hangs the arms on the upper torso, the grip on the base.
         let nodes: Vec<(&str, &str)> = hand
@@ -300,11 +281,11 @@ mod tests {
         // ω² = (2π)²·(5² + 20²), and each link's damping is 2·ζ·m·ω of its own tuning.
         let k: f64 = hand.iter().map(|l| l.element.static_stiffness()).sum();
         let expect = (2.0 * PI).powi(2) * (25.0 + 400.0);
-        assert!((k / m_arms / expect - 1.0).abs() < 1e-12, "{k} vs {expect}");
+        assert!((k / 4.0 / expect - 1.0).abs() < 1e-12, "{k} vs {expect}");
         let Element::KelvinVoigt { c, .. } = hand[0].element else {
             panic!("{:?}", hand[0].element)
         };
-        let c0 = 2.0 * SUPPORT_ZETA * m_arms * 2.0 * PI * 5.0;
+        let c0 = 2.0 * SUPPORT_ZETA * 4.0 * 2.0 * PI * 5.0;
         assert!((c / c0 - 1.0).abs() < 1e-12, "{c} vs {c0}");
         // The seat-pan force still reads the body–seat interface alone.
         let f = t.channel_index("f_seat_z").unwrap();
