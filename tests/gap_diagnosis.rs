@@ -691,5 +691,26 @@ fn hands_on_a_wheel_are_named_an_upper_body_path_and_legs_still_a_lower_one() {
             d.verdict,
             d.verdict_text
         );
+        // A named model within reach of the noise carries its ISO figures' standard errors, and
+        // the report prints them beside a_w and SEAT.
+        let st = d.named_stage().expect("a named stage");
+        assert!(
+            st.chi2_red <= wbv::diagnosis::EXPLAINED_CHI2,
+            "{}",
+            st.chi2_red
+        );
+        let sigma = st
+            .iso_sigma
+            .expect("σ of a fitted model within the noise's reach");
+        assert!(
+            sigma.aw_percent > 0.0 && sigma.aw_percent < 1.0 && sigma.seat_points > 0.0,
+            "{sigma:?}"
+        );
+        let line = format!(
+            "{:+.1} ± {:.2} %",
+            st.weighted.aw_gap_percent, sigma.aw_percent
+        );
+        assert!(wbv::diagnosis::report::text(&d).contains(&line), "{line}");
+        assert!(d.verdict_text.contains(&line), "{line}: {}", d.verdict_text);
     }
 }
