@@ -75,6 +75,10 @@ pub struct IsoToward {
     /// Of those, cases moving both figures toward the measurement against the model as given
     /// (the nominal model: what the user had before the diagnosis).
     pub toward_nominal: usize,
+    /// Of those, cases where neither gap grows against the re-fitted model by more than [`TIE`] or
+    /// twice the standard error the named model's fitted parameters give the figure (the verdict's
+    /// own allowance for the fit's scatter, `verdict::shortfall`).
+    pub within_sigma: usize,
     /// Of those, cases where neither gap grows by the diagnosis's own "away" threshold
     /// ([`crate::diagnosis::ISO_AWAY`]: 1 % of a_w, 1 SEAT point, below which a shift is not of
     /// practical size); the rest are the cases the verdict itself flags.
@@ -105,11 +109,20 @@ fn iso_toward(scores: &[CaseScore]) -> IsoToward {
             .count()
     };
     let (toward, within_practical) = (within(1, (TIE, TIE)), within(1, crate::diagnosis::ISO_AWAY));
+    let within_sigma = named
+        .iter()
+        .filter(|g| {
+            let [s_aw, s_seat] = g.sigma.unwrap_or([0.0, 0.0]);
+            g.aw_percent[2].abs() <= g.aw_percent[1].abs() + TIE.max(2.0 * s_aw)
+                && g.seat_points[2].abs() <= g.seat_points[1].abs() + TIE.max(2.0 * s_seat)
+        })
+        .count();
     let of = |f: fn(&IsoGaps) -> f64| median(named.iter().map(|g| f(g)).collect());
     IsoToward {
         named: named.len(),
         toward,
         toward_nominal: within(0, (TIE, TIE)),
+        within_sigma,
         within_practical,
         median_aw_gap_percent: of(|g| g.aw_percent[2].abs()),
         median_seat_gap_points: of(|g| g.seat_points[2].abs()),
@@ -412,12 +425,14 @@ impl Summary {
         );
         let t = &self.iso_toward;
         out += &format!(
-            "Named verdicts moving the check run's seat a_w and SEAT toward the measurement (neither gap growing by more than {TIE}) against the model as given: {} of {} ({}); against the re-fitted base model: {} ({}); neither growing against the re-fitted model by the diagnosis's practical size ({} % a_w, {} SEAT point): {} ({}); median remaining |a_w gap| {} %, |SEAT gap| {} points.\n\n",
+            "Named verdicts moving the check run's seat a_w and SEAT toward the measurement (neither gap growing by more than {TIE}) against the model as given: {} of {} ({}); against the re-fitted base model: {} ({}), or {} ({}) where a growth within twice the named model's own standard error (from its fitted parameters' covariance) counts as a tie; neither growing against the re-fitted model by the diagnosis's practical size ({} % a_w, {} SEAT point): {} ({}); median remaining |a_w gap| {} %, |SEAT gap| {} points.\n\n",
             t.toward_nominal,
             t.named,
             f((t.named > 0).then(|| t.toward_nominal as f64 / t.named as f64)),
             t.toward,
             f((t.named > 0).then(|| t.toward as f64 / t.named as f64)),
+            t.within_sigma,
+            f((t.named > 0).then(|| t.within_sigma as f64 / t.named as f64)),
             crate::diagnosis::ISO_AWAY.0,
             crate::diagnosis::ISO_AWAY.1,
             t.within_practical,
