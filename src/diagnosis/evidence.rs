@@ -31,6 +31,7 @@ pub fn stage(v: &Variant, check: &RunSpectra) -> Result<Stage> {
         .expect("checked in check_inputs");
     Ok(Stage {
         chi2_red: chi2 / n as f64,
+        residuals: n,
         gap_db_rms: gapmap::rms_gap_db(&cells, None).unwrap_or(0.0),
         phase_deg_rms: Path::ALL
             .iter()

@@ -27,6 +27,9 @@ pub struct Stage {
     /// Reduced χ² on the held-out run.
     #[serde(deserialize_with = "super::json::f64")]
     pub chi2_red: f64,
+    /// Number of residuals behind it (two per trusted cell), for χ²'s own scatter √(2/n).
+    #[serde(default)]
+    pub residuals: usize,
     /// RMS of the trusted band gaps, all paths, dB.
     #[serde(deserialize_with = "super::json::f64")]
     pub gap_db_rms: f64,

@@ -102,6 +102,14 @@ pub fn within_noise(d: f64) -> bool {
     d <= 1.0
 }
 
+/// Whether the reduced χ² `d` of `n` residuals is one a model right to within the noise gives:
+/// at most 1 + 2·√(2/n), two standard deviations of χ²_n/n (variance 2/n) above its mean 1. A
+/// null re-fit at 1.03 on ~2 000 residuals is as within the noise as one at 0.97; read against 1
+/// alone, it put an effect far below the noise to the looser detection threshold.
+pub fn chi2_within_noise(d: f64, n: usize) -> bool {
+    d <= 1.0 + 2.0 * (2.0 / n.max(1) as f64).sqrt()
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -134,6 +142,10 @@ mod tests {
         assert_eq!(fraction_closed(11.0, 20.0, 1.0), 0.0);
         assert_eq!(fraction_closed(0.9, 0.5, 1.0), 0.0);
         // Below a conservative σ's floor the gap is measured down to the best fit.
+        // χ²_n/n scatters by √(2/n): within two of it above 1 a model is as right as at 1.
+        assert!(chi2_within_noise(1.03, 2000) && chi2_within_noise(0.5, 2000));
+        assert!(!chi2_within_noise(1.07, 2000) && !chi2_within_noise(1.03, 20_000));
+        assert!(chi2_within_noise(1.5, 32) && !chi2_within_noise(1.51, 32));
         assert_eq!(gap_floor(3.0), 1.0);
         assert_eq!(gap_floor(0.9), 0.0);
         assert!((fraction_closed(0.8, 0.6, gap_floor(0.8)) - 0.25).abs() < 1e-12);

@@ -136,10 +136,13 @@ fn held_out(
     alternative: Option<super::candidate::Candidate>,
 ) -> String {
     let b = e.held_out_entry(effect).expect("ranked");
-    let what = if score::within_noise(e.null.check.chi2_red) {
+    let null = &e.null.check;
+    let what = if score::chi2_within_noise(null.chi2_red, null.residuals) {
         format!(
-            "lowers the held-out run's reduced χ², already within the noise after the re-fit, by {:.0} %",
-            100.0 * b.fraction_closed
+            "lowers the held-out run's reduced χ², already within the noise after the re-fit, by {:.0} % ({:.2} → {:.2})",
+            (100.0 * (1.0 - b.check.chi2_red / null.chi2_red)).max(0.0),
+            null.chi2_red,
+            b.check.chi2_red
         )
     } else {
         format!(

@@ -251,7 +251,8 @@ pub(super) fn overdispersion(chi2_red: f64) -> f64 {
 
 /// The best candidate if the held-out run accepts it: detected (ΔBIC ≤
 /// [`super::thresholds::ACCEPT_DELTA_BIC`]), and closing at least [`super::thresholds::MIN_CLOSED`] of the structural gap
-/// when there is one. When the null already fits within the noise estimate (reduced χ² ≤ 1) there
+/// when there is one. When the null already fits within the noise estimate (reduced χ² within
+/// the scatter a right model's has, [`score::chi2_within_noise`]) there
 /// is no structural gap to close, and detection at the stricter
 /// [`super::thresholds::ACCEPT_WITHIN_NOISE_DELTA_BIC`] (its false-positive rate measured on clean
 /// field-like cases) names the effect, with its size however small: `none` means nothing
@@ -259,7 +260,7 @@ pub(super) fn overdispersion(chi2_red: f64) -> f64 {
 pub(super) fn held_out_accepted<'a>(null: &Ranked, cands: &'a [Ranked]) -> Option<&'a Ranked> {
     use super::thresholds::{ACCEPT_DELTA_BIC, ACCEPT_WITHIN_NOISE_DELTA_BIC, MIN_CLOSED};
     cands.first().filter(|b| {
-        if score::within_noise(null.check.chi2_red) {
+        if score::chi2_within_noise(null.check.chi2_red, null.check.residuals) {
             b.delta_bic <= ACCEPT_WITHIN_NOISE_DELTA_BIC
         } else {
             b.delta_bic <= ACCEPT_DELTA_BIC && b.fraction_closed >= MIN_CLOSED
