@@ -141,11 +141,11 @@ mod tests {
         assert_eq!(fraction_closed(11.0, 6.0, 1.0), 0.5);
         assert_eq!(fraction_closed(11.0, 20.0, 1.0), 0.0);
         assert_eq!(fraction_closed(0.9, 0.5, 1.0), 0.0);
-        // Below a conservative σ's floor the gap is measured down to the best fit.
         // χ²_n/n scatters by √(2/n): within two of it above 1 a model is as right as at 1.
         assert!(chi2_within_noise(1.03, 2000) && chi2_within_noise(0.5, 2000));
         assert!(!chi2_within_noise(1.07, 2000) && !chi2_within_noise(1.03, 20_000));
         assert!(chi2_within_noise(1.5, 32) && !chi2_within_noise(1.51, 32));
+        // Below a conservative σ's floor the gap is measured down to the best fit.
         assert_eq!(gap_floor(3.0), 1.0);
         assert_eq!(gap_floor(0.9), 0.0);
         assert!((fraction_closed(0.8, 0.6, gap_floor(0.8)) - 0.25).abs() < 1e-12);

@@ -98,30 +98,32 @@ fn iso_toward(scores: &[CaseScore]) -> IsoToward {
         .filter(|s| !s.named.is_empty())
         .filter_map(|s| s.iso.as_ref())
         .collect();
-    // `from`: 0 the nominal model, 1 the re-fitted one; the named model is the third.
-    let within = |from: usize, (aw, seat): (f64, f64)| {
+    // `from`: 0 the nominal model, 1 the re-fitted one; the named model is the third. `tie`: the
+    // growth of the a_w (%) and SEAT (points) gaps read as no growth, per case.
+    let within = |from: usize, tie: &dyn Fn(&IsoGaps) -> (f64, f64)| {
         named
             .iter()
             .filter(|g| {
+                let (aw, seat) = tie(g);
                 g.aw_percent[2].abs() <= g.aw_percent[from].abs() + aw
                     && g.seat_points[2].abs() <= g.seat_points[from].abs() + seat
             })
             .count()
     };
-    let (toward, within_practical) = (within(1, (TIE, TIE)), within(1, crate::diagnosis::ISO_AWAY));
-    let within_sigma = named
-        .iter()
-        .filter(|g| {
-            let [s_aw, s_seat] = g.sigma.unwrap_or([0.0, 0.0]);
-            g.aw_percent[2].abs() <= g.aw_percent[1].abs() + TIE.max(2.0 * s_aw)
-                && g.seat_points[2].abs() <= g.seat_points[1].abs() + TIE.max(2.0 * s_seat)
-        })
-        .count();
+    let rounding = |_: &IsoGaps| (TIE, TIE);
+    let (toward, within_practical) = (
+        within(1, &rounding),
+        within(1, &|_| crate::diagnosis::ISO_AWAY),
+    );
+    let within_sigma = within(1, &|g| {
+        let [s_aw, s_seat] = g.sigma.unwrap_or([0.0, 0.0]);
+        (TIE.max(2.0 * s_aw), TIE.max(2.0 * s_seat))
+    });
     let of = |f: fn(&IsoGaps) -> f64| median(named.iter().map(|g| f(g)).collect());
     IsoToward {
         named: named.len(),
         toward,
-        toward_nominal: within(0, (TIE, TIE)),
+        toward_nominal: within(0, &rounding),
         within_sigma,
         within_practical,
         median_aw_gap_percent: of(|g| g.aw_percent[2].abs()),
