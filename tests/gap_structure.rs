@@ -48,3 +48,39 @@ fn a_two_mode_seat_frame_is_named_as_a_frame_mode_and_a_second_one_under_it() {
         d.verdict_text
     );
 }
+
+/// A frame that rocks on unequal legs (the pan on a front and a rear member, the truth bench's own
+/// chain edit): vertical channels see frame modes, so the family is missing-dof, and the named
+/// model brings the check run's a_w at least as near the measurement as the re-fitted base model.
+#[test]
+fn a_rocking_seat_frame_is_named_a_missing_mode_and_closes_the_check_run() {
+    let case = make_case_with(
+        5,
+        7,
+        &CaseOptions {
+            effects: Some(vec![(Form::RockingFrame, 0.7)]),
+            spectrum: Some("road"),
+            fs_hz: Some(400.0),
+            duration_s: Some(90.0),
+            noise: Some(0.01),
+            force: Some(true),
+            ..CaseOptions::default()
+        },
+    )
+    .unwrap();
+    assert!(
+        case.label.effects[0]
+            .detail
+            .starts_with("rocking seat frame")
+    );
+    let model = catalog::resolve("reference").unwrap();
+    let d = diagnose(&model, &case.train, &case.check).unwrap();
+    assert_eq!(d.verdict.as_str(), "missing-dof", "{}", d.verdict_text);
+    let named = d.named_stage().unwrap();
+    assert!(named.chi2_red < 3.0, "{}", d.verdict_text);
+    assert!(
+        named.weighted.aw_gap_percent.abs() <= d.null.check.weighted.aw_gap_percent.abs() + 0.5,
+        "{}",
+        d.verdict_text
+    );
+}

@@ -135,6 +135,9 @@ pub enum Form {
     Viscera,
     /// A seat frame with two modes: a pan on a riser, each on its own spring.
     FrameTwoMode,
+    /// A seat frame that rocks: the pan on a front and a rear member, each on its own legs, so
+    /// bounce and pitch couple.
+    RockingFrame,
     /// Backrest foam (standard linear solid) from the frame to the upper torso, with a softer
     /// lumbar contact on the body mass below it.
     Backrest,
@@ -148,7 +151,7 @@ pub enum Form {
 
 impl Form {
     /// Every form, in report order.
-    pub const ALL: [Form; 22] = [
+    pub const ALL: [Form; 23] = [
         Form::Sls,
         Form::Maxwell2,
         Form::Fractional,
@@ -168,6 +171,7 @@ impl Form {
         Form::Frame,
         Form::Viscera,
         Form::FrameTwoMode,
+        Form::RockingFrame,
         Form::Backrest,
         Form::Legs,
         Form::Hands,
@@ -186,7 +190,9 @@ impl Form {
             | Form::Gain
             | Form::LoggerOffset
             | Form::LoggerDrift => Family::Sensor,
-            Form::Frame | Form::Viscera | Form::FrameTwoMode => Family::MissingDof,
+            Form::Frame | Form::Viscera | Form::FrameTwoMode | Form::RockingFrame => {
+                Family::MissingDof
+            }
             Form::Backrest | Form::Legs | Form::Hands => Family::SupportPath,
         }
     }
@@ -229,6 +235,7 @@ impl Form {
             Form::Frame => "frame",
             Form::Viscera => "viscera",
             Form::FrameTwoMode => "two-mode-frame",
+            Form::RockingFrame => "rocking-frame",
             Form::Backrest => "backrest",
             Form::Legs => "legs",
             Form::Hands => "hands-on-wheel",
@@ -396,6 +403,7 @@ pub fn plant(
             format!("{clock:?} on {}", late.join(", "))
         }
         Form::FrameTwoMode => frame::plant_two_mode(u, rng, model)?,
+        Form::RockingFrame => frame::plant_rocking(u, rng, model)?,
         Form::Frame | Form::Viscera | Form::Backrest | Form::Legs => {
             structure::plant(form, u, rng, model)?
         }
