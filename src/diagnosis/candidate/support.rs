@@ -142,13 +142,23 @@ pub const FEET: Definition = Definition {
     reads_force_only: false,
 };
 
+/// Mass of a steering wheel with its hub (kg): 2–5 kg with an airbag module; fixed, since the
+/// wheel's mass and its column's stiffness enter the response through their ratio.
+pub const WHEEL_KG: f64 = 3.0;
+
+/// Damping ratio of a steering column's bending mode: a steel tube in its bushings, lightly damped.
+pub const COLUMN_ZETA: f64 = 0.05;
+
 /// Hands on a steering wheel or a grab handle that moves with the floor (issue 39): an arms mass
 /// joined to the upper body (the heaviest body mass: upper torso and shoulders) by a shoulder–arm
-/// spring–damper and to the base by the grip (`add_limb`): with the torso held,
-/// ω² = (2π)²·(f_shoulder² + f_grip²), k = m_arms·(2πf)², c = 2·0.3·m_arms·2πf. The path enters
-/// the body at the top of the spine, next to the head, where a lower-body path (feet, thighs)
-/// enters at the pelvis under the seat-pan force: with a head channel or `f_seat_z` the two shape
-/// seat→head and the apparent mass differently.
+/// spring–damper and by the grip to a wheel of [`WHEEL_KG`] on its column to the base (`add_limb`,
+/// then the wheel): with the torso and wheel held, ω² = (2π)²·(f_shoulder² + f_grip²),
+/// k = m_arms·(2πf)², c = 2·0.3·m_arms·2πf; the wheel alone on its column rings at f_column with
+/// ζ [`COLUMN_ZETA`]. A column's bending mode (tens of Hz, kept above the engine's idle) rings
+/// through a firm grip into the shoulders; a stiff column (f_column at its bound) is the grip
+/// straight to the floor. The path enters the body at the top of the spine, next to the head,
+/// where a lower-body path (feet, thighs) enters at the pelvis under the seat-pan force: with a
+/// head channel or `f_seat_z` the two shape seat→head and the apparent mass differently.
 ///
 /// Bounds and starts (assumptions, not fitted to a study here): segment-mass fractions of about
 /// 2.8 % (upper arm), 1.6 % (forearm) and 0.6 % (hand) of body mass (Dempster's, as tabulated by
@@ -156,9 +166,9 @@ pub const FEET: Definition = Definition {
 /// occupant, 7–8 kg, of which the part that moves with the grip rather than the shoulder is less:
 /// start 4 kg, bounds 1–15 kg. The shoulder–arm suspension of the torso is soft (the arms hang
 /// from muscles), 0.5–25 Hz on the arms mass with starts at 2 and 5 Hz as for the knee; the grip
-/// (palm and finger tissue on a rim) is stiffer, 3–80 Hz, start 20 Hz. Hand position changes the
-/// seated vertical apparent mass and its resonance (Wang, Rakheja and Boileau 2004, Int. J. Ind.
-/// Ergonomics 34); the Boileau–Rakheja body of the reference model was itself fitted to drivers with
+/// (palm and finger tissue on a rim) is stiffer, 3–80 Hz, start 20 Hz; the column 8–80 Hz, start
+/// 35 Hz. Hand position changes the seated vertical apparent mass and its resonance (Wang,
+/// Rakheja and Boileau 2004, Int. J. Ind. Ergonomics 34); the Boileau–Rakheja body of the reference model was itself fitted to drivers with
 /// their hands on a wheel, so on it the candidate stands for a grip its data did not have, or a
 /// firmer one.
 pub const HANDS: Definition = Definition {
@@ -169,6 +179,7 @@ pub const HANDS: Definition = Definition {
             Param::new("m_arms_kg", 1.0, 15.0, &[4.0], true),
             Param::new("f_shoulder_hz", 0.5, 25.0, &[2.0, 5.0], true),
             Param::new("f_grip_hz", 3.0, 80.0, &[20.0], true),
+            Param::new("f_column_hz", 8.0, 80.0, &[35.0], true),
         ]
     },
     applies_to: |s| target(Target::UpperBody, s).is_some(),
@@ -177,6 +188,24 @@ pub const HANDS: Definition = Definition {
         let t = target_or_err(HANDS.id, Target::UpperBody, s)?;
         let (arms, shoulder, grip) = (("arms", p[0]), ("shoulder", p[1]), ("grip", p[2]));
         add_limb(s, t, Role::Handle, arms, shoulder, grip);
+        // The grip holds a wheel on its column instead of the floor itself.
+        let (a, r, r_x) = (s.dof() - 1, s.r[t], s.r_x[t]);
+        let w = add_dof(s, "wheel", Role::Handle, WHEEL_KG, r, r_x);
+        let g = s.links.last_mut().expect("add_limb's grip");
+        g.nodes.1 = "wheel".into();
+        g.row = vec![(a, 1.0), (w, -1.0)];
+        let column = kv_link(
+            "column",
+            ("wheel", "base"),
+            vec![(w, 1.0)],
+            WHEEL_KG,
+            p[3],
+            COLUMN_ZETA,
+        );
+        s.links.push(Link {
+            role: Role::Handle,
+            ..column
+        });
         Ok(())
     },
     magnitude: Magnitude::Linear,
@@ -261,25 +290,35 @@ mod tests {
     }
 
     #[test]
-    fn hands_support_adds_an_arms_mass_between_the_shoulders_and_the_base() {
+    fn hands_support_adds_arms_between_the_shoulders_and_a_wheel_on_its_column() {
         let s = system("reference");
         let v = Candidate::HandsSupport
-            .apply(&s, &[4.0, 5.0, 20.0])
+            .apply(&s, &[4.0, 5.0, 20.0, 30.0])
             .unwrap();
         let t = &v.system;
-        assert_eq!(t.dof(), s.dof() + 1);
-        let j = t.dof() - 1;
-        assert_eq!((t.m[(j, j)], t.r[j]), (4.0, 1.0));
+        assert_eq!(t.dof(), s.dof() + 2);
+        let (a, w) = (t.dof() - 2, t.dof() - 1);
+        assert_eq!((t.m[(a, a)], t.r[a]), (4.0, 1.0));
+        assert_eq!((t.m[(w, w)], t.r[w]), (WHEEL_KG, 1.0));
         let hand: Vec<&Link> = t.links.iter().filter(|l| l.role == Role::Handle).collect();
-        // The shoulder hangs the arms on the upper torso, the grip on the base.
+        // The shoulder hangs the arms on the upper torso, the grip holds the wheel, the column
+        // carries the wheel on the base.
         let nodes: Vec<(&str, &str)> = hand
             .iter()
             .map(|l| (l.nodes.0.as_str(), l.nodes.1.as_str()))
             .collect();
-        assert_eq!(nodes, [("upper_torso", "arms"), ("arms", "base")]);
-        // With the torso held the arms rest on shoulder and grip in parallel:
+        assert_eq!(
+            nodes,
+            [
+                ("upper_torso", "arms"),
+                ("arms", "wheel"),
+                ("wheel", "base")
+            ]
+        );
+        assert_eq!(hand[1].row, [(a, 1.0), (w, -1.0)]);
+        // With the torso and the wheel held the arms rest on shoulder and grip in parallel:
         // ω² = (2π)²·(5² + 20²), and each link's damping is 2·ζ·m·ω of its own tuning.
-        let k: f64 = hand.iter().map(|l| l.element.static_stiffness()).sum();
+        let k: f64 = hand[..2].iter().map(|l| l.element.static_stiffness()).sum();
         let expect = (2.0 * PI).powi(2) * (25.0 + 400.0);
         assert!((k / 4.0 / expect - 1.0).abs() < 1e-12, "{k} vs {expect}");
         let Element::KelvinVoigt { c, .. } = hand[0].element else {
@@ -287,6 +326,13 @@ mod tests {
         };
         let c0 = 2.0 * SUPPORT_ZETA * 4.0 * 2.0 * PI * 5.0;
         assert!((c / c0 - 1.0).abs() < 1e-12, "{c} vs {c0}");
+        // The wheel on its column alone: ω = 2π·30 Hz, ζ = COLUMN_ZETA.
+        let Element::KelvinVoigt { k, c } = hand[2].element else {
+            panic!("{:?}", hand[2].element)
+        };
+        let wn = (k / WHEEL_KG).sqrt();
+        assert!((wn / (2.0 * PI * 30.0) - 1.0).abs() < 1e-12, "{wn}");
+        assert!((c / (2.0 * WHEEL_KG * wn) / COLUMN_ZETA - 1.0).abs() < 1e-12);
         // The seat-pan force still reads the body–seat interface alone.
         let f = t.channel_index("f_seat_z").unwrap();
         assert_eq!(t.channels[f].rule, s.channels[f].rule);
