@@ -142,8 +142,9 @@ pub const FEET: Definition = Definition {
     reads_force_only: false,
 };
 
-/// Mass of a steering wheel with its hub (kg): 2–5 kg with an airbag module; fixed, since the
-/// wheel's mass and its column's stiffness enter the response through their ratio.
+/// Mass of a steering wheel with its hub (kg): 2–5 kg with an airbag module. Fixed, so the
+/// candidate gains one parameter (the column's frequency), not two; the free arms mass and grip
+/// take up a wheel lighter or heavier than this.
 pub const WHEEL_KG: f64 = 3.0;
 
 /// Damping ratio of a steering column's bending mode: a steel tube in its bushings, lightly damped.
@@ -168,9 +169,9 @@ pub const COLUMN_ZETA: f64 = 0.05;
 /// from muscles), 0.5–25 Hz on the arms mass with starts at 2 and 5 Hz as for the knee; the grip
 /// (palm and finger tissue on a rim) is stiffer, 3–80 Hz, start 20 Hz; the column 8–80 Hz, start
 /// 35 Hz. Hand position changes the seated vertical apparent mass and its resonance (Wang,
-/// Rakheja and Boileau 2004, Int. J. Ind. Ergonomics 34); the Boileau–Rakheja body of the reference model was itself fitted to drivers with
-/// their hands on a wheel, so on it the candidate stands for a grip its data did not have, or a
-/// firmer one.
+/// Rakheja and Boileau 2004, Int. J. Ind. Ergonomics 34); the Boileau–Rakheja body of the
+/// reference model was itself fitted to drivers with their hands on a wheel, so on it the
+/// candidate stands for a grip its data did not have, or a firmer one.
 pub const HANDS: Definition = Definition {
     id: "hands-support",
     family: Family::SupportPath,
