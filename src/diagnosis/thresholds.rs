@@ -4,7 +4,8 @@
 /// "strong evidence", Kass & Raftery, JASA 90 (1995) 773–795).
 pub const ACCEPT_DELTA_BIC: f64 = -10.0;
 /// ΔBIC (held-out) an effect must reach to be named when the null re-fit already fits the check
-/// run within the noise (reduced χ² within its own scatter of 1, [`super::score::chi2_within_noise`]): with ~10³ residuals a systematic error far below the noise
+/// run within the noise (reduced χ² within its own scatter of 1,
+/// [`super::score::chi2_within_noise`]): with ~10³ residuals a systematic error far below the noise
 /// (the base floor's bias, imperfectly undone; a sampling lag) reaches −10. Set from clean field-like
 /// cases (road and helicopter bases, 200–500 Hz loggers, a base accelerometer floor of 3–4 % of its
 /// r.m.s., with and without a force plate; 80 cases): at −10 12 of 80 named an effect (10 of 30 on

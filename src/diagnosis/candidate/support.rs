@@ -58,34 +58,45 @@ fn link_to_base(id: &str, s: &System, t: usize, f_hz: f64, zeta: f64) -> Link {
     kv_link(id, (&s.dofs[t].name, "base"), vec![(t, 1.0)], m, f_hz, zeta)
 }
 
-/// A limb between the body point `t` and the base (legs from the pelvis to the floor, arms from the
-/// shoulders to a wheel): a coordinate of `limb.1` kg called `limb.0`, moved by the base as `t`
-/// is, joined to `t` by the spring–damper `joint` and to the base by the contact `contact`, each
-/// given as (name, frequency in Hz) and tuned on the limb's mass with ζ [`SUPPORT_ZETA`]:
-/// k = m·(2πf)², c = 2ζ·m·2πf. With `t` held the limb rests on both in parallel,
-/// ω² = (2π)²·(f_joint² + f_contact²). Every added part carries `role`.
-fn add_limb(
+/// A limb off the body point `t` (legs off the pelvis, arms off the shoulders): a coordinate of
+/// `limb.1` kg called `limb.0`, moved by the base as `t` is, hung on `t` by the spring–damper
+/// `joint` (name, frequency in Hz) tuned on the limb's mass with ζ [`SUPPORT_ZETA`]; its contact
+/// is the caller's ([`tie`]). Returns the limb's coordinate. With `t` held and a contact to the
+/// base the limb rests on both in parallel, ω² = (2π)²·(f_joint² + f_contact²).
+fn add_limb(s: &mut System, t: usize, role: Role, limb: (&str, f64), joint: (&str, f64)) -> usize {
+    let j = add_dof(s, limb.0, role, limb.1, s.r[t], s.r_x[t]);
+    tie(
+        s,
+        role,
+        joint.0,
+        (t, Some(j)),
+        limb.1,
+        joint.1,
+        SUPPORT_ZETA,
+    );
+    j
+}
+
+/// A spring–damper `name` carrying `role` from coordinate `ends.0` to coordinate `ends.1` (the
+/// base when `None`), tuned on `m_kg` to `f_hz` with damping ratio `zeta`: k = m·(2πf)²,
+/// c = 2ζ·m·2πf.
+fn tie(
     s: &mut System,
-    t: usize,
     role: Role,
-    limb: (&str, f64),
-    joint: (&str, f64),
-    contact: (&str, f64),
+    name: &str,
+    ends: (usize, Option<usize>),
+    m_kg: f64,
+    f_hz: f64,
+    zeta: f64,
 ) {
-    let ((name, m), body) = (limb, s.dofs[t].name.clone());
-    let j = add_dof(s, name, role, m, s.r[t], s.r_x[t]);
-    for (link, nodes, row, f) in [
-        (
-            joint.0,
-            (body.as_str(), name),
-            vec![(t, 1.0), (j, -1.0)],
-            joint.1,
-        ),
-        (contact.0, (name, "base"), vec![(j, 1.0)], contact.1),
-    ] {
-        let l = kv_link(link, nodes, row, m, f, SUPPORT_ZETA);
-        s.links.push(Link { role, ..l });
-    }
+    let (a, b) = ends;
+    let upper = s.dofs[a].name.clone();
+    let lower = b.map_or("base".to_string(), |b| s.dofs[b].name.clone());
+    let row = std::iter::once((a, 1.0))
+        .chain(b.map(|b| (b, -1.0)))
+        .collect();
+    let l = kv_link(name, (&upper, &lower), row, m_kg, f_hz, zeta);
+    s.links.push(Link { role, ..l });
 }
 
 /// A backrest (E7): the upper torso leans on the seat frame through a foam — a spring–damper tuned
@@ -118,8 +129,8 @@ pub const BACKREST: Definition = Definition {
 };
 
 /// Feet on the floor (E9): a legs mass joined to the lower body (pelvis and thighs) by a knee
-/// spring–damper and to the base by a heel pad (`add_limb`): a load path past the seat pan that
-/// the seat-pan force does not see.
+/// spring–damper and to the base by a heel pad (`add_limb`, [`tie`]): a load path past the seat
+/// pan that the seat-pan force does not see.
 pub const FEET: Definition = Definition {
     id: "feet-support",
     family: Family::SupportPath,
@@ -134,8 +145,9 @@ pub const FEET: Definition = Definition {
     apply: |v, p| {
         let s = &mut v.system;
         let t = target_or_err(FEET.id, Target::LowerBody, s)?;
-        let (legs, knee, heel) = (("legs", p[0]), ("knee", p[1]), ("heel", p[2]));
-        add_limb(s, t, Role::Footrest, legs, knee, heel);
+        let role = Role::Footrest;
+        let j = add_limb(s, t, role, ("legs", p[0]), ("knee", p[1]));
+        tie(s, role, "heel", (j, None), p[0], p[2], SUPPORT_ZETA);
         Ok(())
     },
     magnitude: Magnitude::Linear,
@@ -153,7 +165,7 @@ pub const COLUMN_ZETA: f64 = 0.05;
 /// Hands on a steering wheel or a grab handle that moves with the floor (issue 39): an arms mass
 /// joined to the upper body (the heaviest body mass: upper torso and shoulders) by a shoulder–arm
 /// spring–damper and by the grip to a wheel of [`WHEEL_KG`] on its column to the base (`add_limb`,
-/// then the wheel): with the torso and wheel held, ω² = (2π)²·(f_shoulder² + f_grip²),
+/// the wheel, [`tie`]): with the torso and wheel held, ω² = (2π)²·(f_shoulder² + f_grip²),
 /// k = m_arms·(2πf)², c = 2·0.3·m_arms·2πf; the wheel alone on its column rings at f_column with
 /// ζ [`COLUMN_ZETA`]. A column's bending mode (tens of Hz, kept above the engine's idle) rings
 /// through a firm grip into the shoulders; a stiff column (f_column at its bound) is the grip
@@ -187,26 +199,12 @@ pub const HANDS: Definition = Definition {
     apply: |v, p| {
         let s = &mut v.system;
         let t = target_or_err(HANDS.id, Target::UpperBody, s)?;
-        let (arms, shoulder, grip) = (("arms", p[0]), ("shoulder", p[1]), ("grip", p[2]));
-        add_limb(s, t, Role::Handle, arms, shoulder, grip);
-        // The grip holds a wheel on its column instead of the floor itself.
-        let (a, r, r_x) = (s.dof() - 1, s.r[t], s.r_x[t]);
-        let w = add_dof(s, "wheel", Role::Handle, WHEEL_KG, r, r_x);
-        let g = s.links.last_mut().expect("add_limb's grip");
-        g.nodes.1 = "wheel".into();
-        g.row = vec![(a, 1.0), (w, -1.0)];
-        let column = kv_link(
-            "column",
-            ("wheel", "base"),
-            vec![(w, 1.0)],
-            WHEEL_KG,
-            p[3],
-            COLUMN_ZETA,
-        );
-        s.links.push(Link {
-            role: Role::Handle,
-            ..column
-        });
+        let role = Role::Handle;
+        let a = add_limb(s, t, role, ("arms", p[0]), ("shoulder", p[1]));
+        // The grip holds a wheel on its column, not the floor itself.
+        let w = add_dof(s, "wheel", role, WHEEL_KG, s.r[t], s.r_x[t]);
+        tie(s, role, "grip", (a, Some(w)), p[0], p[2], SUPPORT_ZETA);
+        tie(s, role, "column", (w, None), WHEEL_KG, p[3], COLUMN_ZETA);
         Ok(())
     },
     magnitude: Magnitude::Linear,
