@@ -199,7 +199,6 @@ fn check_run_outside_the_training_magnitudes_is_warned() {
     );
 }
 
-/// `s` with `offset` added to every sample of the channels named in `names`.
 /// `s` with channel `name` replaced by `edit` of its samples (a sensor's or a lab's error).
 fn with_channel(s: &Signals, name: &str, edit: impl Fn(&[f64]) -> Vec<f64>) -> Signals {
     let mut out = Signals::new(s.sample_rate_hz, s.source.clone());
@@ -210,6 +209,7 @@ fn with_channel(s: &Signals, name: &str, edit: impl Fn(&[f64]) -> Vec<f64>) -> S
     out
 }
 
+/// `s` with `offset` added to every sample of the channels named in `names`.
 fn with_offset(s: &Signals, names: &[&str], offset: f64) -> Signals {
     names.iter().fold(s.clone(), |s, n| {
         with_channel(&s, n, |d| d.iter().map(|v| v + offset).collect())
@@ -256,6 +256,52 @@ fn with_force(s: &Signals, edit: impl Fn(&mut Vec<f64>, &[f64])) -> Signals {
         out.push(n.clone(), x).unwrap();
     }
     out
+}
+
+#[test]
+fn a_low_pass_on_the_base_channel_is_named_the_base_channels_own_and_closes_the_check_run() {
+    // A ride logger recording the base filters it at 20–60 Hz, inside the ISO band: a 4-pole
+    // Butterworth at 30 Hz on a_base_z alone (the bench's own IIR, not the candidate's 2-pole
+    // section). The measured base is the input, so base→seat and base→head rise alike above
+    // ~15 Hz and seat→head is untouched: a measuring-chain effect on the base, not a cushion or
+    // body one, and the named model brings a_w and SEAT back to the measurement.
+    use wbv::gap_bench::forms::Sensor;
+    use wbv::gap_bench::sensor::apply;
+    let case = null_case();
+    let model = catalog::resolve("reference").unwrap();
+    let fs = case.check.sample_rate_hz;
+    let lowpass = |x: &[f64]| {
+        let mut x = x.to_vec();
+        let s = Sensor::LowPass {
+            fc_hz: 30.0,
+            bessel: false,
+        };
+        apply(&s, &mut x, fs);
+        x
+    };
+    let on_base = |s: &Signals| with_channel(s, "a_base_z", lowpass);
+    let train: Vec<Signals> = case.train.iter().map(on_base).collect();
+    let d = diagnose(&model, &train, &on_base(&case.check)).unwrap();
+    assert_eq!(
+        d.verdict.as_str(),
+        "sensor-lowpass-base",
+        "{}",
+        d.verdict_text
+    );
+    let named = d.named_stage().unwrap();
+    assert!(named.chi2_red < 3.0, "{}", d.verdict_text);
+    for (with, null) in [
+        (
+            named.weighted.aw_gap_percent,
+            d.null.check.weighted.aw_gap_percent,
+        ),
+        (
+            named.weighted.seat_model - named.weighted.seat_meas,
+            d.null.check.weighted.seat_model - d.null.check.weighted.seat_meas,
+        ),
+    ] {
+        assert!(with.abs() <= null.abs() + 0.1, "{}", d.verdict_text);
+    }
 }
 
 #[test]

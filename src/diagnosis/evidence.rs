@@ -6,7 +6,7 @@
 //! −2 ln L = χ² up to a constant and BIC = χ² + k ln n (Schwarz, Ann. Stat. 6 (1978) 461–464).
 
 use super::candidate::Candidate;
-use super::fitting::{Base, Fitted, build, fit_candidate};
+use super::fitting::{Base, Fitted, bounds, build, fit_candidate};
 use super::gapmap;
 use super::measure::{Path, RunSpectra};
 use super::outcome::{Estimate, IsoSigma, Ranked, Stage};
@@ -76,6 +76,7 @@ pub(super) fn iso_sigma(
         return Ok(None);
     };
     let u = &ft.fit.u;
+    let (lo, hi) = bounds(base, cands);
     let mut g_aw = vec![0.0; u.len()];
     let mut g_seat = vec![0.0; u.len()];
     for i in 0..u.len() {
@@ -83,7 +84,14 @@ pub(super) fn iso_sigma(
         if !(s.is_finite() && s > 0.0) {
             continue;
         }
-        let h = 0.1 * s;
+        // A step inside the parameter's range, toward its interior: a parameter the data barely
+        // pin (σ wider than its range, as a second filter section far above the band) stepped by
+        // a tenth of σ would leave the range, where the model is another model and the
+        // difference quotient no gradient.
+        let mut h = (0.1 * s).min(0.1 * (hi[i] - lo[i]));
+        if u[i] + h > hi[i] {
+            h = -h;
+        }
         let mut v = u.clone();
         v[i] += h;
         let w = weighted(&build(base, cands, &v, ft.variant.rms_ref)?, check)?;

@@ -36,6 +36,10 @@ pub struct Channel {
     /// Mount resonance (Hz, damping ratio) as the absolute transmissibility of a base-excited
     /// oscillator, (1 + 2iζr)/(1 − r² + 2iζr), r = f/f_m; `None` = rigid mount.
     pub mount: Option<(f64, f64)>,
+    /// A low-pass of two to four poles of a signal conditioner or of another logger's filter, as
+    /// second-order sections (natural frequency Hz, damping ratio), each 1/(1 − r² + 2iζr),
+    /// r = f/f_n; `None` = no section.
+    pub sections: [Option<(f64, f64)>; 2],
 }
 
 impl Default for Channel {
@@ -47,6 +51,7 @@ impl Default for Channel {
             lowpass_hz: f64::INFINITY,
             highpass_hz: 0.0,
             mount: None,
+            sections: [None; 2],
         }
     }
 }
@@ -119,6 +124,10 @@ impl Channel {
             let r = f / fm;
             let num = Complex64::new(1.0, 2.0 * z * r);
             h *= num / Complex64::new(1.0 - r * r, 2.0 * z * r);
+        }
+        for (fn_, z) in self.sections.iter().flatten() {
+            let r = f / fn_;
+            h /= Complex64::new(1.0 - r * r, 2.0 * z * r);
         }
         h
     }

@@ -23,6 +23,7 @@ FAMILY = {
     "sensor-delay": "sensor", "sensor-lowpass": "sensor", "sensor-gain": "sensor",
     "sensor-highpass": "sensor", "sensor-force": "sensor", "sensor-mount-force": "sensor",
     "sensor-mount-seat": "sensor", "sensor-mount-head": "sensor", "sensor-mount-base": "sensor",
+    "sensor-lowpass-base": "sensor",
     "logger-offset": "sensor", "logger-drift": "sensor",
     "missing-dof": "missing-dof", "body-mode": "missing-dof",
     "backrest": "support-path", "hands-support": "support-path", "feet-support": "support-path", "thigh-support": "support-path", "cushion-fractional": "viscoelastic",

@@ -171,6 +171,8 @@ pub enum Candidate {
     SensorMountHead,
     /// [`sensor::MOUNT_BASE`]
     SensorMountBase,
+    /// [`sensor::LOWPASS_BASE`]
+    SensorLowpassBase,
     /// [`sensor::FORCE`]
     SensorForce,
     /// [`sensor::MOUNT_FORCE`]
@@ -195,7 +197,7 @@ pub enum Candidate {
 
 impl Candidate {
     /// Every candidate in report order.
-    pub const ALL: [Candidate; 26] = [
+    pub const ALL: [Candidate; 27] = [
         Candidate::BodySoftening,
         Candidate::BodySofteningMagnitude,
         Candidate::CushionStiffening,
@@ -212,6 +214,7 @@ impl Candidate {
         Candidate::SensorMountSeat,
         Candidate::SensorMountHead,
         Candidate::SensorMountBase,
+        Candidate::SensorLowpassBase,
         Candidate::SensorForce,
         Candidate::SensorMountForce,
         Candidate::SuspensionFriction,
@@ -243,6 +246,7 @@ impl Candidate {
             Candidate::SensorMountSeat => &sensor::MOUNT_SEAT,
             Candidate::SensorMountHead => &sensor::MOUNT_HEAD,
             Candidate::SensorMountBase => &sensor::MOUNT_BASE,
+            Candidate::SensorLowpassBase => &sensor::LOWPASS_BASE,
             Candidate::SensorForce => &sensor::FORCE,
             Candidate::SensorMountForce => &sensor::MOUNT_FORCE,
             Candidate::SuspensionFriction => &suspension::FRICTION,

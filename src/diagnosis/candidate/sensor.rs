@@ -209,16 +209,40 @@ pub const MOUNT_HEAD: Definition = sensor(
     false,
 );
 
-/// Dynamics of the base accelerometer (a mount resonance, or with high damping an anti-alias
-/// low-pass of another acquisition module): the measured base is the input, so it divides
+/// The base accelerometer's mount resonance: the measured base is the input, so it divides
 /// base→seat and base→head alike and leaves seat→head alone. Damping up to 1 and a heavily damped
-/// start: a base-channel low-pass is as likely as a resonant mount on a shaker table.
+/// start: a soft, lossy mount (a magnet on a painted floor, a pad) is as likely as a resonant one.
+/// A low-pass of the base's conditioner or logger is [`LOWPASS_BASE`].
 pub const MOUNT_BASE: Definition = sensor(
     "sensor-mount-base",
     || mount_params(1.0, &[0.08, 0.6]),
     always,
     |v, p| {
         v.base.mount = Some((p[0], p[1]));
+        Ok(())
+    },
+    false,
+);
+
+/// A low-pass on the base channel: its signal conditioner's filter, or the anti-alias filter of
+/// the logger that records it set low (a ride logger at 100–200 Hz filters at 20–60 Hz), of two
+/// to four poles: two second-order sections, the second at `ratio` ≥ 1 times the first's
+/// frequency (a 4-pole Butterworth is ratio 1, ζ 0.38 and 0.92; a 2-pole puts the second far
+/// out). The measured base is the input, so it raises base→seat and base→head alike above a few
+/// Hz with a lag and leaves seat→head alone; unlike a mount it has no numerator lead.
+pub const LOWPASS_BASE: Definition = sensor(
+    "sensor-lowpass-base",
+    || {
+        vec![
+            Param::new("lowpass_base_hz", 5.0, 5000.0, &[20.0, 60.0], true),
+            Param::new("zeta_1", 0.3, 1.2, &[0.6], true),
+            Param::new("ratio_2", 1.0, 100.0, &[1.0, 100.0], true),
+            Param::new("zeta_2", 0.3, 1.2, &[0.9], true),
+        ]
+    },
+    always,
+    |v, p| {
+        v.base.sections = [Some((p[0], p[1])), Some((p[0] * p[2], p[3]))];
         Ok(())
     },
     false,

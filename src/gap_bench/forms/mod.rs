@@ -343,8 +343,15 @@ pub fn plant(
             };
             let s = match form {
                 Form::Delay => Sensor::Delay(0.001 + 0.019 * u),
+                // The base is often on a logger of its own: a ride logger recording at 100–200 Hz
+                // filters at 20–60 Hz, inside the ISO band; the seat and head loggers' anti-alias
+                // filters sit near their Nyquist.
                 Form::LowPass => Sensor::LowPass {
-                    fc_hz: (0.4 - 0.2 * u) * fs,
+                    fc_hz: if ch == "a_base_z" {
+                        60.0 * 0.3f64.powf(u)
+                    } else {
+                        (0.4 - 0.2 * u) * fs
+                    },
                     bessel: rng.random::<f64>() < 0.5,
                 },
                 Form::Mount => Sensor::Mount {
