@@ -41,7 +41,7 @@ fn replayed_h1_matches_the_analytic_frf_within_its_error_band() {
     let sim = replay(model.system(), base, case.check.sample_rate_hz, "replay").unwrap();
     let spec = estimate(&sim, &[]).unwrap();
     let pred = predict(&Variant::plain(model.system().clone()), &spec).unwrap();
-    for (pe, pv) in spec.paths.iter().zip(&pred) {
+    for (pe, pv) in spec.paths.iter().zip(&pred.as_estimated) {
         for (b, (&f, &h)) in spec.freq_hz.iter().zip(pv).enumerate() {
             if !(1.0..=20.0).contains(&f) {
                 continue;

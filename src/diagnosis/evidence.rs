@@ -18,12 +18,13 @@ use rayon::prelude::*;
 /// A model variant's evaluation on the held-out run: reduced χ², band-gap and phase-gap RMS, the
 /// Wk-weighted seat a_w and SEAT (ISO 2631-1 §6.4.2) and the band gap map.
 pub fn stage(v: &Variant, check: &RunSpectra) -> Result<Stage> {
-    let pred = predict::predict(v, check)?;
+    let predicted = predict::predict(v, check)?;
+    let pred = &predicted.as_estimated;
     let n = score::residual_count(std::slice::from_ref(check)).max(1);
     let mut r = Vec::new();
-    score::run_residuals(check, &pred, &mut r);
+    score::run_residuals(check, pred, &mut r);
     let chi2: f64 = r.iter().map(|x| x * x).sum();
-    let cells = gapmap::band_cells(check, &pred);
+    let cells = gapmap::band_cells(check, pred);
     let bs = check
         .paths
         .iter()
@@ -40,7 +41,7 @@ pub fn stage(v: &Variant, check: &RunSpectra) -> Result<Stage> {
         weighted: if v.drifts() {
             weighted(v, check)?
         } else {
-            gapmap::weighted(check, &pred[bs])
+            gapmap::weighted(check, &predicted.at_bins[bs])
         },
         iso_sigma: None,
         cells,
@@ -57,7 +58,7 @@ fn weighted(v: &Variant, check: &RunSpectra) -> Result<gapmap::Weighted> {
     let steady = v.without_drift();
     Ok(gapmap::weighted(
         check,
-        &predict::predict(steady.as_ref().unwrap_or(v), check)?[bs],
+        &predict::predict(steady.as_ref().unwrap_or(v), check)?.at_bins[bs],
     ))
 }
 

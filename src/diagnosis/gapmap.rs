@@ -142,16 +142,7 @@ pub struct Weighted {
 pub fn weighted(run: &RunSpectra, bs: &[Complex64]) -> Weighted {
     let wk = |f: f64| Weighting::Wk.magnitude(f).powi(2);
     let df = run.df_hz;
-    let (bf, bp) = &run.base_psd;
-    let gb: Vec<f64> = run
-        .freq_hz
-        .iter()
-        .map(|&f| {
-            let i = ((f / df).round() as usize).min(bp.len() - 1);
-            debug_assert!((bf[i] - f).abs() < 1e-6);
-            bp[i]
-        })
-        .collect();
+    let gb = run.base_psd_on_bins();
     let mut meas = 0.0;
     let mut model = 0.0;
     let mut base = 0.0;

@@ -142,6 +142,19 @@ pub struct RunSpectra {
 }
 
 impl RunSpectra {
+    /// The base PSD on the analysis bins, (m/s²)²/Hz.
+    pub fn base_psd_on_bins(&self) -> Vec<f64> {
+        let (bf, bp) = &self.base_psd;
+        self.freq_hz
+            .iter()
+            .map(|&f| {
+                let i = ((f / self.df_hz).round() as usize).min(bp.len() - 1);
+                debug_assert!((bf[i] - f).abs() < 1e-6);
+                bp[i]
+            })
+            .collect()
+    }
+
     /// The estimate of `path`, if the run has its channels.
     pub fn path(&self, path: Path) -> Option<&PathEstimate> {
         self.paths.iter().find(|p| p.path == path)

@@ -462,8 +462,19 @@ fn path_values(
     Ok(())
 }
 
-/// Predictions of every path `run` measured, on the run's analysis bins: `[path][bin]`.
-pub fn predict(v: &Variant, run: &RunSpectra) -> Result<Vec<Vec<Complex64>>> {
+/// A model variant's response on one run's analysis bins, `[path][bin]`.
+pub struct Prediction {
+    /// What the run's H1 estimates of it: with the leakage beside input lines, the resolution
+    /// bias of the window's kernel and the base floor's bias ([`super::leakage`],
+    /// [`super::input_noise`]). Compared with the measured H1.
+    pub as_estimated: Vec<Vec<Complex64>>,
+    /// The response at each bin's own frequency (the base floor's bias kept), whose |H|²·G_uu sums
+    /// to the seat's power as the measured PSD does: the a_w prediction.
+    pub at_bins: Vec<Vec<Complex64>>,
+}
+
+/// The prediction of every path `run` measured ([`Prediction`]).
+pub fn predict(v: &Variant, run: &RunSpectra) -> Result<Prediction> {
     let lin = match &v.schedule {
         Some(s) => linearise(&s.at(&v.system, run.base_rms), &run.base_psd)?,
         None => linearise(&v.system, &run.base_psd)?,
@@ -513,7 +524,15 @@ pub fn predict(v: &Variant, run: &RunSpectra) -> Result<Vec<Vec<Complex64>>> {
             }
         }
     }
-    Ok(out)
+    let as_estimated = out
+        .iter()
+        .zip(&run.paths)
+        .map(|(h, pe)| super::leakage::resolution_biased(h, &pe.quadrature))
+        .collect();
+    Ok(Prediction {
+        as_estimated,
+        at_bins: out,
+    })
 }
 
 #[cfg(test)]

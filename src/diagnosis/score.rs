@@ -49,7 +49,7 @@ pub fn cell(
 /// Appends the data residuals of `v` against `runs` (fitted paths only) to `out`.
 pub fn residuals(v: &Variant, runs: &[RunSpectra], out: &mut Vec<f64>) -> Result<()> {
     for run in runs {
-        run_residuals(run, &predict(v, run)?, out);
+        run_residuals(run, &predict(v, run)?.as_estimated, out);
     }
     Ok(())
 }
