@@ -190,6 +190,45 @@ pub fn resolution_biased(h: &[Complex64], quadrature: &[Quadrature]) -> Vec<Comp
 mod tests {
     use super::*;
 
+    /// A digital resonator 1/(1 + a₁z⁻¹ + a₂z⁻²) with poles r·e^{±i2πf₀/fs}: its exact response at
+    /// f Hz, and the Welch H1 (the diagnosis' estimator, 0.25 Hz, Hann) of input `x` and its output,
+    /// with the estimator's spectra and segment length.
+    struct Resonator {
+        a: (f64, f64),
+        fs: f64,
+    }
+
+    impl Resonator {
+        fn new(r: f64, f0: f64, fs: f64) -> Self {
+            let th = 2.0 * std::f64::consts::PI * f0 / fs;
+            Resonator {
+                a: (-2.0 * r * th.cos(), r * r),
+                fs,
+            }
+        }
+
+        fn h(&self, f: f64) -> Complex64 {
+            let z1 = Complex64::from_polar(1.0, -2.0 * std::f64::consts::PI * f / self.fs);
+            Complex64::new(1.0, 0.0) / (1.0 + self.a.0 * z1 + self.a.1 * z1 * z1)
+        }
+
+        fn welch(&self, x: &[f64]) -> (crate::analysis::spectrum::CrossSpectra, usize) {
+            use crate::analysis::spectrum::{Segment, Welch, WelchOptions};
+            let mut y = vec![0.0; x.len()];
+            for i in 0..x.len() {
+                let y1 = if i >= 1 { y[i - 1] } else { 0.0 };
+                let y2 = if i >= 2 { y[i - 2] } else { 0.0 };
+                y[i] = x[i] - self.a.0 * y1 - self.a.1 * y2;
+            }
+            let opts = WelchOptions {
+                segment: Segment::ResolutionHz(0.25),
+                ..WelchOptions::default()
+            };
+            let mut w = Welch::new(self.fs, &opts).unwrap();
+            (w.cross(x, &y).unwrap(), w.segment_len())
+        }
+    }
+
     #[test]
     fn white_input_keeps_every_bin_at_its_own_frequency() {
         use rand::SeedableRng;
@@ -231,17 +270,11 @@ mod tests {
     fn the_quadrature_predicts_the_biased_h1_of_a_filtered_line_and_noise() {
         // A resonator (poles 0.985·e^{±i2π·3.6/256}) driven by a 3.08 Hz line on weak noise: the
         // Welch H1 of input and output (the estimator itself, not this module) is the truth.
-        use crate::analysis::spectrum::{Segment, Welch, WelchOptions};
-        use num_complex::Complex64;
         use rand::SeedableRng;
         use rand_distr::{Distribution, StandardNormal};
         let fs = 256.0;
-        let (r, th) = (0.985, 2.0 * std::f64::consts::PI * 3.6 / fs);
-        let (a1, a2) = (-2.0 * r * th.cos(), r * r);
-        let h = |f: f64| {
-            let z1 = Complex64::from_polar(1.0, -2.0 * std::f64::consts::PI * f / fs);
-            Complex64::new(1.0, 0.0) / (1.0 + a1 * z1 + a2 * z1 * z1)
-        };
+        let res = Resonator::new(0.985, 3.6, fs);
+        let h = |f: f64| res.h(f);
         let mut rng = rand::rngs::StdRng::seed_from_u64(5);
         let n = (240.0 * fs) as usize;
         let x: Vec<f64> = (0..n)
@@ -250,25 +283,11 @@ mod tests {
                 0.05 * e + (2.0 * std::f64::consts::PI * 3.08 * i as f64 / fs).sin()
             })
             .collect();
-        let mut y = vec![0.0; n];
-        for i in 0..n {
-            let y1 = if i >= 1 { y[i - 1] } else { 0.0 };
-            let y2 = if i >= 2 { y[i - 2] } else { 0.0 };
-            y[i] = x[i] - a1 * y1 - a2 * y2;
-        }
-        let mut w = Welch::new(
-            fs,
-            &WelchOptions {
-                segment: Segment::ResolutionHz(0.25),
-                ..WelchOptions::default()
-            },
-        )
-        .unwrap();
-        let cs = w.cross(&x, &y).unwrap();
+        let (cs, segment_len) = res.welch(&x);
         let h1 = cs.h1();
         let bins: Vec<usize> = (8..=16).collect(); // 2.0 … 4.0 Hz
         let freq: Vec<f64> = bins.iter().map(|&b| cs.freq_hz[b]).collect();
-        let q = quadratures(&x, fs, w.segment_len(), &freq).unwrap();
+        let q = quadratures(&x, fs, segment_len, &freq).unwrap();
         let (mut err_bin, mut err_quad) = (0.0f64, 0.0f64);
         for (j, &b) in bins.iter().enumerate() {
             let at_bin = h(freq[j]);
@@ -290,37 +309,18 @@ mod tests {
         // on white noise. Its digital response is exact; the Welch H1 of input and output (the
         // estimator itself, not this module) is the truth. Point values miss the peak's flattening
         // by the window's kernel; `resolution_biased` carries it.
-        use crate::analysis::spectrum::{Segment, Welch, WelchOptions};
         use rand::SeedableRng;
         use rand_distr::{Distribution, StandardNormal};
         let fs = 256.0;
-        let (r, th) = (0.993, 2.0 * std::f64::consts::PI * 10.0 / fs);
-        let (a1, a2) = (-2.0 * r * th.cos(), r * r);
-        let h = |f: f64| {
-            let z1 = Complex64::from_polar(1.0, -2.0 * std::f64::consts::PI * f / fs);
-            Complex64::new(1.0, 0.0) / (1.0 + a1 * z1 + a2 * z1 * z1)
-        };
+        let res = Resonator::new(0.993, 10.0, fs);
         let mut rng = rand::rngs::StdRng::seed_from_u64(6);
-        let n = (1200.0 * fs) as usize;
-        let x: Vec<f64> = (0..n).map(|_| StandardNormal.sample(&mut rng)).collect();
-        let mut y = vec![0.0; n];
-        for i in 0..n {
-            let y1 = if i >= 1 { y[i - 1] } else { 0.0 };
-            let y2 = if i >= 2 { y[i - 2] } else { 0.0 };
-            y[i] = x[i] - a1 * y1 - a2 * y2;
-        }
-        let mut w = Welch::new(
-            fs,
-            &WelchOptions {
-                segment: Segment::ResolutionHz(0.25),
-                ..WelchOptions::default()
-            },
-        )
-        .unwrap();
-        let cs = w.cross(&x, &y).unwrap();
+        let x: Vec<f64> = (0..(1200.0 * fs) as usize)
+            .map(|_| StandardNormal.sample(&mut rng))
+            .collect();
+        let (cs, _) = res.welch(&x);
         let h1 = cs.h1();
         let bins: Vec<usize> = (32..=48).collect(); // 8 … 12 Hz
-        let at_bins: Vec<Complex64> = bins.iter().map(|&b| h(cs.freq_hz[b])).collect();
+        let at_bins: Vec<Complex64> = bins.iter().map(|&b| res.h(cs.freq_hz[b])).collect();
         let biased = resolution_biased(&at_bins, &vec![Vec::new(); bins.len()]);
         let (mut err_bin, mut err_biased) = (0.0f64, 0.0f64);
         for j in 1..bins.len() - 1 {
