@@ -296,8 +296,8 @@ fn a_low_pass_on_the_base_channel_is_named_the_base_channels_own_and_closes_the_
             d.null.check.weighted.aw_gap_percent,
         ),
         (
-            named.weighted.seat_model - named.weighted.seat_meas,
-            d.null.check.weighted.seat_model - d.null.check.weighted.seat_meas,
+            named.weighted.seat_gap_points(),
+            d.null.check.weighted.seat_gap_points(),
         ),
     ] {
         assert!(with.abs() <= null.abs() + 0.1, "{}", d.verdict_text);

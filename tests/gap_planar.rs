@@ -194,8 +194,11 @@ fn planar_cushion_relaxation_is_named_with_fore_and_aft_paths_judged() {
                 "{}",
                 d.verdict_text
             );
-            let seat = |x: &wbv::diagnosis::gapmap::Weighted| (x.seat_model - x.seat_meas).abs();
-            assert!(seat(w) < seat(n) + 1.0, "{}", d.verdict_text);
+            assert!(
+                w.seat_gap_points().abs() < n.seat_gap_points().abs() + 1.0,
+                "{}",
+                d.verdict_text
+            );
         }
         None => {
             assert_eq!(d.verdict, VerdictId::Unexplained, "{}", d.verdict_text);

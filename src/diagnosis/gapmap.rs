@@ -138,6 +138,13 @@ pub struct Weighted {
     pub driving_bands: Vec<(f64, f64)>,
 }
 
+impl Weighted {
+    /// The SEAT gap, model − measured, points.
+    pub fn seat_gap_points(&self) -> f64 {
+        self.seat_model - self.seat_meas
+    }
+}
+
 /// Wk weighted summary of `run` with the base→seat prediction `bs` on the run's bins.
 pub fn weighted(run: &RunSpectra, bs: &[Complex64]) -> Weighted {
     let wk = |f: f64| Weighting::Wk.magnitude(f).powi(2);

@@ -274,7 +274,6 @@ mod tests {
         use rand_distr::{Distribution, StandardNormal};
         let fs = 256.0;
         let res = Resonator::new(0.985, 3.6, fs);
-        let h = |f: f64| res.h(f);
         let mut rng = rand::rngs::StdRng::seed_from_u64(5);
         let n = (240.0 * fs) as usize;
         let x: Vec<f64> = (0..n)
@@ -290,11 +289,11 @@ mod tests {
         let q = quadratures(&x, fs, segment_len, &freq).unwrap();
         let (mut err_bin, mut err_quad) = (0.0f64, 0.0f64);
         for (j, &b) in bins.iter().enumerate() {
-            let at_bin = h(freq[j]);
+            let at_bin = res.h(freq[j]);
             let quad = if q[j].is_empty() {
                 at_bin
             } else {
-                q[j].iter().map(|&(f, wq)| h(f) * wq).sum()
+                q[j].iter().map(|&(f, wq)| res.h(f) * wq).sum()
             };
             err_bin = err_bin.max((h1[b] / at_bin).ln().norm());
             err_quad = err_quad.max((h1[b] / quad).ln().norm());

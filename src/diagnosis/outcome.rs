@@ -274,7 +274,7 @@ impl PartialEffect {
             fraction_closed: r.fraction_closed,
             chi2_red: r.check.chi2_red,
             aw_gap_percent: w.aw_gap_percent,
-            seat_gap_points: w.seat_model - w.seat_meas,
+            seat_gap_points: w.seat_gap_points(),
         }
     }
 }

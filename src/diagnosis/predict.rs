@@ -468,8 +468,9 @@ pub struct Prediction {
     /// bias of the window's kernel and the base floor's bias ([`super::leakage`],
     /// [`super::input_noise`]). Compared with the measured H1.
     pub as_estimated: Vec<Vec<Complex64>>,
-    /// The response at each bin's own frequency (the base floor's bias kept), whose |H|²·G_uu sums
-    /// to the seat's power as the measured PSD does: the a_w prediction.
+    /// The response at each bin's own frequency without the resolution bias (the base floor's
+    /// bias kept, and beside an input line the line-weighted average), whose |H|²·G_uu sums to
+    /// the seat's power as the measured PSD does: the a_w prediction.
     pub at_bins: Vec<Vec<Complex64>>,
 }
 

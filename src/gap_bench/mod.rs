@@ -78,7 +78,7 @@ impl IsoGaps {
         ];
         IsoGaps {
             aw_percent: stages.map(|s| s.weighted.aw_gap_percent),
-            seat_points: stages.map(|s| s.weighted.seat_model - s.weighted.seat_meas),
+            seat_points: stages.map(|s| s.weighted.seat_gap_points()),
             sigma: stages[2].iso_sigma.map(|s| [s.aw_percent, s.seat_points]),
         }
     }

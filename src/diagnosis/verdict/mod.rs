@@ -101,16 +101,15 @@ pub(super) fn shortfall(null: &Stage, with: &Stage) -> Option<Shortfall> {
         });
     }
     let (n, w) = (&null.weighted, &with.weighted);
-    let seat_gap = |s: &super::gapmap::Weighted| s.seat_model - s.seat_meas;
     let (aw, seat) = super::thresholds::ISO_AWAY;
     let (s_aw, s_seat) = with
         .iso_sigma
         .map_or((0.0, 0.0), |s| (s.aw_percent, s.seat_points));
     let away = w.aw_gap_percent.abs() - n.aw_gap_percent.abs() >= aw.max(2.0 * s_aw)
-        || seat_gap(w).abs() - seat_gap(n).abs() >= seat.max(2.0 * s_seat);
+        || w.seat_gap_points().abs() - n.seat_gap_points().abs() >= seat.max(2.0 * s_seat);
     away.then_some(Shortfall::IsoAway {
         aw_gap_percent: (n.aw_gap_percent, w.aw_gap_percent),
-        seat_gap_points: (seat_gap(n), seat_gap(w)),
+        seat_gap_points: (n.seat_gap_points(), w.seat_gap_points()),
         sigma: with.iso_sigma,
     })
 }

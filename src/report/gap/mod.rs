@@ -48,7 +48,7 @@ fn stage_row(out: &mut String, label: &str, s: &Stage) {
         w.aw_seat_model,
         w.aw_gap_percent,
         w.seat_model,
-        w.seat_model - w.seat_meas,
+        w.seat_gap_points(),
         s.gap_db_rms
     );
 }
