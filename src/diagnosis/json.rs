@@ -55,6 +55,15 @@ pub(super) fn path<'de, D: Deserializer<'de>>(d: D) -> Result<&'static str, D::E
     path_name(&String::deserialize(d)?)
 }
 
+/// A path name or `null`.
+pub(super) fn optional_path<'de, D: Deserializer<'de>>(
+    d: D,
+) -> Result<Option<&'static str>, D::Error> {
+    Option::<String>::deserialize(d)?
+        .map(|p| path_name::<D::Error>(&p))
+        .transpose()
+}
+
 /// Per-path numbers: (path name, value).
 pub(super) fn path_values<'de, D: Deserializer<'de>>(
     d: D,

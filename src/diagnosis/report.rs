@@ -114,10 +114,15 @@ fn where_(out: &mut String, d: &Diagnosis) {
             x.paths
                 .iter()
                 .map(|p| format!(
-                    "{} {:+.1} dB{}",
+                    "{} {:+.1} dB{}{}",
                     p.path,
                     p.rise_db,
-                    if p.distorts() { " (grows)" } else { "" }
+                    if p.distorts() { " (grows)" } else { "" },
+                    if p.phase_move_deg.is_finite() {
+                        format!(" phase moves {:.1}°", p.phase_move_deg)
+                    } else {
+                        String::new()
+                    }
                 ))
                 .collect::<Vec<_>>()
                 .join(", "),

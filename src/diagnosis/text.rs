@@ -187,8 +187,21 @@ fn distortion(e: &Evidence, b: &Ranked, responses: &super::outcome::VerdictId) -
         .map(|p| format!("{} {:+.1} dB", p.path, p.rise_db))
         .collect::<Vec<_>>()
         .join(", ");
+    let phase = |name: &str| {
+        dist.paths
+            .iter()
+            .find(|p| p.path == name)
+            .map_or(f64::NAN, |p| p.phase_move_deg)
+    };
+    let placed = dist.phase_stays.map_or(String::new(), |p| {
+        format!(
+            "; {p} rises too, but its phase moves {:.1}° with magnitude against base-seat's {:.1}°: the body follows the seat's own motion linearly, where a nonlinearity in the occupant would move it more",
+            phase(p),
+            phase("base-seat")
+        )
+    });
     format!(
-        "a nonlinearity {} is detected by its distortion: the incoherent-to-coherent power ratio (1 − γ²)/γ² grows from the run at {:.2} to the one at {:.2} m/s² on {paths}, which no linear effect does (noise keeps it or lowers it); {} is the best nonlinear candidate there (ΔBIC {:.1} over all runs, {:.1} on the check run, closes {:.0} % of the check run's structural gap){}; the frequency-response fit alone pointed to {responses}. Its size on the check run: {}{}",
+        "a nonlinearity {} is detected by its distortion: the incoherent-to-coherent power ratio (1 − γ²)/γ² grows from the run at {:.2} to the one at {:.2} m/s² on {paths}, which no linear effect does (noise keeps it or lowers it){placed}; {} is the best nonlinear candidate there (ΔBIC {:.1} over all runs, {:.1} on the check run, closes {:.0} % of the check run's structural gap){}; the frequency-response fit alone pointed to {responses}. Its size on the check run: {}{}",
         site.describe(),
         dist.magnitudes.0,
         dist.magnitudes.1,

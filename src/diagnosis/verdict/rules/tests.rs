@@ -425,6 +425,7 @@ fn located_at(site: Site) -> Distortion {
         magnitudes: (0.4, 1.6),
         paths: Vec::new(),
         site: Some(site),
+        phase_stays: None,
     }
 }
 
