@@ -112,6 +112,11 @@ pub enum Law {
     /// `k_stop·(d + gap)` for `d < −gap`, none in extension. A seat foam that bottoms out on its
     /// pan or a denser layer under the occupant's preload stiffens on one side only (docs/gap.md §5).
     Bottoming { gap: f64, k_stop: f64 },
+    /// A denser layer touching `gap` (m) of compression past the static equilibrium, with
+    /// Hertzian contact: extra force `−k_h·(−d − gap)^(3/2)` for `d < −gap` (`k_h` in N/m^1.5),
+    /// none in extension. A foam bottoming on a second layer, smooth where `Bottoming`'s stop
+    /// steps (Johnson, *Contact Mechanics*, 1985, eq. 4.23). Used by the gap bench's truth forms.
+    HertzStop { gap: f64, k_h: f64 },
     /// Preloaded exponential foam about its static sag: the spring force `k·d` becomes
     /// `k·d_e·(1 − e^(−d/d_e))`, `d_e` in m (tangent `k·e^(−d/d_e)`): the deviation about the sag of
     /// a foam force `F₀(e^(D/d_e) − 1)` in the total compression D (Deng, Davies & Bajaj 2003
@@ -159,6 +164,15 @@ impl Law {
                 let over = d + gap;
                 if over < 0.0 {
                     (k * d + c * v + k_stop * over, k + k_stop, c)
+                } else {
+                    (k * d + c * v, k, c)
+                }
+            }
+            Law::HertzStop { gap, k_h } => {
+                let over = -d - gap;
+                if over > 0.0 {
+                    let r = over.sqrt();
+                    (k * d + c * v - k_h * over * r, k + 1.5 * k_h * r, c)
                 } else {
                     (k * d + c * v, k, c)
                 }
@@ -311,6 +325,10 @@ mod tests {
                 k_stop: 1e5,
             },
             Law::PreloadExp { d_e: 0.004 },
+            Law::HertzStop {
+                gap: 0.002,
+                k_h: 3e7,
+            },
         ];
         for law in laws {
             for &(d, v) in &[(0.0011, 0.02), (-0.0031, -0.005), (0.005, 0.0)] {

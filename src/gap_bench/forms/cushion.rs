@@ -1,5 +1,6 @@
 //! Cushion truth forms: viscoelastic (standard linear solid, two Maxwell arms, fractional foam as a
-//! Prony series) and stiffening (cubic, quadratic contact, exponential, preloaded exponential).
+//! Prony series) and stiffening (cubic, quadratic contact, exponential, preloaded exponential, a
+//! bottoming layer).
 
 use super::*;
 
@@ -104,8 +105,41 @@ pub(super) fn plant(
                 100.0 * t
             )
         }
+        Form::BottomingLayer => {
+            let i = cushion(model)?;
+            let (s, _) = link_sigma(model, i, lines)?;
+            // The layer touches 0.6–1.6 σ_d past the sag (in contact 5–27 % of the time at the
+            // top magnitude); k_h so that the Gaussian mean of the tangent, k + 1.5 k_h
+            // E[(−d − gap)^½; −d > gap] = k + 1.5 k_h √σ J(g), is k (1 + t).
+            let g = uniform(rng, 0.6, 1.6);
+            let k = kv(model, i).0;
+            let law = Law::HertzStop {
+                gap: g * s,
+                k_h: t * k / (1.5 * s.sqrt() * half_moment(g)),
+            };
+            model.links[i].law = Some(law);
+            format!(
+                "{law:?} on the cushion: a layer {g:.2} σ_d past the sag (σ_d {:.2} mm at the top magnitude, +{:.0} % mean tangent)",
+                s * 1e3,
+                100.0 * t
+            )
+        }
         _ => unreachable!("{form:?} is not a cushion form"),
     })
+}
+
+/// J(g) = E[(z − g)^½; z > g] for a standard normal z: ∫_g^∞ √(z − g) φ(z) dz, by the midpoint
+/// rule on x = z − g = s² (dz = 2s ds, integrand 2 s² φ(g + s²)) over s in [0, 6].
+fn half_moment(g: f64) -> f64 {
+    let n = 4000;
+    let ds = 6.0 / n as f64;
+    (0..n)
+        .map(|j| {
+            let s = (j as f64 + 0.5) * ds;
+            let z = g + s * s;
+            2.0 * s * s * (-0.5 * z * z).exp() / (2.0 * PI).sqrt() * ds
+        })
+        .sum()
 }
 
 /// A Maxwell arm in parallel with link `i` (same nodes), `k_m` N/m, relaxation time `tau` s.
@@ -175,5 +209,30 @@ pub fn prony_fit(
             out[t] = sol[j];
         }
         return out;
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_half_moment_of_a_normal_tail_matches_its_closed_form() {
+        // J(0) = E[√z; z > 0] = 2^(1/4) Γ(3/4) / (2√π) = 0.411 08 (E|z|^p = 2^(p/2) Γ((p+1)/2)/√π).
+        let gamma_3_4 = 1.225_416_702_465_177_6;
+        let exact = 2f64.powf(0.25) * gamma_3_4 / (2.0 * PI.sqrt());
+        assert!(
+            (half_moment(0.0) - exact).abs() < 1e-6,
+            "{}",
+            half_moment(0.0)
+        );
+        // Far in the tail, J(g) ≈ φ(g)·Γ(3/2)/g^(3/2) (Laplace's method): within 10 % at g = 5.
+        let g: f64 = 5.0;
+        let tail = (-0.5 * g * g).exp() / (2.0 * PI).sqrt() * (PI.sqrt() / 2.0) / g.powf(1.5);
+        assert!(
+            (half_moment(g) / tail - 1.0).abs() < 0.1,
+            "{}",
+            half_moment(g) / tail
+        );
     }
 }

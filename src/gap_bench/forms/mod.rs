@@ -110,6 +110,9 @@ pub enum Form {
     /// Preloaded exponential foam `F₀(e^(D/d_e) − 1)` about its static sag (stiffer in compression,
     /// softer in extension: one-sided, unlike the candidates' symmetric laws and their stop).
     PreloadExp,
+    /// A foam bottoming on a denser layer past its static sag, with Hertzian contact
+    /// (`Law::HertzStop`): one-sided and smooth, where the candidates' stop is piecewise linear.
+    BottomingLayer,
     /// Saturating body interface `k·d_ref·tanh(d/d_ref)`.
     Tanh,
     /// Bilinear body interface (stiffness drops to `ratio·k` beyond a knee).
@@ -151,7 +154,7 @@ pub enum Form {
 
 impl Form {
     /// Every form, in report order.
-    pub const ALL: [Form; 23] = [
+    pub const ALL: [Form; 24] = [
         Form::Sls,
         Form::Maxwell2,
         Form::Fractional,
@@ -159,6 +162,7 @@ impl Form {
         Form::Contact,
         Form::Exponential,
         Form::PreloadExp,
+        Form::BottomingLayer,
         Form::Tanh,
         Form::Bilinear,
         Form::Scheduled,
@@ -180,9 +184,11 @@ impl Form {
     pub fn family(self) -> Family {
         match self {
             Form::Sls | Form::Maxwell2 | Form::Fractional => Family::Viscoelastic,
-            Form::Cubic | Form::Contact | Form::Exponential | Form::PreloadExp => {
-                Family::Stiffening
-            }
+            Form::Cubic
+            | Form::Contact
+            | Form::Exponential
+            | Form::PreloadExp
+            | Form::BottomingLayer => Family::Stiffening,
             Form::Tanh | Form::Bilinear | Form::Scheduled => Family::Softening,
             Form::Delay
             | Form::LowPass
@@ -223,6 +229,7 @@ impl Form {
             Form::Contact => "contact",
             Form::Exponential => "exponential",
             Form::PreloadExp => "preload-exponential",
+            Form::BottomingLayer => "bottoming-layer",
             Form::Tanh => "tanh",
             Form::Bilinear => "bilinear",
             Form::Scheduled => "scheduled",
@@ -323,7 +330,8 @@ pub fn plant(
         | Form::Cubic
         | Form::Contact
         | Form::Exponential
-        | Form::PreloadExp => cushion::plant(form, u, t, rng, model, lines)?,
+        | Form::PreloadExp
+        | Form::BottomingLayer => cushion::plant(form, u, t, rng, model, lines)?,
         Form::Tanh | Form::Bilinear | Form::Scheduled => {
             body::plant(form, t, rng, model, lines, rms, &mut planted)?
         }

@@ -24,6 +24,7 @@ pub fn list(model: &Chain) -> Vec<String> {
             Some(Law::Friction { .. }) => &["f_c", "v_ref"],
             Some(Law::EndStop { .. } | Law::Bottoming { .. }) => &["gap", "k_stop"],
             Some(Law::PreloadExp { .. }) => &["d_e"],
+            Some(Law::HertzStop { .. }) => &["gap", "k_h"],
             Some(Law::Contact { .. } | Law::Exponential { .. }) => &["d0"],
             Some(Law::Bilinear { .. }) => &["d_knee", "ratio"],
         };
@@ -69,7 +70,15 @@ fn slot<'a>(model: &'a mut Chain, path: &str) -> Result<&'a mut f64> {
                 (Some(Law::Softening { d_ref }), "d_ref") => Ok(d_ref),
                 (Some(Law::Friction { f_c, .. }), "f_c") => Ok(f_c),
                 (Some(Law::Friction { v_ref, .. }), "v_ref") => Ok(v_ref),
-                (Some(Law::EndStop { gap, .. } | Law::Bottoming { gap, .. }), "gap") => Ok(gap),
+                (
+                    Some(
+                        Law::EndStop { gap, .. }
+                        | Law::Bottoming { gap, .. }
+                        | Law::HertzStop { gap, .. },
+                    ),
+                    "gap",
+                ) => Ok(gap),
+                (Some(Law::HertzStop { k_h, .. }), "k_h") => Ok(k_h),
                 (Some(Law::EndStop { k_stop, .. } | Law::Bottoming { k_stop, .. }), "k_stop") => {
                     Ok(k_stop)
                 }
