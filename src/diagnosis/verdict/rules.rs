@@ -2,9 +2,12 @@
 //! [`Evidence`]; the first that applies decides. [`located`] then gives the distortion trend its
 //! say.
 
-use super::{Basis, Evidence, Verdict, candidate, overdispersion, training_closed};
+use super::{
+    Basis, Evidence, Verdict, candidate, overdispersion, practically_small, training_closed,
+};
 use crate::diagnosis::candidate::{Candidate, Family, separating_measurement};
 use crate::diagnosis::outcome::Ranked;
+use crate::diagnosis::score;
 use crate::diagnosis::thresholds::{
     ACCEPT_DELTA_BIC, GAP_CHI2, IDENTIFIABLE_MARGIN, MIN_CLOSED, PRACTICAL_GAP,
 };
@@ -215,14 +218,21 @@ fn unexplained(_: &Evidence) -> Option<Verdict> {
 /// grow with magnitude, and a one-sided foam's statistical linearisation barely moves the FRFs
 /// (docs/gap.md §2), so the χ² alone can point to a linear effect or to nothing. Two exceptions
 /// keep the frequency-response verdict: a sensor effect (named on its own evidence, one channel's
-/// phase or gain, and compatible with any structural nonlinearity), and a nonlinearity whose
+/// phase or gain, and compatible with any structural nonlinearity) unless that evidence is marginal
+/// — the re-fitted null already fits the check run within the noise and the sensor effect's size
+/// there is practically small, where the growth of distortion is the stronger evidence — and a
+/// nonlinearity whose
 /// distortion does not grow with magnitude (Coulomb friction's share of the force falls as the
 /// magnitude rises) unless the site's best fits all runs as well, within the margin in units of
 /// its training ĉ.
 pub(in crate::diagnosis) fn located(e: &Evidence, responses: &Verdict) -> Option<Verdict> {
     let site = e.distortion?.site?;
     let named = responses.effect();
-    if named.is_some_and(|c| site.admits(c) || c.family() == Family::Sensor) {
+    let marginal = |c: Candidate| {
+        score::chi2_within_noise(e.null.check.chi2_red, e.null.check.residuals)
+            && e.entry(c).is_some_and(practically_small)
+    };
+    if named.is_some_and(|c| site.admits(c) || (c.family() == Family::Sensor && !marginal(c))) {
         return None;
     }
     let b = e

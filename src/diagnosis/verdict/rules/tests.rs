@@ -464,6 +464,23 @@ fn the_distortion_names_the_site_s_nonlinearity_over_a_linear_verdict() {
         second: None,
     };
     assert_eq!(located(&e, &sensor), None);
+    // Unless its evidence is marginal: the null fits the check run within the noise (χ²/ν 0.9 on
+    // 2000 residuals) and the sensor effect is practically small there (a_w 0.1 %, SEAT 0.1
+    // points): the distortion's site is named over it.
+    let within = ranked("null", 3.0, 0.9, 0.0, 0.0, 1.0);
+    let mut small = ranked("sensor-delay", 1.5, 0.85, -37.0, -130.0, 0.1);
+    (small.aw_change_percent, small.seat_change_points) = (0.1, 0.1);
+    let marginal = vec![small, cands[1].clone(), cands[2].clone()];
+    let mut m = evidence(&within, &marginal);
+    m.distortion = Some(&dist);
+    let v = located(&m, &sensor).expect("renamed");
+    assert!(named(Candidate::CushionStiffening)(&v), "{v:?}");
+    // The same sensor effect at its full size (a_w 2 %) stands.
+    let mut full = marginal.clone();
+    full[0].aw_change_percent = 2.0;
+    let mut m = evidence(&within, &full);
+    m.distortion = Some(&dist);
+    assert_eq!(located(&m, &sensor), None);
     // Without a located site there is no second opinion.
     e.distortion = None;
     assert_eq!(located(&e, &responses), None);
