@@ -148,20 +148,27 @@ fn levels(r: &RunSpectra, p: Path, grid: &[f64], half: f64) -> Option<Vec<Option
     Some(
         grid.iter()
             .map(|&f| {
-                let v: Vec<f64> = r
-                    .freq_hz
-                    .iter()
-                    .zip(&e.coherence)
-                    .filter(|(x, _)| (**x - f).abs() <= half)
-                    .map(|(_, &g)| {
-                        let g = g.clamp(1e-4, 1.0 - 1e-6);
-                        ((1.0 - g) / g).ln()
-                    })
-                    .collect();
-                (!v.is_empty()).then(|| v.iter().sum::<f64>() / v.len() as f64)
+                mean(near(r, f, half).map(|b| {
+                    let g = e.coherence[b].clamp(1e-4, 1.0 - 1e-6);
+                    ((1.0 - g) / g).ln()
+                }))
             })
             .collect(),
     )
+}
+
+/// The bins of `r` within ± `half` Hz of `f`: one grid point of [`levels`] and [`responses`].
+fn near(r: &RunSpectra, f: f64, half: f64) -> impl Iterator<Item = usize> + '_ {
+    (0..r.freq_hz.len()).filter(move |&b| (r.freq_hz[b] - f).abs() <= half)
+}
+
+/// Mean of the values, `None` for none.
+fn mean<T: std::iter::Sum<T> + std::ops::Div<f64, Output = T>>(
+    v: impl Iterator<Item = T>,
+) -> Option<T> {
+    let v: Vec<T> = v.collect();
+    let n = v.len() as f64;
+    (n > 0.0).then(|| v.into_iter().sum::<T>() / n)
 }
 
 /// Mean H1 and coherence of path `p` in `r` around each frequency of `grid` (as [`levels`]).
@@ -175,16 +182,10 @@ fn responses(
     Some(
         grid.iter()
             .map(|&f| {
-                let near: Vec<usize> = (0..r.freq_hz.len())
-                    .filter(|&b| (r.freq_hz[b] - f).abs() <= half)
-                    .collect();
-                let n = near.len() as f64;
-                (!near.is_empty()).then(|| {
-                    (
-                        near.iter().map(|&b| e.h1[b]).sum::<Complex64>() / n,
-                        near.iter().map(|&b| e.coherence[b]).sum::<f64>() / n,
-                    )
-                })
+                Some((
+                    mean(near(r, f, half).map(|b| e.h1[b]))?,
+                    mean(near(r, f, half).map(|b| e.coherence[b]))?,
+                ))
             })
             .collect(),
     )
