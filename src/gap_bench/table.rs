@@ -83,6 +83,13 @@ pub struct IsoToward {
     /// ([`crate::diagnosis::ISO_AWAY`]: 1 % of a_w, 1 SEAT point, below which a shift is not of
     /// practical size); the rest are the cases the verdict itself flags.
     pub within_practical: usize,
+    /// Of the named verdicts, those whose effects are all linear, and how many of them are
+    /// `toward` against the re-fitted model.
+    pub linear: (usize, usize),
+    /// Of the named verdicts, those naming an amplitude-dependent effect (their a_w and SEAT are
+    /// the equivalent linear system's, [`super::IsoGaps::equivalent_linear`]), and how many of
+    /// them are `toward` against the re-fitted model.
+    pub amplitude_dependent: (usize, usize),
     /// Median remaining |a_w gap| with the named effect(s), %.
     pub median_aw_gap_percent: Option<f64>,
     /// Median remaining |SEAT gap| with the named effect(s), points.
@@ -98,16 +105,21 @@ fn iso_toward(scores: &[CaseScore]) -> IsoToward {
         .filter(|s| !s.named.is_empty())
         .filter_map(|s| s.iso.as_ref())
         .collect();
+    toward_of(&named)
+}
+
+/// [`IsoToward`] of the ISO gaps of the cases whose verdict names an effect.
+fn toward_of(named: &[&IsoGaps]) -> IsoToward {
     // `from`: 0 the nominal model, 1 the re-fitted one; the named model is the third. `tie`: the
     // growth of the a_w (%) and SEAT (points) gaps read as no growth, per case.
+    let moves_toward = |g: &IsoGaps, from: usize, (aw, seat): (f64, f64)| {
+        g.aw_percent[2].abs() <= g.aw_percent[from].abs() + aw
+            && g.seat_points[2].abs() <= g.seat_points[from].abs() + seat
+    };
     let within = |from: usize, tie: &dyn Fn(&IsoGaps) -> (f64, f64)| {
         named
             .iter()
-            .filter(|g| {
-                let (aw, seat) = tie(g);
-                g.aw_percent[2].abs() <= g.aw_percent[from].abs() + aw
-                    && g.seat_points[2].abs() <= g.seat_points[from].abs() + seat
-            })
+            .filter(|g| moves_toward(g, from, tie(g)))
             .count()
     };
     let rounding = |_: &IsoGaps| (TIE, TIE);
@@ -115,6 +127,13 @@ fn iso_toward(scores: &[CaseScore]) -> IsoToward {
         within(1, &rounding),
         within(1, &|_| crate::diagnosis::ISO_AWAY),
     );
+    let split = |equivalent_linear: bool| {
+        let of: Vec<&&IsoGaps> = (named.iter())
+            .filter(|g| g.equivalent_linear == equivalent_linear)
+            .collect();
+        let toward = of.iter().filter(|g| moves_toward(g, 1, (TIE, TIE))).count();
+        (of.len(), toward)
+    };
     let within_sigma = within(1, &|g| {
         let [s_aw, s_seat] = g.sigma.unwrap_or([0.0, 0.0]);
         (TIE.max(2.0 * s_aw), TIE.max(2.0 * s_seat))
@@ -126,6 +145,8 @@ fn iso_toward(scores: &[CaseScore]) -> IsoToward {
         toward_nominal: within(0, &rounding),
         within_sigma,
         within_practical,
+        linear: split(false),
+        amplitude_dependent: split(true),
         median_aw_gap_percent: of(|g| g.aw_percent[2].abs()),
         median_seat_gap_points: of(|g| g.seat_points[2].abs()),
     }
@@ -427,7 +448,7 @@ impl Summary {
         );
         let t = &self.iso_toward;
         out += &format!(
-            "Named verdicts moving the check run's seat a_w and SEAT toward the measurement (neither gap growing by more than {TIE}) against the model as given: {} of {} ({}); against the re-fitted base model: {} ({}), or {} ({}) where a growth within twice the named model's own standard error (from its fitted parameters' covariance) counts as a tie; neither growing against the re-fitted model by the diagnosis's practical size ({} % a_w, {} SEAT point): {} ({}); median remaining |a_w gap| {} %, |SEAT gap| {} points.\n\n",
+            "Named verdicts moving the check run's seat a_w and SEAT toward the measurement (neither gap growing by more than {TIE}) against the model as given: {} of {} ({}); against the re-fitted base model: {} ({}), or {} ({}) where a growth within twice the named model's own standard error (from its fitted parameters' covariance) counts as a tie; neither growing against the re-fitted model by the diagnosis's practical size ({} % a_w, {} SEAT point): {} ({}); median remaining |a_w gap| {} %, |SEAT gap| {} points. Against the re-fitted model by the kind of effect named: linear effects {} of {} ({}); amplitude-dependent effects, whose a_w and SEAT are their equivalent linear system's and miss the distortion power the measurement holds, {} of {} ({}).\n\n",
             t.toward_nominal,
             t.named,
             f((t.named > 0).then(|| t.toward_nominal as f64 / t.named as f64)),
@@ -440,7 +461,14 @@ impl Summary {
             t.within_practical,
             f((t.named > 0).then(|| t.within_practical as f64 / t.named as f64)),
             f(t.median_aw_gap_percent),
-            f(t.median_seat_gap_points)
+            f(t.median_seat_gap_points),
+            t.linear.1,
+            t.linear.0,
+            f((t.linear.0 > 0).then(|| t.linear.1 as f64 / t.linear.0 as f64)),
+            t.amplitude_dependent.1,
+            t.amplitude_dependent.0,
+            f((t.amplitude_dependent.0 > 0)
+                .then(|| t.amplitude_dependent.1 as f64 / t.amplitude_dependent.0 as f64)),
         );
         let pair = |x: Option<(f64, f64)>, d: usize| {
             x.map_or("–".to_string(), |(a, b)| format!("{a:.d$} → {b:.d$}"))
@@ -488,5 +516,37 @@ impl Summary {
             out += &format!("acceptance (issue 15): NOT met — {}\n", fails.join("; "));
         }
         out
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn gaps(aw: [f64; 3], equivalent_linear: bool) -> IsoGaps {
+        IsoGaps {
+            aw_percent: aw,
+            seat_points: [0.0; 3],
+            sigma: None,
+            equivalent_linear,
+        }
+    }
+
+    #[test]
+    fn toward_counts_each_kind_of_effect_against_the_re_fitted_model() {
+        // Gaps nominal, re-fitted, named (% a_w): a linear effect closing, one moving 0.05 away
+        // (a tie at the report's rounding) and one moving 0.5 away; an amplitude-dependent effect
+        // moving 0.3 away from the re-fit but toward the measurement from the nominal model.
+        let named = [
+            gaps([4.0, 1.0, 0.2], false),
+            gaps([4.0, 0.2, -0.25], false),
+            gaps([4.0, 0.2, 0.7], false),
+            gaps([4.0, -0.1, -0.4], true),
+        ];
+        let refs: Vec<&IsoGaps> = named.iter().collect();
+        let t = toward_of(&refs);
+        assert_eq!((t.named, t.toward, t.toward_nominal), (4, 2, 4));
+        assert_eq!(t.linear, (3, 2));
+        assert_eq!(t.amplitude_dependent, (1, 0));
     }
 }
