@@ -152,6 +152,11 @@ fn toward_of(named: &[&IsoGaps]) -> IsoToward {
     }
 }
 
+/// The share `k / n`, `None` of nothing.
+fn share(k: usize, n: usize) -> Option<f64> {
+    (n > 0).then(|| k as f64 / n as f64)
+}
+
 fn row(group: &str, key: String, c: &[&CaseScore]) -> Row {
     let n = c.len().max(1) as f64;
     let det: Vec<&&CaseScore> = c
@@ -165,8 +170,7 @@ fn row(group: &str, key: String, c: &[&CaseScore]) -> Row {
         top1: c.iter().filter(|s| s.top1).count() as f64 / n,
         top2: c.iter().filter(|s| s.top2_hit).count() as f64 / n,
         detectable: det.len(),
-        top1_detectable: (!det.is_empty())
-            .then(|| det.iter().filter(|s| s.top1).count() as f64 / det.len() as f64),
+        top1_detectable: share(det.iter().filter(|s| s.top1).count(), det.len()),
         median_closed: median(c.iter().filter_map(|s| s.fraction_closed).collect()),
         errors: c.iter().filter(|s| s.error.is_some()).count(),
         median_aw_gap: median_pair(c, |g| g.aw_percent),
@@ -338,8 +342,7 @@ pub fn summary(scores: &[CaseScore], seed: u64, wall_s: f64) -> Summary {
         seed,
         wall_s,
         detectable_threshold: DETECTABLE,
-        none_false_positive_rate: (!nulls.is_empty())
-            .then(|| nulls.iter().filter(|s| !s.top1).count() as f64 / nulls.len() as f64),
+        none_false_positive_rate: share(nulls.iter().filter(|s| !s.top1).count(), nulls.len()),
         null_cases: nulls.len(),
         errors: scores.iter().filter(|s| s.error.is_some()).count(),
         rows,
@@ -451,24 +454,23 @@ impl Summary {
             "Named verdicts moving the check run's seat a_w and SEAT toward the measurement (neither gap growing by more than {TIE}) against the model as given: {} of {} ({}); against the re-fitted base model: {} ({}), or {} ({}) where a growth within twice the named model's own standard error (from its fitted parameters' covariance) counts as a tie; neither growing against the re-fitted model by the diagnosis's practical size ({} % a_w, {} SEAT point): {} ({}); median remaining |a_w gap| {} %, |SEAT gap| {} points. Against the re-fitted model by the kind of effect named: linear effects {} of {} ({}); amplitude-dependent effects, whose a_w and SEAT are their equivalent linear system's and miss the distortion power the measurement holds, {} of {} ({}).\n\n",
             t.toward_nominal,
             t.named,
-            f((t.named > 0).then(|| t.toward_nominal as f64 / t.named as f64)),
+            f(share(t.toward_nominal, t.named)),
             t.toward,
-            f((t.named > 0).then(|| t.toward as f64 / t.named as f64)),
+            f(share(t.toward, t.named)),
             t.within_sigma,
-            f((t.named > 0).then(|| t.within_sigma as f64 / t.named as f64)),
+            f(share(t.within_sigma, t.named)),
             crate::diagnosis::ISO_AWAY.0,
             crate::diagnosis::ISO_AWAY.1,
             t.within_practical,
-            f((t.named > 0).then(|| t.within_practical as f64 / t.named as f64)),
+            f(share(t.within_practical, t.named)),
             f(t.median_aw_gap_percent),
             f(t.median_seat_gap_points),
             t.linear.1,
             t.linear.0,
-            f((t.linear.0 > 0).then(|| t.linear.1 as f64 / t.linear.0 as f64)),
+            f(share(t.linear.1, t.linear.0)),
             t.amplitude_dependent.1,
             t.amplitude_dependent.0,
-            f((t.amplitude_dependent.0 > 0)
-                .then(|| t.amplitude_dependent.1 as f64 / t.amplitude_dependent.0 as f64)),
+            f(share(t.amplitude_dependent.1, t.amplitude_dependent.0)),
         );
         let pair = |x: Option<(f64, f64)>, d: usize| {
             x.map_or("–".to_string(), |(a, b)| format!("{a:.d$} → {b:.d$}"))
