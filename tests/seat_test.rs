@@ -236,7 +236,11 @@ fn a_linear_seat_gives_the_spectral_seat_and_a_kelvin_voigt_damping_test_its_clo
         "T {} vs {t_max}",
         dmp.transmissibility
     );
-    assert!((dmp.f_r_hz / f_r - 1.0).abs() < 0.03, "f_r {} vs {f_r}", dmp.f_r_hz);
+    assert!(
+        (dmp.f_r_hz / f_r - 1.0).abs() < 0.03,
+        "f_r {} vs {f_r}",
+        dmp.f_r_hz
+    );
     assert_eq!(dmp.end_stop_contacts, 0);
     eprintln!(
         "SEAT {:.4} (truth {want:.4}); T {:.4} at {:.4} Hz (truth {t_max:.4} at {f_r:.4} Hz); \
@@ -310,7 +314,11 @@ fn the_command_prints_the_documented_json_keys() {
         ])
         .output()
         .unwrap();
-    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
     let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
     for key in [
         "class",
@@ -338,5 +346,8 @@ fn the_command_prints_the_documented_json_keys() {
         .output()
         .unwrap();
     let err = String::from_utf8_lossy(&out.stderr);
-    assert!(!out.status.success() && err.starts_with("wbv: error: --model"), "{err}");
+    assert!(
+        !out.status.success() && err.starts_with("wbv: error: --model"),
+        "{err}"
+    );
 }
