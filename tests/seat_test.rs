@@ -19,7 +19,7 @@ use wbv::study::seat_test::{self, Limits, Occupant, Settings, Verdict};
 type Def = (&'static str, f64, &'static [f64], f64, &'static [f64], f64);
 const Q4: &[f64] = &[0.541, 1.306];
 const Q8: &[f64] = &[0.510, 0.601, 0.900, 2.563];
-const Q2: &[f64] = &[0.7071];
+const Q2: &[f64] = &[std::f64::consts::FRAC_1_SQRT_2]; // printed 0.7071
 const FIRST: &[f64] = &[];
 const DEFS: [Def; 16] = [
     ("iso7096-em1", 1.5, Q4, 2.5, Q4, 2.82),

@@ -129,12 +129,18 @@ pub fn run(args: Args) -> wbv::Result<()> {
         refuse_with_runs(&args)?;
         seat_test::measured::measured(&args.runs, class, &input, limits)?
     };
+    let mut written = Vec::new();
     if let Some(r) = &args.report {
         wbv::report::seat_test::write(&test, r, overwrite)?;
         eprintln!("wrote {}", r.display());
+        written.push(wbv::report::json::Written::of(r)?);
     }
     if args.json {
-        return super::print_json("seat-test", &test, &[]);
+        let doc = wbv::report::json::WithFiles {
+            result: test,
+            written,
+        };
+        return super::print_json("seat-test", &doc, &[]);
     }
     print_text(&test);
     Ok(())

@@ -199,7 +199,7 @@ pub fn run(model: &Model, dt: f64) -> Result<DampingTest> {
     let coarse = 17;
     let ratio = 4f64.powf(1.0 / (coarse - 1) as f64);
     for i in 0..coarse {
-        let f = 0.5 * f0 * ratio.powi(i as i32);
+        let f = 0.5 * f0 * ratio.powi(i);
         let (t, c) = dwell(&m, f, x, dt)?;
         sweep.push((f, t));
         contacts += c;
