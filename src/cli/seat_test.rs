@@ -158,7 +158,7 @@ fn print_text(t: &SeatTest) {
     for o in &t.occupants {
         println!(
             "  {:<8} {:>9} {:>9.3} {:>9.3} {:>7.3} {:>10.3} {:>8} {:>9}",
-            o.occupant.map_or("measured", |p| p.name()),
+            o.label(),
             o.body_mass_kg.map_or("-".into(), |m| format!("{m:.1}")),
             o.a_wp,
             o.a_ws,

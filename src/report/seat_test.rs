@@ -207,7 +207,7 @@ fn runs_table(out: &mut String, t: &SeatTest) {
          <th>platform PSD worst [% of peak]</th><th>end-stop contacts</th><th>used</th></tr>",
     );
     for o in &t.occupants {
-        let who = o.occupant.map_or("measured", |p| p.name());
+        let who = o.label();
         for (i, r) in o.runs.iter().enumerate() {
             let used = i >= o.first_used && i < o.first_used + 3;
             let _ = write!(
@@ -277,7 +277,7 @@ pub fn html(t: &SeatTest) -> Result<String> {
             out,
             "<tr><td>{}</td><td>{}</td><td>{:.4}</td><td>{:.4}</td><td>{:.3}</td><td>{:.4}</td>\
              <td>{}</td><td>{}</td></tr>",
-            o.occupant.map_or("measured", |p| p.name()),
+            o.label(),
             o.body_mass_kg.map_or("-".into(), |m| format!("{m:.1}")),
             o.a_wp,
             o.a_ws,

@@ -37,15 +37,7 @@ pub const DEFAULT_AMPLITUDE_M: f64 = 0.01;
 /// The damping-test system: `model` with every body mass and body link removed and
 /// [`MASS_KG`] added to the seat-surface mass. An error for a model without a seat under the body.
 pub fn system_model(model: &Model) -> Result<Model> {
-    let chain = model.chain().ok_or_else(|| {
-        Error::parameter(
-            "--model",
-            format!(
-                "`{}` is not a chain of masses; the seat test needs one",
-                model.name
-            ),
-        )
-    })?;
+    let chain = super::chain_of(model)?;
     let Node::Mass(seat) = chain.measure.seat else {
         return Err(Error::parameter(
             "--model",

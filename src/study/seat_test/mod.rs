@@ -67,6 +67,13 @@ pub enum Occupant {
     Heavy,
 }
 
+impl OccupantTest {
+    /// `light`, `heavy`, or `measured` for a lab's runs.
+    pub fn label(&self) -> &'static str {
+        self.occupant.map_or("measured", |p| p.name())
+    }
+}
+
 impl Occupant {
     /// Both, in the standard's order.
     pub const BOTH: [Occupant; 2] = [Occupant::Light, Occupant::Heavy];
