@@ -334,10 +334,9 @@ pub fn find_class(name: &str) -> Result<&'static InputClass> {
     })
 }
 
-/// `model` with its body scaled to `occupant` ([module doc](self)); with the scale and the body
-/// mass after scaling.
-pub fn occupant_model(model: &Model, occupant: Occupant) -> Result<(Model, f64, f64)> {
-    let chain = model.chain().ok_or_else(|| {
+/// The chain of masses of `model`: the seat test scales and edits its masses and links.
+pub(crate) fn chain_of(model: &Model) -> Result<&crate::model::chain::Chain> {
+    model.chain().ok_or_else(|| {
         Error::parameter(
             "--model",
             format!(
@@ -345,7 +344,13 @@ pub fn occupant_model(model: &Model, occupant: Occupant) -> Result<(Model, f64, 
                 model.name
             ),
         )
-    })?;
+    })
+}
+
+/// `model` with its body scaled to `occupant` ([module doc](self)); with the scale and the body
+/// mass after scaling.
+pub fn occupant_model(model: &Model, occupant: Occupant) -> Result<(Model, f64, f64)> {
+    let chain = chain_of(model)?;
     let s = occupant.mass_kg() / REFERENCE_OPERATOR_KG;
     let mut values = Vec::new();
     let mut body = 0.0;
