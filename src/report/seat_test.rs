@@ -245,8 +245,8 @@ pub fn html(t: &SeatTest) -> Result<String> {
         "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">\
          <meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\
          <title>wbv seat test: {} {}</title><style>{STYLE}</style></head><body>\n\
-         <h1>Seat test (ISO 10326-1), class {} of {}</h1><p>{what}; input class <code>{}</code> \
-         ({}); intended input a*<sub>wP</sub> = {:.3} m/s² (Wk).</p>\n",
+         <h1>Seat test (ISO 10326-1), class {} of {}</h1><p>{what}; input class <code>{}</code>, \
+         {}; intended input a*<sub>wP</sub> = {:.3} m/s² (Wk).</p>\n",
         esc(&t.class),
         esc(t.source),
         esc(t.class_code),

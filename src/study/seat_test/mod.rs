@@ -475,6 +475,17 @@ pub(crate) fn occupant_test(
         .iter()
         .map(|r| r.end_stop_contacts.as_ref().map(|c| c.count))
         .sum::<Option<usize>>();
+    let crest = used.iter().map(|r| r.crest_factor_s).fold(0.0, f64::max);
+    if crest > 9.0 {
+        notes.push(format!(
+            "{who}: seat crest factor up to {crest:.1}, above 9: ISO 2631-1 6.2.1 asks for VDV and \
+             MTVV beside a_w{}",
+            match contacts {
+                Some(n) if n > 0 => format!(" ({n} end-stop impacts)"),
+                _ => String::new(),
+            }
+        ));
+    }
     OccupantTest {
         occupant,
         body_mass_kg: None,
