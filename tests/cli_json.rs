@@ -344,6 +344,35 @@ fn every_subcommand_prints_one_json_document() {
             args(&["gap-bench", "--cases", "1", "--json"]),
             &["cases", "summary"],
         ),
+        (
+            "seat-test",
+            args(&[
+                "seat-test",
+                "--class",
+                "iso7096-em3",
+                "--run",
+                "a.csv",
+                "--run",
+                "b.csv",
+                "--run",
+                "c.csv",
+                "--report",
+                "seat.html",
+                "--json",
+            ]),
+            &[
+                "class",
+                "runs",
+                "a_wp",
+                "a_ws",
+                "seat",
+                "a_ws_corrected",
+                "psd_within_tolerance",
+                "damping",
+                "verdict",
+                "written",
+            ],
+        ),
     ];
     let listed = subcommands();
     let missing: Vec<&String> = listed

@@ -21,7 +21,7 @@ pub use figures::Averaging;
 pub use filter::WeightingFilter;
 pub use report::{ChannelReport, Options, Report};
 pub use spectrum::{CrossSpectra, Segment, Spectrum, Welch, WelchOptions, Window};
-pub use stream::{AnalysisObserver, ReportBuilder};
+pub use stream::{AnalysisObserver, ReportBuilder, SpectraObserver};
 pub use weighting::Weighting;
 
 use crate::error::Result;

@@ -16,6 +16,7 @@ mod replay;
 mod report;
 mod reproduce;
 mod run;
+mod seat_test;
 mod sensitivity;
 mod simulate;
 mod sweep;
@@ -75,6 +76,8 @@ enum Command {
     Gap(gap::Args),
     /// Blind benchmark of `wbv gap` on simulated cases with a hidden planted effect.
     GapBench(gap_bench::Args),
+    /// The ISO 10326-1 seat test on an ISO 7096 / EN 13490 / ISO 5007 input class: SEAT, damping test.
+    SeatTest(seat_test::Args),
 }
 
 /// The `--model` option shared by the commands that take a model.
@@ -174,6 +177,7 @@ pub fn main() -> ExitCode {
         Command::Calibrate(a) => calibrate::run(a),
         Command::Gap(a) => gap::run(a),
         Command::GapBench(a) => gap_bench::run(a),
+        Command::SeatTest(a) => seat_test::run(a),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

@@ -11,6 +11,7 @@
 #[cfg(feature = "cli")]
 pub mod args;
 pub mod builtin;
+pub mod classes;
 pub mod helicopter;
 pub mod recorded;
 pub mod road;

@@ -10,6 +10,7 @@
 
 pub mod gap;
 pub mod json;
+pub mod seat_test;
 
 use crate::analysis::health::{self, Health};
 use crate::analysis::plots::{self, RunFigure};
@@ -75,7 +76,7 @@ pub fn default_path(run: &Path) -> PathBuf {
 
 /// Text for HTML: `&`, `<`, `>`, `"` and `'` escaped (the five characters that matter; a crate
 /// for this would be larger than the function).
-fn esc(s: &str) -> String {
+pub(crate) fn esc(s: &str) -> String {
     let mut out = String::with_capacity(s.len());
     for c in s.chars() {
         match c {
@@ -90,7 +91,7 @@ fn esc(s: &str) -> String {
     out
 }
 
-const STYLE: &str = "body{font-family:sans-serif;max-width:1320px;margin:2em auto;padding:0 1em;\
+pub(crate) const STYLE: &str = "body{font-family:sans-serif;max-width:1320px;margin:2em auto;padding:0 1em;\
 color:#222;background:#fff}h1{font-size:1.6em}h2{border-bottom:1px solid #ccc;padding-bottom:.2em;\
 margin-top:1.6em}table{border-collapse:collapse;margin:.6em 0}td,th{border:1px solid #ccc;\
 padding:.25em .6em;text-align:right}th{background:#f2f2f2}td:first-child,th:first-child{text-align:left}\

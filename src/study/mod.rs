@@ -19,6 +19,7 @@ pub mod papers;
 pub mod param;
 pub mod path;
 pub mod reproduce;
+pub mod seat_test;
 pub mod sensitivity;
 pub mod shard;
 pub mod spectral;

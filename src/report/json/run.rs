@@ -28,6 +28,12 @@ pub struct Simulated {
     pub analysis: Option<crate::analysis::Report>,
     /// Why there is no analysis.
     pub analysis_skipped: Option<String>,
+    /// For a seat-test input class: the realised platform PSD against the class's tolerance.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub platform_psd: Option<crate::excitation::classes::PsdCheck>,
+    /// Why an input-class run has no PSD check.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub platform_psd_skipped: Option<String>,
 }
 
 impl Simulated {
@@ -49,6 +55,8 @@ impl Simulated {
             written,
             analysis: outcome.report.clone(),
             analysis_skipped: outcome.report_skipped.clone(),
+            platform_psd: outcome.platform_psd.clone(),
+            platform_psd_skipped: outcome.platform_psd_skipped.clone(),
         }
     }
 }
