@@ -12,6 +12,7 @@ pub mod plots;
 pub mod report;
 pub mod seat;
 pub mod spectrum;
+pub mod spine;
 pub mod stream;
 pub mod units;
 pub mod weighting;
