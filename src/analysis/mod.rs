@@ -2,6 +2,7 @@
 //! assessment, seat transmissibility (SEAT) and the per-run [`Report`].
 
 pub mod comfort;
+pub mod exposure;
 pub mod faults;
 pub mod figures;
 pub mod filter;
