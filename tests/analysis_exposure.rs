@@ -42,7 +42,10 @@ fn the_directive_takes_the_dose_axis_by_axis() {
         },
     )
     .unwrap();
-    let (x, z) = (r.channel("a_seat_x").unwrap(), r.channel("a_seat_z").unwrap());
+    let (x, z) = (
+        r.channel("a_seat_x").unwrap(),
+        r.channel("a_seat_z").unwrap(),
+    );
     // The record is what the rule is about: z highest by k·a_w, x highest by k·VDV.
     assert!(z.a_w > 1.4 * x.a_w, "{} vs 1.4·{}", z.a_w, x.a_w);
     assert!(1.4 * x.vdv > z.vdv, "1.4·{} vs {}", x.vdv, z.vdv);
@@ -116,7 +119,10 @@ fn a_bad_operation_is_one_error_line() {
             .unwrap();
         assert!(!out.status.success());
         let err = String::from_utf8_lossy(&out.stderr);
-        assert!(err.starts_with("wbv: error:") && err.contains(want), "{err}");
+        assert!(
+            err.starts_with("wbv: error:") && err.contains(want),
+            "{err}"
+        );
         assert_eq!(err.trim().lines().count(), 1, "{err}");
     }
 }

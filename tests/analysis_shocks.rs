@@ -16,12 +16,32 @@ use wbv::signals::Signals;
 
 /// ISO 2631-5:2018 Annex D Table D.1 at 256 Hz: numerator and denominator.
 const ANNEX_D_B: [f64; 12] = [
-    -0.000005710, 0.000020010, 0.001373900, 0.014541920, 0.025152310, -0.014242050,
-    -0.044262840, -0.008888510, 0.017715720, 0.010216420, 0.002030740, 0.000055980,
+    -0.000005710,
+    0.000020010,
+    0.001373900,
+    0.014541920,
+    0.025152310,
+    -0.014242050,
+    -0.044262840,
+    -0.008888510,
+    0.017715720,
+    0.010216420,
+    0.002030740,
+    0.000055980,
 ];
 const ANNEX_D_A: [f64; 12] = [
-    1.000000000, -3.323217600, 4.256126150, -1.980417270, -1.488735470, 3.329511290,
-    -2.949072140, 1.653403410, -0.635677800, 0.167519420, -0.028076980, 0.002348730,
+    1.000000000,
+    -3.323217600,
+    4.256126150,
+    -1.980417270,
+    -1.488735470,
+    3.329511290,
+    -2.949072140,
+    1.653403410,
+    -0.635677800,
+    0.167519420,
+    -0.028076980,
+    0.002348730,
 ];
 
 /// y[n] = Σ b_k x[n−k] − Σ_{k≥1} a_k y[n−k], from rest.
@@ -68,7 +88,11 @@ fn dose(p: &[f64]) -> f64 {
 fn formula_1(f: f64) -> f64 {
     let s = num_complex::Complex64::new(0.0, 2.0 * PI * f);
     let q = |w: f64, z: f64| 1.0 + 2.0 * z * s / w + s * s / (w * w);
-    let den = q(31.0, 0.21) * q(230.0, 0.88) * q(260.0, 0.80) * q(320.0, 0.40) * q(380.0, 0.75)
+    let den = q(31.0, 0.21)
+        * q(230.0, 0.88)
+        * q(260.0, 0.80)
+        * q(320.0, 0.40)
+        * q(380.0, 0.75)
         * q(420.0, 0.65);
     (q(34.0, 0.35) / den).norm()
 }
@@ -113,7 +137,11 @@ fn the_dose_agrees_with_the_annex_d_filter() {
         "D_z {} vs Annex D {d_want}",
         got.dose()
     );
-    assert!((got.max / max_want - 1.0).abs() < 0.01, "{} vs {max_want}", got.max);
+    assert!(
+        (got.max / max_want - 1.0).abs() < 0.01,
+        "{} vs {max_want}",
+        got.max
+    );
     assert!(got.max > 20.0, "the shocks are resonant: {}", got.max);
     let (a, b) = (got.count as f64, want.len() as f64);
     assert!((a / b - 1.0).abs() < 0.02, "{a} peaks vs Annex D {b}");
@@ -138,9 +166,16 @@ fn a_steady_sine_gives_n_identical_peaks() {
             "{f} Hz: D_z {} vs closed form {want}",
             got.dose()
         );
-        assert!((got.count as f64 - cycles).abs() <= 1.0, "{f} Hz: {} peaks", got.count);
+        assert!(
+            (got.count as f64 - cycles).abs() <= 1.0,
+            "{f} Hz: {} peaks",
+            got.count
+        );
     }
-    assert!((formula_1(5.0) - 1.543).abs() < 0.001, "the spine's resonance");
+    assert!(
+        (formula_1(5.0) - 1.543).abs() < 0.001,
+        "the spine's resonance"
+    );
 }
 
 #[test]

@@ -214,7 +214,15 @@ fn every_subcommand_prints_one_json_document() {
                 "--iso2631-5",
                 "--json",
             ]),
-            &["a8", "vdv_day", "zone", "operations", "axes", "iso2631_5", "units"],
+            &[
+                "a8",
+                "vdv_day",
+                "zone",
+                "operations",
+                "axes",
+                "iso2631_5",
+                "units",
+            ],
         ),
         ("models", args(&["models", "--json"]), &["models"]),
         (

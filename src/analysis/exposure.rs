@@ -200,7 +200,11 @@ pub fn assess(operations: &[Operation], shocks: &ShockSettings) -> Result<Day> {
             ));
         }
         if !(op.measured_s.is_finite() && op.measured_s > 0.0) {
-            return Err(Error::data(&op.name, None, "the measurement has no duration"));
+            return Err(Error::data(
+                &op.name,
+                None,
+                "the measurement has no duration",
+            ));
         }
     }
     let hours: f64 = operations.iter().map(|o| o.hours).sum();
@@ -464,7 +468,10 @@ mod tests {
     #[test]
     fn a_day_longer_than_24_hours_is_refused() {
         let e = assess(
-            &[op("a", 20.0, &[("z", 0.5, 5.0)]), op("b", 5.0, &[("z", 0.5, 5.0)])],
+            &[
+                op("a", 20.0, &[("z", 0.5, 5.0)]),
+                op("b", 5.0, &[("z", 0.5, 5.0)]),
+            ],
             &ShockSettings::default(),
         )
         .unwrap_err();

@@ -3,13 +3,13 @@
 //! reproduce it byte for byte (all computations are deterministic).
 
 use super::comfort::{self, Comfort};
+use super::exposure::ShockSettings;
 use super::figures as fig;
 use super::health::{self, Health};
 use super::octave::{self, Band};
-use super::exposure::ShockSettings;
 use super::seat;
-use super::spine::{Peaks, Shocks};
 use super::spectrum::WelchOptions;
+use super::spine::{Peaks, Shocks};
 use super::weighting::Weighting;
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
@@ -312,8 +312,7 @@ impl Report {
                 let hours = opts
                     .exposure_hours
                     .unwrap_or(health::DEFAULT_EXPOSURE_HOURS);
-                match Shocks::of_record("a_seat_z", trigger, &peaks, hours, &opts.shocks.history)
-                {
+                match Shocks::of_record("a_seat_z", trigger, &peaks, hours, &opts.shocks.history) {
                     Ok(s) => Some(s),
                     Err(e) => {
                         notes.push(format!("ISO 2631-5: {e}"));

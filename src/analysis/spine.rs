@@ -190,11 +190,7 @@ fn state_space() -> (DMatrix<f64>, DVector<f64>, DVector<f64>, f64) {
             // y = (w²/w1²)[u_in + (w1² − w²) Q + (2ζ1 w1 − 2ζ w) sQ].
             let (w1, z1) = ZERO;
             let g = w * w / (w1 * w1);
-            (
-                g * (w1 * w1 - w * w),
-                g * (2.0 * z1 * w1 - 2.0 * z * w),
-                g,
-            )
+            (g * (w1 * w1 - w * w), g * (2.0 * z1 * w1 - 2.0 * z * w), g)
         } else {
             (w * w, 0.0, 0.0)
         };
@@ -256,7 +252,10 @@ impl SpineFilter {
 
     /// Slowest decay rate of the model's free response, 1/s (ζω of the slowest pole pair).
     pub fn slowest_decay_rate() -> f64 {
-        POLES.iter().map(|(w, z)| z * w).fold(f64::INFINITY, f64::min)
+        POLES
+            .iter()
+            .map(|(w, z)| z * w)
+            .fold(f64::INFINITY, f64::min)
     }
 
     /// The spinal response A_z at the next input sample `u` (m/s² in, m/s² out).
@@ -607,7 +606,11 @@ mod tests {
                 .solve(&b.map(Complex64::from))
                 .expect("regular at these frequencies");
             let h = c.map(Complex64::from).dot(&x) + d;
-            assert!((h - transfer(f)).norm() < 1e-9, "{f} Hz: {h} vs {}", transfer(f));
+            assert!(
+                (h - transfer(f)).norm() < 1e-9,
+                "{f} Hz: {h} vs {}",
+                transfer(f)
+            );
         }
     }
 

@@ -89,7 +89,13 @@ fn print_day(day: &wbv::analysis::exposure::Day) {
     let t = wbv::analysis::health::hours_text;
     println!(
         "  {:<28} {:>6} {:>9} {:>23} {:>23} {:>7} {:>9}",
-        "operation", "hours", "measured", "k·a_w x/y/z m/s²", "k·VDV x/y/z m/s^1.75", "A(8)² %", "alone: EAV"
+        "operation",
+        "hours",
+        "measured",
+        "k·a_w x/y/z m/s²",
+        "k·VDV x/y/z m/s^1.75",
+        "A(8)² %",
+        "alone: EAV"
     );
     for r in &day.operations {
         let axis = |f: fn(&wbv::analysis::exposure::AxisRow) -> f64, d: usize| {
@@ -116,9 +122,15 @@ fn print_day(day: &wbv::analysis::exposure::Day) {
         );
     }
     println!();
-    println!("  {:<4} {:>4} {:>12} {:>15}", "axis", "k", "A(8) m/s²", "VDV m/s^1.75");
+    println!(
+        "  {:<4} {:>4} {:>12} {:>15}",
+        "axis", "k", "A(8) m/s²", "VDV m/s^1.75"
+    );
     for a in &day.axes {
-        println!("  {:<4} {:>4.1} {:>12.3} {:>15.2}", a.axis, a.k, a.a8, a.vdv);
+        println!(
+            "  {:<4} {:>4.1} {:>12.3} {:>15.2}",
+            a.axis, a.k, a.a8, a.vdv
+        );
     }
     println!();
     for line in day.statement() {

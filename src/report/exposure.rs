@@ -2,9 +2,9 @@
 //! reads a file ([`crate::analysis::load_input`]), analysed, and the day assessed by
 //! [`crate::analysis::exposure`]; and the day's section of the HTML report.
 
+use super::esc;
 use crate::analysis::exposure::{self, Day, Operation, ShockSettings};
 use crate::analysis::{Options, Report};
-use super::esc;
 use crate::error::{Error, Result};
 use std::fmt::Write as _;
 use std::path::PathBuf;
