@@ -9,6 +9,9 @@ use wbv::analysis::{Options, Report};
 use wbv::signals::Signals;
 
 const FS: f64 = 500.0;
+
+/// An operation's hours and its (a_w, VDV) in x and in z.
+type Figures = (f64, (f64, f64), (f64, f64));
 const SECS: f64 = 120.0;
 
 fn sine(amp: f64, f: f64) -> Vec<f64> {
@@ -71,7 +74,7 @@ fn a_day_of_four_operations_by_hand() {
         ("rough", 1.5, sine(1.2, 4.0), sine(0.2, 2.5)),
     ];
     let mut ops = Vec::new();
-    let mut figures = Vec::new();
+    let mut figures: Vec<Figures> = Vec::new();
     for (name, hours, z, x) in records {
         let mut s = Signals::new(FS, name);
         s.push("a_seat_z", z).unwrap();
@@ -86,10 +89,10 @@ fn a_day_of_four_operations_by_hand() {
     }
     let day = exposure::assess(&ops, &ShockSettings::default()).unwrap();
     // By hand: A(8)_axis = k √(Σ a² T / 8), VDV_axis = k (Σ VDV⁴ T/T_m)^¼.
-    let a8 = |pick: fn(&(f64, (f64, f64), (f64, f64))) -> f64, k: f64| {
+    let a8 = |pick: fn(&Figures) -> f64, k: f64| {
         k * (figures.iter().map(|o| pick(o).powi(2) * o.0).sum::<f64>() / 8.0).sqrt()
     };
-    let vdv = |pick: fn(&(f64, (f64, f64), (f64, f64))) -> f64, k: f64| {
+    let vdv = |pick: fn(&Figures) -> f64, k: f64| {
         k * figures
             .iter()
             .map(|o| pick(o).powi(4) * o.0 * 3600.0 / SECS)
