@@ -109,6 +109,23 @@ pub struct OperationRow {
     pub d_z: Option<f64>,
 }
 
+impl OperationRow {
+    /// `f` of the seat axes x, y and z with `digits` decimals (`-` for an axis not measured),
+    /// joined by `sep`: a table cell.
+    pub fn per_axis(&self, f: fn(&AxisRow) -> f64, digits: usize, sep: &str) -> String {
+        ["x", "y", "z"]
+            .iter()
+            .map(|ax| {
+                self.axes
+                    .iter()
+                    .find(|a| a.axis == *ax)
+                    .map_or("-".to_string(), |a| format!("{:.*}", digits, f(a)))
+            })
+            .collect::<Vec<_>>()
+            .join(sep)
+    }
+}
+
 /// One axis of one operation.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct AxisRow {

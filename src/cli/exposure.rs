@@ -98,25 +98,13 @@ fn print_day(day: &wbv::analysis::exposure::Day) {
         "alone: EAV"
     );
     for r in &day.operations {
-        let axis = |f: fn(&wbv::analysis::exposure::AxisRow) -> f64, d: usize| {
-            ["x", "y", "z"]
-                .iter()
-                .map(|ax| {
-                    r.axes
-                        .iter()
-                        .find(|a| a.axis == *ax)
-                        .map_or("-".into(), |a| format!("{:.*}", d, f(a)))
-                })
-                .collect::<Vec<String>>()
-                .join("/")
-        };
         println!(
             "  {:<28} {:>6.2} {:>8.0}s {:>23} {:>23} {:>6.0}% {:>9}",
             r.name,
             r.hours,
             r.measured_s,
-            axis(|a| a.k_a_w, 3),
-            axis(|a| a.k_vdv, 2),
+            r.per_axis(|a| a.k_a_w, 3, "/"),
+            r.per_axis(|a| a.k_vdv, 2, "/"),
             100.0 * r.a8_share,
             t(r.hours_to_a8_action)
         );

@@ -86,18 +86,6 @@ pub fn section(out: &mut String, day: &Day) {
          <th>share of A(8)²</th><th>share of VDV⁴</th><th>alone: action value after</th>\
          <th>alone: limit value after</th><th>crest factor z</th><th>D_z [m/s²]</th></tr>",
     );
-    let by_axis = |row: &exposure::OperationRow, f: fn(&exposure::AxisRow) -> f64, digits| {
-        ["x", "y", "z"]
-            .iter()
-            .map(|ax| {
-                row.axes
-                    .iter()
-                    .find(|a| a.axis == *ax)
-                    .map_or("-".to_string(), |a| format!("{:.*}", digits, f(a)))
-            })
-            .collect::<Vec<_>>()
-            .join(" / ")
-    };
     for r in &day.operations {
         let _ = write!(
             out,
@@ -106,8 +94,8 @@ pub fn section(out: &mut String, day: &Day) {
             esc(&r.name),
             r.hours,
             r.measured_s,
-            by_axis(r, |a| a.k_a_w, 3),
-            by_axis(r, |a| a.k_vdv, 2),
+            r.per_axis(|a| a.k_a_w, 3, " / "),
+            r.per_axis(|a| a.k_vdv, 2, " / "),
             100.0 * r.a8_share,
             100.0 * r.vdv_share,
             crate::analysis::health::hours_text(r.hours_to_a8_action),
