@@ -21,7 +21,8 @@
 //! follow from eq. 1 and eq. 5 (the r.m.s. and the fourth-power integral add over periods).
 
 use super::health::{self, DirectiveStatus};
-use super::spine::{self, History, Peaks, Shocks, Trigger};
+pub use super::spine::ShockSettings;
+use super::spine::{self, Peaks, Shocks, Trigger};
 use crate::error::{Error, Result};
 use serde::{Deserialize, Serialize};
 
@@ -178,27 +179,6 @@ pub struct Day {
     pub iso2631_5: Option<Shocks>,
     /// What the reader should know (operations left out of the spinal dose, shocks).
     pub notes: Vec<String>,
-}
-
-/// Whether and how to assess shocks by ISO 2631-5.
-#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]
-pub struct ShockSettings {
-    /// Assess even without a crest factor above 9.
-    pub requested: bool,
-    pub history: History,
-}
-
-impl ShockSettings {
-    /// Why to assess a record whose seat crest factor is `crest_factor` (none: no assessment).
-    pub fn trigger(&self, crest_factor: Option<f64>) -> Option<Trigger> {
-        if crest_factor.is_some_and(|c| c > super::figures::CREST_FACTOR_LIMIT) {
-            Some(Trigger::CrestFactor)
-        } else if self.requested {
-            Some(Trigger::Requested)
-        } else {
-            None
-        }
-    }
 }
 
 /// The day of `operations` (see the module doc for the formulas).

@@ -3,13 +3,12 @@
 //! reproduce it byte for byte (all computations are deterministic).
 
 use super::comfort::{self, Comfort};
-use super::exposure::ShockSettings;
 use super::figures as fig;
 use super::health::{self, Health};
 use super::octave::{self, Band};
 use super::seat;
 use super::spectrum::WelchOptions;
-use super::spine::{Peaks, Shocks};
+use super::spine::{Peaks, ShockSettings, Shocks};
 use super::weighting::Weighting;
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
@@ -106,7 +105,7 @@ pub struct Report {
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub iso2631_5: Option<Shocks>,
     /// The spinal response's peaks of `a_seat_z` (ISO 2631-5 clause 5.3), whether assessed or
-    /// not: what a working day of several records adds up ([`super::exposure`]). Not serialized.
+    /// not: what a working day of several records adds up (`wbv::analysis::exposure`). Not serialized.
     #[serde(skip)]
     pub seat_spine: Option<Peaks>,
     /// Frequency-weighted one-third-octave band r.m.s. 0.5–80 Hz of each channel, m/s²: band

@@ -480,6 +480,27 @@ impl SpineDose {
     }
 }
 
+/// Whether and how to assess shocks by ISO 2631-5.
+#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]
+pub struct ShockSettings {
+    /// Assess even without a crest factor above 9.
+    pub requested: bool,
+    pub history: History,
+}
+
+impl ShockSettings {
+    /// Why to assess a record whose seat crest factor is `crest_factor` (none: no assessment).
+    pub fn trigger(&self, crest_factor: Option<f64>) -> Option<Trigger> {
+        if crest_factor.is_some_and(|c| c > super::figures::CREST_FACTOR_LIMIT) {
+            Some(Trigger::CrestFactor)
+        } else if self.requested {
+            Some(Trigger::Requested)
+        } else {
+            None
+        }
+    }
+}
+
 /// Why an ISO 2631-5 assessment was made.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
