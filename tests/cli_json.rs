@@ -203,6 +203,27 @@ fn every_subcommand_prints_one_json_document() {
             args(&["analyze", "run", "--json"]),
             &["channels", "total_value", "comfort", "units", "written"],
         ),
+        (
+            "exposure",
+            args(&[
+                "exposure",
+                "--operation",
+                "a.csv:4",
+                "--operation",
+                "run:2.5",
+                "--iso2631-5",
+                "--json",
+            ]),
+            &[
+                "a8",
+                "vdv_day",
+                "zone",
+                "operations",
+                "axes",
+                "iso2631_5",
+                "units",
+            ],
+        ),
         ("models", args(&["models", "--json"]), &["models"]),
         (
             "frf",

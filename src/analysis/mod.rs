@@ -2,6 +2,7 @@
 //! assessment, seat transmissibility (SEAT) and the per-run [`Report`].
 
 pub mod comfort;
+pub mod exposure;
 pub mod faults;
 pub mod figures;
 pub mod filter;
@@ -12,6 +13,7 @@ pub mod plots;
 pub mod report;
 pub mod seat;
 pub mod spectrum;
+pub mod spine;
 pub mod stream;
 pub mod units;
 pub mod weighting;

@@ -5,6 +5,7 @@ mod analyze;
 mod calibrate;
 mod excitations;
 mod export;
+mod exposure;
 mod foam;
 mod frf;
 mod gap;
@@ -36,6 +37,8 @@ pub struct Cli {
 enum Command {
     /// ISO 2631-1 analysis of a run: weighted r.m.s., VDV, MTVV, crest factor, SEAT, comfort.
     Analyze(analyze::Args),
+    /// A working day of several operations: A(8) and VDV per axis, the Directive's values, shocks.
+    Exposure(exposure::Args),
     /// List the built-in models (occupants, seat components and configurations).
     Models(models::Args),
     /// Frequency responses (STHT, seat transmissibility, apparent mass, impedance) to CSV and plot.
@@ -157,6 +160,7 @@ pub fn main() -> ExitCode {
     let cli = Cli::parse();
     let result = match cli.command {
         Command::Analyze(a) => analyze::run(a),
+        Command::Exposure(a) => exposure::run(a),
         Command::Models(a) => models::run(a),
         Command::Frf(a) => frf::run(a),
         Command::Modes(a) => modes::run(a),

@@ -8,6 +8,7 @@
 //!
 //! The page holds no date or absolute time, so the same run gives the same bytes.
 
+pub mod exposure;
 pub mod gap;
 pub mod json;
 pub mod seat_test;
@@ -33,6 +34,11 @@ pub struct Settings {
     /// How to read a measurement (columns, units, rate, sensitivity, topic, format), as for
     /// `wbv analyze` (`docs/inputs.md`); a wbv run needs none.
     pub input: crate::io::input::Options,
+    /// The operations of a working day (`--operation FILE:HOURS`): with any, the page has a
+    /// working-day section ([`exposure::section`]); list the reported run too if it is one of them.
+    pub operations: Vec<exposure::OperationSpec>,
+    /// ISO 2631-5 shocks: asked for, and the exposure history of R.
+    pub shocks: crate::analysis::exposure::ShockSettings,
 }
 
 impl Default for Settings {
@@ -42,6 +48,8 @@ impl Default for Settings {
             exposure_hours: health::DEFAULT_EXPOSURE_HOURS,
             gap: None,
             input: crate::io::input::Options::default(),
+            operations: Vec::new(),
+            shocks: crate::analysis::exposure::ShockSettings::default(),
         }
     }
 }
@@ -54,6 +62,8 @@ pub struct Built {
     pub health: Option<Health>,
     /// The gap section's verdict, when the page has one.
     pub gap: Option<gap::Summary>,
+    /// The working day, when operations were given.
+    pub day: Option<crate::analysis::exposure::Day>,
     /// What the reader decided about the measurement (units taken from the file, a fitted rate,
     /// columns left out), one sentence each: shown on the page and in the command's warnings.
     pub input_notes: Vec<String>,
@@ -258,9 +268,16 @@ pub fn build(run: &Path, settings: &Settings) -> Result<Built> {
     let opts = Options {
         exposure_hours: Some(settings.exposure_hours),
         units_declared: declared,
+        shocks: settings.shocks,
         ..Options::default()
     };
     let report = Report::from_signals(&signals, &opts)?;
+    let (day, day_notes) = if settings.operations.is_empty() {
+        (None, Vec::new())
+    } else {
+        let (d, n) = exposure::day(&settings.operations, &settings.input, &settings.shocks)?;
+        (Some(d), n)
+    };
     let welch = WelchOptions {
         segment: crate::analysis::Segment::ResolutionHz(0.125),
         ..WelchOptions::default()
@@ -325,6 +342,20 @@ pub fn build(run: &Path, settings: &Settings) -> Result<Built> {
         }
         None => out.push_str("<p>No seat channel: no health assessment.</p>\n"),
     }
+    if let Some(s) = &report.iso2631_5 {
+        let lines = s.statement();
+        let _ = write!(out, "<div class=\"verdict\"><p>{}</p><ul>", esc(&lines[0]));
+        for l in &lines[1..] {
+            let _ = write!(out, "<li>{}</li>", esc(l.trim()));
+        }
+        out.push_str("</ul></div>\n");
+    }
+    if let Some(d) = &day {
+        exposure::section(&mut out, d);
+    }
+    for n in &day_notes {
+        let _ = writeln!(out, "<p>Input: {}</p>", esc(n));
+    }
     if let Some(s) = report.seat_percent {
         let _ = writeln!(
             out,
@@ -370,6 +401,7 @@ pub fn build(run: &Path, settings: &Settings) -> Result<Built> {
         report,
         health,
         gap,
+        day,
         input_notes: input.notes,
     })
 }

@@ -160,16 +160,19 @@ impl ReportBuilder {
             return Err(Error::data(&self.source, None, "the run has no samples"));
         }
         let duration_s = self.received as f64 / self.fs;
-        let channels = self
+        let (channels, spines): (Vec<_>, Vec<_>) = self
             .channels
             .into_iter()
             .map(|c| c.finish(self.fs, &self.welch))
-            .collect::<Result<Vec<_>>>()?;
+            .collect::<Result<Vec<_>>>()?
+            .into_iter()
+            .unzip();
         Ok(Report::assemble(
             &self.source,
             self.fs,
             duration_s,
             channels,
+            spines.into_iter().flatten().next(),
             &self.opts,
         ))
     }

@@ -18,12 +18,14 @@ use std::path::Path;
 
 mod calibrate;
 mod catalog;
+mod exposure;
 mod foam;
 mod run;
 mod study;
 
 pub use calibrate::*;
 pub use catalog::*;
+pub use exposure::*;
 pub use foam::*;
 pub use run::*;
 pub use study::*;

@@ -234,6 +234,12 @@ pub struct ReportSummary {
     pub health: Option<crate::analysis::health::Health>,
     /// The gap section's verdict and named effects, when the report has one.
     pub gap: Option<crate::report::gap::Summary>,
+    /// The run's ISO 2631-5:2018 block, when assessed.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub iso2631_5: Option<crate::analysis::spine::Shocks>,
+    /// The working day of `--operation`s (the body of `wbv exposure --json`), when given.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub exposure: Option<super::Exposure>,
     pub units: BTreeMap<String, String>,
 }
 
@@ -247,6 +253,8 @@ impl ReportSummary {
             comfort: built.report.comfort,
             health: built.health.clone(),
             gap: built.gap.clone(),
+            iso2631_5: built.report.iso2631_5.clone(),
+            exposure: built.day.clone().map(super::Exposure::of),
             units: units(&[
                 ("total_value", "m/s^2"),
                 ("health.a8", "m/s^2"),
