@@ -93,24 +93,28 @@ fn an_offset_step_at_the_start_changes_no_figure() {
     }
 }
 
-/// A broadband record cut anywhere out of a longer vibration (a rotation of one periodic record,
-/// 300 s at 200 Hz and 1 kHz, white and band-limited): its MSDV within 3 % of the whole
-/// vibration's steady-state value computed outside wbv. The past before a cut is unknown, and the
-/// part of Wf's state it leaves unpredictable sets the error's floor: measured −2.4 % to +0.3 %
-/// over these 16 cuts (docs/exposure.md §MSDV), within 2 % on 15 of them.
+/// A broadband record cut anywhere out of a longer vibration (a rotation of one periodic record at
+/// 200 Hz and 1 kHz): its MSDV against the whole vibration's steady-state value computed outside
+/// wbv (Parseval through the analog Wf). The past before a cut is unknown and the part of Wf's
+/// state it leaves unpredictable sets the error's floor on content inside Wf's band (white, band:
+/// 300 s, measured −2.2 % to +0.8 %, docs/exposure.md §MSDV), so 3 % there. A seat's vibration
+/// (1–80 Hz) has almost no Wf dose of its own, and a start's transient once made it 10 % to
+/// 10 times too high; the dose is now within 1 %.
 #[test]
 fn broadband_records_cut_anywhere_keep_their_msdv() {
     let Some((dir, manifest)) = fixtures() else {
         return;
     };
     let rotations = manifest["rotations"].as_array().unwrap();
-    assert!(rotations.len() >= 16);
+    assert!(rotations.len() >= 32);
     let mut failures = Vec::new();
     for r in rotations {
         let file = r["file"].as_str().unwrap();
         let want = r["msdv"].as_f64().unwrap();
+        let tolerance = if r["kind"] == "seat" { 0.01 } else { 0.03 };
         let got = report(&dir, file).channels[0].msdv.unwrap();
-        if (got / want - 1.0).abs() > 0.03 {
+        eprintln!("{file}: MSDV {:+.2} %", 100.0 * (got / want - 1.0));
+        if (got / want - 1.0).abs() > tolerance {
             failures.push(format!("{file}: MSDV {got:.5} vs steady state {want:.5}"));
         }
     }

@@ -12,6 +12,7 @@ pub mod octave;
 pub mod plots;
 pub mod report;
 pub mod seat;
+pub mod sickness;
 pub mod spectrum;
 pub mod spine;
 pub mod stream;

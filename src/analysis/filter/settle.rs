@@ -32,6 +32,7 @@ use crate::analysis::weighting::Weighting;
 use crate::error::Result;
 use nalgebra::DMatrix;
 use num_complex::Complex64;
+use std::f64::consts::PI;
 
 /// Length in seconds of the recording's start from which the offset and the past are estimated.
 pub const FIT_S: f64 = 10.0;
@@ -41,6 +42,15 @@ pub const AR_ORDER: usize = 8;
 pub const FADE_S: f64 = 20.0;
 /// Transient amplitude, relative to its start, below which a filter counts as settled.
 const SETTLED: f64 = 1e-4;
+
+/// How a [`WeightingChain`] starts on a recording.
+#[derive(Debug, Clone, Copy)]
+enum Start {
+    /// Over this many samples of predicted past (the module's method).
+    Predicted(usize),
+    /// From rest, the recording faded in over this many samples.
+    FadeIn(usize),
+}
 
 /// A weighting (with the oversampler ahead of it when the input rate needs one) that starts in the
 /// steady state of the recording's vibration, fed block by block: any split of the input gives the
@@ -52,8 +62,9 @@ pub struct WeightingChain {
     /// Input rate and the rate of the weighted output (input × oversampling factor), Hz.
     fs: f64,
     fs_weighted: f64,
-    /// Samples of the predicted past, at the input rate.
-    prefix_len: usize,
+    /// How the filters start: samples of the predicted past (at the input rate), or none and the
+    /// recording faded in over this many samples.
+    start: Start,
     /// The recording's first samples, kept until [`FIT_S`] s have arrived.
     pending: Vec<f64>,
     fit_len: usize,
@@ -62,6 +73,8 @@ pub struct WeightingChain {
     /// Weighted samples of the predicted past still to be discarded.
     discard: usize,
     buf: Vec<f64>,
+    /// Slowest decay rate of the filter's free response, 1/s.
+    decay_rate: f64,
 }
 
 impl WeightingChain {
@@ -70,24 +83,43 @@ impl WeightingChain {
         let factor = oversampling(w, fs);
         let fs_weighted = fs * factor as f64;
         let filter = WeightingFilter::new(w, fs_weighted)?;
-        let settle_s = 1.5 * (1.0 / SETTLED).ln() / filter.slowest_decay_rate();
+        let decay_rate = filter.slowest_decay_rate();
+        let settle_s = 1.5 * (1.0 / SETTLED).ln() / decay_rate;
         Ok(WeightingChain {
             filter: filter.stream(),
             up: (factor > 1).then(|| Interpolator::new(factor)),
             fs,
             fs_weighted,
-            prefix_len: (settle_s * fs).ceil() as usize,
+            start: Start::Predicted((settle_s * fs).ceil() as usize),
             pending: Vec::new(),
             fit_len: ((FIT_S * fs).round() as usize).max(1),
             offset: None,
             discard: 0,
             buf: Vec::new(),
+            decay_rate,
         })
+    }
+
+    /// The chain of weighting `w` for input sampled at `fs` Hz that starts from rest on the
+    /// recording faded in by a half-Hann ramp over its first `fade_s` s (after the offset is
+    /// removed): no edge for the slow sections to answer, and no prediction of a past. Its figures
+    /// miss the dose of the unknown past and of the ramp, which [`crate::analysis::sickness`]
+    /// measures on the recording itself.
+    pub fn faded_in(w: Weighting, fs: f64, fade_s: f64) -> Result<Self> {
+        let mut chain = WeightingChain::new(w, fs)?;
+        chain.start = Start::FadeIn(((fade_s * fs).round() as usize).max(1));
+        Ok(chain)
     }
 
     /// Rate of the weighted output in Hz.
     pub fn rate_hz(&self) -> f64 {
         self.fs_weighted
+    }
+
+    /// Slowest decay rate σ_min of the weighting's free response, 1/s (a transient of the filter
+    /// falls as e^{−σ_min t}).
+    pub fn decay_rate(&self) -> f64 {
+        self.decay_rate
     }
 
     /// Weights the next block, appending the weighted samples ready so far to `out` (none until
@@ -129,13 +161,29 @@ impl WeightingChain {
     /// then weights the pending samples.
     fn start(&mut self, out: &mut Vec<f64>) {
         let pending = std::mem::take(&mut self.pending);
-        let offset = pending.iter().sum::<f64>() / pending.len() as f64;
+        let offset = match self.start {
+            Start::Predicted(_) => pending.iter().sum::<f64>() / pending.len() as f64,
+            Start::FadeIn(_) => level(&pending),
+        };
         self.offset = Some(offset);
         let centred: Vec<f64> = pending.iter().map(|v| v - offset).collect();
-        let past = predict_past(&centred, self.prefix_len, self.fs);
-        self.discard = past.len() * self.up.as_ref().map_or(1, Interpolator::factor);
-        self.feed(&past, out);
-        self.feed(&centred, out);
+        match self.start {
+            Start::Predicted(prefix_len) => {
+                let past = predict_past(&centred, prefix_len, self.fs);
+                self.discard = past.len() * self.up.as_ref().map_or(1, Interpolator::factor);
+                self.feed(&past, out);
+                self.feed(&centred, out);
+            }
+            Start::FadeIn(n) => {
+                let ramp = |i: usize| 0.5 - 0.5 * (PI * (i as f64 + 0.5) / n as f64).cos();
+                let faded: Vec<f64> = centred
+                    .iter()
+                    .enumerate()
+                    .map(|(i, v)| if i < n { ramp(i) * v } else { *v })
+                    .collect();
+                self.feed(&faded, out);
+            }
+        }
     }
 
     /// Weights samples that already had the offset removed.
@@ -161,6 +209,23 @@ impl WeightingChain {
         self.discard -= skip;
         out.extend_from_slice(&self.buf[skip..]);
     }
+}
+
+/// The level of `x`: its Hann-weighted mean, the offset of a chain [`WeightingChain::faded_in`]. A
+/// plain mean of T seconds lets vibration at f leak in by |sin(πfT)/(πfT)| (3 % at 1 Hz over 10 s),
+/// and the error is a step whose response through Wf's slow sections can outweigh the motion a
+/// record of seat vibration gives Wf; the Hann window's leakage falls as 1/(πfT)³.
+pub fn level(x: &[f64]) -> f64 {
+    let n = x.len();
+    if n < 3 {
+        return x.iter().sum::<f64>() / n.max(1) as f64;
+    }
+    let w = |i: usize| 0.5 - 0.5 * (2.0 * PI * (i as f64 + 0.5) / n as f64).cos();
+    let (sum, weight) = x
+        .iter()
+        .enumerate()
+        .fold((0.0, 0.0), |(s, ws), (i, v)| (s + w(i) * v, ws + w(i)));
+    sum / weight
 }
 
 /// The `n` samples before `x[0]` (returned oldest first) predicted by an order-[`AR_ORDER`]

@@ -5,6 +5,7 @@ use crate::analysis::figures::{Averaging, Moments, RunningRms};
 use crate::analysis::filter::WeightingChain;
 use crate::analysis::octave;
 use crate::analysis::report::{ChannelReport, Options};
+use crate::analysis::sickness::SicknessDose;
 use crate::analysis::spectrum::{PsdAccumulator, Welch};
 use crate::analysis::spine::{Peaks, SpineDose};
 use crate::analysis::weighting::Weighting;
@@ -59,8 +60,8 @@ pub(super) struct ChannelAnalyzer {
     fs_weighted: f64,
     /// Σx of the raw samples, for the mean.
     sum: f64,
-    /// Wf for the MSDV (vertical axes only; none in [`Scope::Figures`]).
-    sickness: Option<(WeightingChain, Moments)>,
+    /// The Wf motion sickness dose (vertical axes only; none in [`Scope::Figures`]).
+    sickness: Option<SicknessDose>,
     raw: Moments,
     weighted: Moments,
     linear: RunningRms,
@@ -70,9 +71,8 @@ pub(super) struct ChannelAnalyzer {
     /// The ISO 2631-5 spinal response's peaks of the seat's z axis (none elsewhere and in
     /// [`Scope::Figures`]).
     spine: Option<SpineDose>,
-    /// Block buffers of the Wk (or Wd/Wc) and the Wf chains.
+    /// Block buffer of the Wk (or Wd/Wc) chain.
     scratch: Vec<f64>,
-    scratch_sickness: Vec<f64>,
 }
 
 impl ChannelAnalyzer {
@@ -89,7 +89,7 @@ impl ChannelAnalyzer {
         let weight = WeightingChain::new(weighting, fs)?;
         let fs_weighted = weight.rate_hz();
         let sickness = if axis == "z" && scope == Scope::Full {
-            Some((WeightingChain::new(Weighting::Wf, fs)?, Moments::default()))
+            Some(SicknessDose::new(fs)?)
         } else {
             None
         };
@@ -116,7 +116,6 @@ impl ChannelAnalyzer {
             exponential: RunningRms::new(fs_weighted, opts.tau_s, Averaging::Exponential),
             psd: (scope == Scope::Full).then(|| PsdAccumulator::new(welch)),
             scratch: Vec::new(),
-            scratch_sickness: Vec::new(),
         })
     }
 
@@ -145,13 +144,11 @@ impl ChannelAnalyzer {
             weight.push(x, scratch);
             push_weighted(scratch, figures);
         };
-        let (sick_scratch, sickness) = (&mut self.scratch_sickness, &mut self.sickness);
+        let sickness = &mut self.sickness;
         let spine = &mut self.spine;
         let sickness_chain = || {
-            if let Some((chain, moments)) = sickness.as_mut() {
-                sick_scratch.clear();
-                chain.push(x, sick_scratch);
-                moments.push(sick_scratch);
+            if let Some(dose) = sickness.as_mut() {
+                dose.push(x);
             }
             if let Some(spine) = spine.as_mut() {
                 spine.push(x);
@@ -161,22 +158,13 @@ impl ChannelAnalyzer {
     }
 
     /// The channel's figures, and the spinal response's peaks of a seat z channel.
-    pub(super) fn finish(
-        mut self,
-        fs: f64,
-        welch: &Welch,
-    ) -> Result<(ChannelReport, Option<Peaks>)> {
+    pub(super) fn finish(mut self, welch: &Welch) -> Result<(ChannelReport, Option<Peaks>)> {
         self.scratch.clear();
         self.weight.finish(&mut self.scratch);
         push_weighted(
             &self.scratch,
             (&mut self.weighted, &mut self.linear, &mut self.exponential),
         );
-        if let Some((chain, moments)) = self.sickness.as_mut() {
-            self.scratch_sickness.clear();
-            chain.finish(&mut self.scratch_sickness);
-            moments.push(&self.scratch_sickness);
-        }
         let mean = if self.raw.count == 0 {
             0.0
         } else {
@@ -202,7 +190,7 @@ impl ChannelAnalyzer {
             mtvv_exponential: self.exponential.max(),
             peak: self.weighted.peak,
             crest_factor: self.weighted.crest_factor(),
-            msdv: self.sickness.map(|(_, m)| m.msdv(fs)),
+            msdv: self.sickness.map(SicknessDose::finish),
             unit_doubt: None,
         };
         Ok((report, spine))

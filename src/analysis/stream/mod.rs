@@ -163,7 +163,7 @@ impl ReportBuilder {
         let (channels, spines): (Vec<_>, Vec<_>) = self
             .channels
             .into_iter()
-            .map(|c| c.finish(self.fs, &self.welch))
+            .map(|c| c.finish(&self.welch))
             .collect::<Result<Vec<_>>>()?
             .into_iter()
             .unzip();
