@@ -1,5 +1,5 @@
 //! Acquisition faults in a sampled channel, found before any spectrum is taken: values a logger
-//! held (a dropout repeats the last sample), values held at the channel's extreme (clipping) and
+//! held (a dropout repeats the last sample), values held at the channel's range limit (clipping) and
 //! isolated spikes (a transmission or ADC error in one or two samples).
 //!
 //! A continuous vibration signal sampled by an ADC repeats a value exactly only by quantisation,
@@ -22,6 +22,21 @@ use std::ops::Range;
 pub const HELD_FALSE_ALARMS: f64 = 0.01;
 /// Fewest equal samples in a row that can be held: two equal samples are a quantisation step.
 pub const HELD_MIN: usize = 3;
+/// Fewest samples at a channel's extreme value that can mark it as clipped: a continuous signal
+/// reaches its maximum once, and even a 1e-4 m/s² CSV resolution repeats a peak value only a few
+/// times in a long run; an amplifier or ADC at its rail holds it for whole flat tops.
+pub const CLIPPED_SAMPLES: usize = 10;
+/// How many times more samples a rail holds than the code next inward. A smooth peak that reaches
+/// a depth ε into its top code of step q spends 2√(2ε/a) there against 2(√(2(ε+q)/a) − √(2ε/a))
+/// crossing the next code (a the curvature), at most 1/(√2 − 1) ≈ 2.4 times as long, and other
+/// peaks cross the inner code only; a rail collects every sample beyond it.
+pub const CLIPPED_PILE_UP: f64 = 3.0;
+/// Fewest separate visits to a rail: clipping flattens every peak that reaches the range, where a
+/// coarsely quantised channel can dwell on its top code at one or two slow peaks.
+pub const CLIPPED_VISITS: usize = 3;
+/// Least distance of a rail inside a channel's range from its median, in robust standard
+/// deviations: a range limit lies at the distribution's edge.
+pub const CLIPPED_EDGE_SIGMAS: f64 = 1.5;
 /// Distance from the neighbours' median, in robust standard deviations, above which a sample is a
 /// spike: ≈ 1e−22 for a Gaussian sample, so a clean record of any length has none.
 pub const SPIKE_SIGMAS: f64 = 12.0;
@@ -75,18 +90,35 @@ pub struct Fault {
 
 /// Every fault of channel `x`, in sample order.
 pub fn find(x: &[f64], fs: f64) -> Vec<Fault> {
-    let runs = equal_runs(x);
-    let held = held(x.len(), &runs);
-    let spikes = spikes(x, fs, &held);
-    let mut out = classify(x, &runs, held, &spikes);
+    let (runs, long, spikes) = survey(x, fs);
+    let rails: Vec<f64> = rails(x, &spikes, &long)
+        .into_iter()
+        .map(|(v, _)| v)
+        .collect();
+    let mut out = held(x, &runs, long, &rails);
     out.extend(spikes);
     out.sort_by_key(|f| f.samples.start);
     out
 }
 
-/// The runs of equal samples `runs` (of a record of `len` samples) too long for quantisation (see
-/// the module's statistics), before their kind is known.
-fn held(len: usize, runs: &[Range<usize>]) -> Vec<Range<usize>> {
+/// The values at which channel `x` (sampled at `fs`) is clipped, with the number of samples at
+/// each (see [`rails`]).
+pub fn clipping(x: &[f64], fs: f64) -> Vec<(f64, usize)> {
+    let (_, long, spikes) = survey(x, fs);
+    rails(x, &spikes, &long)
+}
+
+/// The runs of equal samples of `x`, those too long for chance, and its spikes.
+fn survey(x: &[f64], fs: f64) -> (Vec<Range<usize>>, Vec<Range<usize>>, Vec<Fault>) {
+    let runs = equal_runs(x);
+    let long = long_runs(x.len(), &runs);
+    let spikes = spikes(x, fs, &long);
+    (runs, long, spikes)
+}
+
+/// The runs of equal samples `runs` (of a record of `len` samples) too long for quantisation to
+/// repeat them by chance (see the module's statistics), before their exit and level are looked at.
+fn long_runs(len: usize, runs: &[Range<usize>]) -> Vec<Range<usize>> {
     let count = |k: usize| runs.iter().filter(|r| r.len() == k).count() as f64;
     let (c2, c3) = (count(2), count(3));
     let n = len.max(2) as f64;
@@ -108,37 +140,130 @@ fn held(len: usize, runs: &[Range<usize>]) -> Vec<Range<usize>> {
         .collect()
 }
 
-/// The kind of each held stretch: [`FaultKind::Clipped`] when it sits at the channel's extreme
-/// (outside spikes) or when its value recurs in three or more stretches (a converter's range is
-/// one level, reached again and again); otherwise [`FaultKind::Held`].
-fn classify(
-    x: &[f64],
-    runs: &[Range<usize>],
-    held: Vec<Range<usize>>,
-    spikes: &[Fault],
-) -> Vec<Fault> {
-    if held.is_empty() {
+/// The held and clipped stretches of `x`. Every run of equal samples at a rail (see [`rails`])
+/// is [`FaultKind::Clipped`]. A long run elsewhere (`long`) is [`FaultKind::Held`] unless the
+/// channel leaves it for a neighbouring code: a quantised signal lingers on a code while it moves
+/// less than one step, and leaves it for the code next to it, where a logger that held a value
+/// while the signal moved on resumes wherever the signal has got to. A dropout on a signal that
+/// moved less than one code meanwhile is indistinguishable from quantisation, and lost nothing. A
+/// run the record ends in has no exit: it is held when it is longer than any the channel left for
+/// a neighbouring code (the longest dwell its quantisation shows).
+fn held(x: &[f64], runs: &[Range<usize>], long: Vec<Range<usize>>, rails: &[f64]) -> Vec<Fault> {
+    let at_rail = |r: &Range<usize>| rails.contains(&x[r.start]);
+    let clipped = runs.iter().filter(|r| at_rail(r)).map(|r| Fault {
+        kind: FaultKind::Clipped,
+        samples: r.clone(),
+    });
+    let long: Vec<Range<usize>> = long.into_iter().filter(|r| !at_rail(r)).collect();
+    let codes = if long.is_empty() {
+        Vec::new()
+    } else {
+        codes(x)
+    };
+    let dwells =
+        |r: &Range<usize>| r.end < x.len() && neighbouring_codes(&codes, x[r.start], x[r.end]);
+    let longest_dwell = || runs.iter().filter(|r| dwells(r)).map(|r| r.len()).max();
+    let held = long
+        .iter()
+        .filter(|r| {
+            if r.end == x.len() {
+                longest_dwell().is_none_or(|d| r.len() > d)
+            } else {
+                !dwells(r)
+            }
+        })
+        .map(|r| Fault {
+            kind: FaultKind::Held,
+            samples: r.clone(),
+        });
+    clipped.chain(held).collect()
+}
+
+/// The distinct values of `x` in ascending order: the codes its converter used (every sample's
+/// own value, for a record of floats).
+fn codes(x: &[f64]) -> Vec<f64> {
+    let mut c = x.to_vec();
+    c.sort_by(f64::total_cmp);
+    c.dedup();
+    c
+}
+
+/// Whether `a` and `b` are the same or neighbouring entries of the ascending `codes`: no sample of
+/// the channel lies strictly between them.
+fn neighbouring_codes(codes: &[f64], a: f64, b: f64) -> bool {
+    let rank = |v: f64| codes.partition_point(|&c| c < v);
+    rank(a).abs_diff(rank(b)) <= 1
+}
+
+/// The values at which channel `x` is clipped, with the samples at each. A rail is a value
+/// (outside `spikes`) held by at least [`CLIPPED_SAMPLES`] samples, reached in at least
+/// [`CLIPPED_VISITS`] separate stretches, and holding [`CLIPPED_PILE_UP`] times as many samples as
+/// each neighbouring code. A distribution's tail thins towards its extreme, so an unclipped
+/// channel, however coarsely quantised, has few samples on its outermost code against the one
+/// inside it; a transducer or converter at its range collects on one code every sample that would
+/// have gone beyond it. Clipping is a value held at the range limit: a quantised signal that
+/// revisits its codes is not clipped.
+///
+/// The candidates are the channel's two extremes and the values of its `long` runs of equal
+/// samples (a record whose range was exceeded in part of it only, beside louder unclipped
+/// stretches, or a gain changed mid-record); a candidate inside the range must lie at the
+/// distribution's edge, [`CLIPPED_EDGE_SIGMAS`] robust standard deviations from its median, since
+/// a converter using only a few codes piles up on the code at its centre.
+pub fn rails(x: &[f64], spikes: &[Fault], long: &[Range<usize>]) -> Vec<(f64, usize)> {
+    let in_spike = |i: usize| spikes.iter().any(|f| f.samples.contains(&i));
+    let clean = || (0..x.len()).filter(move |&i| !in_spike(i)).map(|i| x[i]);
+    let (lo, hi) = clean().fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), v| {
+        (lo.min(v), hi.max(v))
+    });
+    if lo >= hi {
         return Vec::new();
     }
-    let in_spike = |i: usize| spikes.iter().any(|f| f.samples.contains(&i));
-    let (lo, hi) = (0..x.len())
-        .filter(|&i| !in_spike(i))
-        .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), i| {
-            (lo.min(x[i]), hi.max(x[i]))
-        });
-    let recurs = |v: f64| runs.iter().filter(|r| x[r.start] == v).count() >= 3;
-    held.iter()
-        .map(|r| {
-            let v = x[r.start];
-            let kind = if v == hi || v == lo || recurs(v) {
-                FaultKind::Clipped
-            } else {
-                FaultKind::Held
-            };
-            Fault {
-                kind,
-                samples: r.clone(),
-            }
+    let mut candidates: Vec<f64> = long.iter().map(|r| x[r.start]).collect();
+    candidates.sort_by(f64::total_cmp);
+    candidates.dedup();
+    let interior = candidates.iter().any(|&v| v != lo && v != hi);
+    candidates.retain(|&v| v != lo && v != hi);
+    // Median and robust spread (1.4826 × median absolute deviation), for candidates inside.
+    let edge = if interior {
+        let mut c: Vec<f64> = clean().collect();
+        let mid = c.len() / 2;
+        let median = *c.select_nth_unstable_by(mid, f64::total_cmp).1;
+        let mut d: Vec<f64> = c.iter().map(|v| (v - median).abs()).collect();
+        let sigma = 1.4826 * *d.select_nth_unstable_by(mid, f64::total_cmp).1;
+        Some((median, sigma))
+    } else {
+        None
+    };
+    let at_edge = |v: f64| {
+        edge.is_none_or(|(median, sigma)| (v - median).abs() >= CLIPPED_EDGE_SIGMAS * sigma)
+    };
+    let count = |v: f64| clean().filter(|&y| y == v).count();
+    // Separate stretches at `v`: samples at `v` whose predecessor is not.
+    let visits = |v: f64| {
+        (0..x.len())
+            .filter(|&i| x[i] == v && (i == 0 || x[i - 1] != v))
+            .count()
+    };
+    let below = |v: f64| {
+        clean()
+            .filter(|&y| y < v)
+            .fold(None, |m: Option<f64>, y| Some(m.map_or(y, |m| m.max(y))))
+    };
+    let above = |v: f64| {
+        clean()
+            .filter(|&y| y > v)
+            .fold(None, |m: Option<f64>, y| Some(m.map_or(y, |m| m.min(y))))
+    };
+    [hi, lo]
+        .into_iter()
+        .chain(candidates.into_iter().filter(|&v| at_edge(v)))
+        .filter_map(|v| {
+            let n = count(v);
+            let piles_up = [below(v), above(v)]
+                .into_iter()
+                .flatten()
+                .all(|w| n as f64 > CLIPPED_PILE_UP * count(w) as f64);
+            (n >= CLIPPED_SAMPLES && piles_up && visits(v) >= CLIPPED_VISITS).then_some((v, n))
         })
         .collect()
 }
@@ -408,6 +533,72 @@ mod tests {
         for &i in &at {
             assert!((y[i] - 0.5 * (y[i - 1] + y[i + 1])).abs() < 3.0 * sd);
         }
+    }
+
+    /// Rounded to a step `q`.
+    fn coded(x: &[f64], q: f64) -> Vec<f64> {
+        x.iter().map(|v| (v / q).round() * q).collect()
+    }
+
+    fn rms(x: &[f64]) -> f64 {
+        (x.iter().map(|v| v * v).sum::<f64>() / x.len() as f64).sqrt()
+    }
+
+    #[test]
+    fn a_quiet_run_on_a_coarse_converter_is_neither_clipped_nor_held() {
+        // An 8-bit logger on a quiet run uses about ten codes: the signal dwells on each code for
+        // many samples and revisits every one of them, its extremes included.
+        for (seed, fs, f) in [
+            (11, 500.0, 2.0),
+            (12, 1000.0, 1.0),
+            (13, 256.0, 6.0),
+            (14, 2000.0, 4.0),
+            (15, 512.0, 0.7),
+        ] {
+            let x = vibration(180 * fs as usize, fs, f, seed);
+            for codes in [8.0, 10.0, 14.0] {
+                let y = coded(&x, 8.0 * rms(&x) / codes);
+                let f = find(&y, fs);
+                assert!(
+                    f.iter().all(|f| f.kind == FaultKind::Spike),
+                    "seed {seed}, {codes} codes: {} faults, first {:?}",
+                    f.len(),
+                    f.first()
+                );
+                assert_eq!(clipping(&y, fs), vec![], "seed {seed}, {codes} codes");
+            }
+        }
+    }
+
+    #[test]
+    fn a_coarse_converter_at_its_range_is_clipped_and_its_dropout_held() {
+        // 8 bits over ±2.2 σ: the converter's range clips the larger peaks.
+        let fs = 500.0;
+        let x = vibration(120 * 500, fs, 3.0, 21);
+        let range = 2.2 * rms(&x);
+        let q = 2.0 * range / 256.0;
+        let mut y: Vec<f64> = x
+            .iter()
+            .map(|v| (v / q).round().clamp(-128.0, 127.0) * q)
+            .collect();
+        // A dropout of 0.3 s from 30 s: the logger repeats one sample while the signal moves on.
+        let at = 15_000;
+        let hold = y[at];
+        for v in &mut y[at + 1..at + 150] {
+            *v = hold;
+        }
+        let f = find(&y, fs);
+        let held: Vec<_> = f.iter().filter(|f| f.kind == FaultKind::Held).collect();
+        assert_eq!(held.len(), 1, "{held:?}");
+        assert_eq!(held[0].samples, at..at + 150);
+        let rails = clipping(&y, fs);
+        assert_eq!(rails.len(), 2, "{rails:?}");
+        assert!(
+            rails
+                .iter()
+                .all(|&(v, _)| (v.abs() - 128.0 * q).abs() <= q + 1e-12)
+        );
+        assert!(f.iter().any(|f| f.kind == FaultKind::Clipped));
     }
 
     #[test]

@@ -165,28 +165,19 @@ pub(super) fn mask_incoherent(r: &mut RunSpectra) {
     }
 }
 
-/// Fewest samples at a channel's extreme value that mark it as clipped: a continuous signal
-/// reaches its maximum once, and even a 1e-4 m/s² CSV resolution repeats a peak value only a few
-/// times in a long run; an amplifier or ADC at its rail holds it for whole flat tops.
-pub const CLIPPED_SAMPLES: usize = 10;
-
-/// The channels of `s` that look clipped, with the number of samples at their extreme value and
-/// that value (docs/gap.md §3, quality gates). Clipping is a distortion of the sensor chain
+/// The channels of `s` that look clipped, with the number of samples at their rail and its value
+/// (docs/gap.md §3, quality gates; the one rail test of [`crate::analysis::faults::rails`], so
+/// `wbv analyze` and the diagnosis never disagree). Clipping is a distortion of the sensor chain
 /// that grows with magnitude, which the distortion trend would otherwise put in the structure.
 pub(super) fn clipped(s: &Signals) -> Vec<(String, usize, f64)> {
     s.names
         .iter()
         .zip(&s.data)
         .filter_map(|(name, x)| {
-            let hi = x.iter().copied().fold(f64::NEG_INFINITY, f64::max);
-            let lo = x.iter().copied().fold(f64::INFINITY, f64::min);
-            if hi.is_nan() || lo.is_nan() || hi <= lo {
-                return None;
-            }
-            let at = |v: f64| x.iter().filter(|&&y| y == v).count();
-            let (n_hi, n_lo) = (at(hi), at(lo));
-            let (n, v) = if n_hi >= n_lo { (n_hi, hi) } else { (n_lo, lo) };
-            (n >= CLIPPED_SAMPLES).then(|| (name.clone(), n, v))
+            crate::analysis::faults::clipping(x, s.sample_rate_hz)
+                .into_iter()
+                .max_by_key(|&(_, n)| n)
+                .map(|(v, n)| (name.clone(), n, v))
         })
         .collect()
 }

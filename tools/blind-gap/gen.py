@@ -986,7 +986,8 @@ def make_case(case_dir, seed, index, override=None, model="reference"):
         # study sets (--family/--form): the same draws as a random case, then the effect is forced,
         # so every nuisance of case i is the one a random case i would have had
         family = override["family"]
-        form = override.get("form") or str(np.random.default_rng([seed, index, 5]).choice(FAMILIES[family]))
+        form = "none" if family == "none" else (
+            override.get("form") or str(np.random.default_rng([seed, index, 5]).choice(FAMILIES[family])))
     mags = [(0.25, 1.0, 0.5), (0.4, 1.6, 0.8)][int(rng.integers(2))]
     T = rng.uniform(60, 180)
     durs = [max(60.0, round(T * rng.uniform(0.97, 1.03), 2)) for _ in mags]
@@ -1076,6 +1077,10 @@ def make_case(case_dir, seed, index, override=None, model="reference"):
     body_w = G * sum(v for k, v in subject[0].items() if k != "cushion")
     layout = draw_layout(rng, force, back)
     files = []
+    # --coarse-logger: one channel on a coarse converter whose step is fixed by its range, so the
+    # quietest run (the first) spans only `codes` codes; the others use more.
+    coarse = override.get("coarse")
+    coarse_step = None
     for r, (y, T_i) in enumerate(zip(runs_clean, durs)):
         chans = {}
         for ch, v in y.items():
@@ -1093,6 +1098,11 @@ def make_case(case_dir, seed, index, override=None, model="reference"):
             chans[ch] = v
         if field and field.get("fault"):
             plant_fault(chans, fs, field["fault"], np.random.default_rng([seed, index, 14, r]))
+        if coarse and coarse[0] in chans:
+            v = chans[coarse[0]]
+            if coarse_step is None:
+                coarse_step = float(np.ptp(v)) / coarse[1]
+            chans[coarse[0]] = np.round(v / coarse_step) * coarse_step
         name = ["run-low", "run-high", "check-mid"][r] + ".csv"
         write_csv(os.path.join(case_dir, name), chans, fs, layout)
         files.append(name)
@@ -1102,7 +1112,9 @@ def make_case(case_dir, seed, index, override=None, model="reference"):
              "nuisances": {"fs_hz": fs, "fine_rate_hz": ffs, "spectrum": spectrum, "magnitudes_ms2": list(mags),
                            "durations_s": durs, "force_plate": force, "backrest_force": back,
                            "force_static_weight": force and force_static, "noise_frac": noise,
-                           "dc_offsets_ms2": offsets, "layout": layout, "field": field},
+                           "dc_offsets_ms2": offsets, "layout": layout, "field": field,
+                           "coarse_logger": coarse and {"channel": coarse[0], "codes_first_run": coarse[1],
+                                                        "step": coarse_step}},
              "runs": files, "run_order": "run-low, run-high are --run; check-mid is --check"}
     with open(os.path.join(case_dir, "truth.json"), "w") as fh:
         json.dump(truth, fh, indent=1, default=float)
@@ -1184,7 +1196,8 @@ def main():
     ap.add_argument("--set", action="append", default=[], metavar="KEY=VALUE",
                     help="with --like: fs_hz=N, spectrum=KIND, force_plate=0|1, base_dc=M/S2, "
                          "stated=0 (a field case's wiring not stated)")
-    ap.add_argument("--family", choices=sorted(FAMILIES), help="study set: every case gets this effect family")
+    ap.add_argument("--family", choices=sorted(FAMILIES) + ["none"],
+                    help="study set: every case gets this effect family (none: no effect)")
     ap.add_argument("--form", help="study set: every case gets this form (implies its family)")
     ap.add_argument("--backrest-force", action="store_true",
                     help="backrest cases also measure the backrest's vertical force f_back_z")
@@ -1192,6 +1205,9 @@ def main():
                     help="vehicle field conditions: two data loggers, logger faults, --logger stated in half")
     ap.add_argument("--model", choices=sorted(MODELS), default="reference",
                     help="the seat: reference (5 DOF) or seed001-full (paper 001 body, cushion, suspension)")
+    ap.add_argument("--coarse-logger", metavar="CH=CODES",
+                    help="channel CH recorded by a coarse converter whose step makes the first (quietest) "
+                         "run span CODES codes (e.g. a_head_z=10: an 8-bit logger on a quiet run)")
     a = ap.parse_args()
     override = None
     if a.form:
@@ -1200,7 +1216,7 @@ def main():
             ap.error("--form %s is not a form of %s" % (a.form, a.family or "any family"))
         a.family = fam[0]
     if a.family:
-        override = {"family": a.family, "form": a.form}
+        override = {"family": a.family, "form": a.form if a.family != "none" else None}
     if a.like:
         with open(a.like) as fh:
             like = json.load(fh)
@@ -1219,6 +1235,9 @@ def main():
         a.model = like.get("model", "reference")
     if a.field:
         override = dict(override or {}, field=True)
+    if a.coarse_logger:
+        ch, codes = a.coarse_logger.split("=", 1)
+        override = dict(override or {}, coarse=(ch, float(codes)))
     if a.backrest_force:
         override = dict(override or {}, backrest_force=True)
     os.makedirs(a.outdir, exist_ok=True)
