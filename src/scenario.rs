@@ -144,13 +144,13 @@ impl Scenario {
             Some(p) => Some(crate::record::csv::CsvWriter::create(p, outputs.overwrite)?),
             None => None,
         };
-        let mut analysis = crate::analysis::AnalysisObserver::new(
+        let mut analysis = crate::simulate::AnalysisObserver::new(
             &format!("simulated {}", self.model.name),
             Default::default(),
         );
         let class = self.excitation.input_class_def();
         let mut spectra = class.map(|_| {
-            crate::analysis::SpectraObserver::new(
+            crate::simulate::SpectraObserver::new(
                 &["a_base_z"],
                 crate::excitation::classes::CHECK_RESOLUTION_HZ,
             )

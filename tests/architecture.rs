@@ -433,6 +433,31 @@ fn top_level_imports_point_down_the_documented_layers() {
     assert!(up.is_empty(), "imports up the layers: {up:#?}");
 }
 
+/// The standard's arithmetic is usable with no file, run or recording in sight (the Python binding
+/// and every reader call it with samples): `analysis` imports only the error type, the sampled
+/// channels and the numerics, whatever the layer table says.
+#[test]
+fn analysis_depends_on_no_reader_run_or_recording() {
+    let mods = modules();
+    let allowed = ["analysis", "error", "signals", "numeric"];
+    let out: Vec<String> = edges(&mods)
+        .into_iter()
+        .filter(|(a, b)| a[0] == "analysis" && !allowed.contains(&b[0].as_str()))
+        .map(|(a, b)| format!("{} imports {}", a.join("::"), b.join("::")))
+        .collect();
+    assert!(
+        out.is_empty(),
+        "analysis reaches outside the arithmetic: {out:#?}"
+    );
+    // The check sees analysis' edges at all (a parser that found none would pass).
+    assert!(
+        edges(&mods)
+            .iter()
+            .any(|(a, b)| a[0] == "analysis" && b[0] == "error"),
+        "no edge from analysis to error found: parser broken?"
+    );
+}
+
 #[test]
 fn the_cycle_finder_finds_a_planted_cycle() {
     let m = |s: &str| -> Module { s.split("::").map(String::from).collect() };

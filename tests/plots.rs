@@ -74,7 +74,7 @@ fn analyze_plots_are_clean_and_byte_identical() {
             "4",
         ]));
     }
-    for name in wbv::analysis::plots::NAMES {
+    for name in wbv::plot::iso::NAMES {
         let (fa, fb) = (a.join(format!("{name}.svg")), b.join(format!("{name}.svg")));
         assert!(fa.is_file(), "{name}");
         assert_eq!(

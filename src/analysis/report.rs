@@ -162,7 +162,7 @@ fn units() -> BTreeMap<String, String> {
 /// as m/s², or a sensor offset (mean over half the r.m.s. fluctuation); `None` when the mean is
 /// unremarkable. `mean` and `rms` (including the mean) in the channel's unit.
 pub fn offset_note(name: &str, mean: f64, rms: f64) -> Option<String> {
-    let g = crate::io::input::STANDARD_GRAVITY;
+    let g = super::units::STANDARD_GRAVITY;
     let ac = (rms * rms - mean * mean).max(0.0).sqrt();
     let m = mean.abs();
     if name.starts_with("a_") && (m - g).abs() < 0.1 * g {

@@ -11,8 +11,10 @@
 //! bias look the same, and a report that says what it doubts is more use than none; `--units`
 //! (either way) settles it and removes the warning.
 
-use crate::io::input::STANDARD_GRAVITY;
 use std::fmt;
+
+/// Standard gravity g_n in m/s² (ISO 80000-3, CGPM 1901), for files in g.
+pub const STANDARD_GRAVITY: f64 = 9.80665;
 
 /// A unit an acceleration channel's mean points to, read as m/s².
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

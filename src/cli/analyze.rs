@@ -1,5 +1,5 @@
 use std::path::PathBuf;
-use wbv::analysis::{self, Options, Report, Segment, WelchOptions, Window};
+use wbv::analysis::{Options, Report, Segment, WelchOptions, Window};
 use wbv::io::atomic::Overwrite;
 use wbv::report::json::{WithFiles, Written};
 
@@ -58,13 +58,13 @@ pub fn run(args: Args) -> wbv::Result<()> {
     let plot = match &args.plot {
         Some(dir) => {
             let (dir, ext) = wbv::plot::plot_dir(dir, &args.plot_format)?;
-            wbv::plot::check_targets(&analysis::plots::plot_files(&dir, ext), ow)?;
+            wbv::plot::check_targets(&wbv::plot::iso::plot_files(&dir, ext), ow)?;
             Some((dir, ext))
         }
         None => None,
     };
     let start = std::time::Instant::now();
-    let input = analysis::load_input(&args.path, &args.input.options()?)?;
+    let input = wbv::measurement::read(&args.path, &args.input.options()?)?;
     let declared = input.declared();
     let signals = input.signals;
     let loaded = start.elapsed().as_secs_f64();
@@ -98,7 +98,7 @@ pub fn run(args: Args) -> wbv::Result<()> {
     }
     let mut written = Vec::new();
     if let Some((dir, ext)) = &plot {
-        for p in analysis::plots::write_plots(&signals, &report, &welch, dir, ext, ow)? {
+        for p in wbv::plot::iso::write_plots(&signals, &report, &welch, dir, ext, ow)? {
             eprintln!("wrote {}", p.display());
             written.push(Written::of(&p)?);
         }

@@ -63,7 +63,7 @@ pub fn run(args: Args) -> wbv::Result<()> {
     let loggers = Loggers::parse(&args.loggers)?;
     let opts = args.input.options()?;
     let load = |p: &PathBuf| -> wbv::Result<wbv::signals::Signals> {
-        let s = wbv::analysis::load_input(p, &opts)?.signals;
+        let s = wbv::measurement::read(p, &opts)?.signals;
         for need in ["a_base_z", "a_seat_z"] {
             s.require(need).map_err(|_| {
                 wbv::Error::data(

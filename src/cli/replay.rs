@@ -18,7 +18,7 @@ pub struct Args {
 pub fn run(args: Args) -> wbv::Result<()> {
     let path = wbv::record::run_file(&args.run);
     let stored = wbv::record::read_run(&path)?.results;
-    let signals = wbv::analysis::load_signals(&path)?;
+    let signals = wbv::measurement::read(&path, &Default::default())?.signals;
     let report = Report::from_signals(&signals, &Options::default())?;
     let replay = Replay::compare(&path, report, stored.get("analysis"))?;
     if args.json {

@@ -12,6 +12,7 @@
 
 pub mod axis;
 pub mod colour;
+pub mod iso;
 
 use crate::error::{Error, Result};
 use crate::io::atomic::Overwrite;

@@ -1,5 +1,5 @@
 //! A working day read from files: each `FILE_OR_RUN:HOURS` operation is read like `wbv analyze`
-//! reads a file ([`crate::analysis::load_input`]), analysed, and the day assessed by
+//! reads a file ([`crate::measurement::read`]), analysed, and the day assessed by
 //! [`crate::analysis::exposure`]; and the day's section of the HTML report.
 
 use super::esc;
@@ -52,7 +52,7 @@ pub fn day(
     let mut notes = Vec::new();
     for spec in specs {
         let file = crate::record::run_file(&spec.path);
-        let read = crate::analysis::load_input(&file, input)?;
+        let read = crate::measurement::read(&file, input)?;
         let opts = Options {
             exposure_hours: Some(spec.hours),
             units_declared: read.declared(),

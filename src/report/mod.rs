@@ -1,7 +1,7 @@
 //! `wbv report RUN`: one self-contained HTML page of a run (inline SVG figures and CSS, no script,
 //! no network): scenario and provenance, the ISO 2631-1 figures with units, the comfort and health
 //! verdicts in the words of ISO 2631-1 and Directive 2002/44/EC, every chart of
-//! [`crate::analysis::plots`], and for a simulated run the model's frequency responses and modes.
+//! [`crate::plot::iso`], and for a simulated run the model's frequency responses and modes.
 //!
 //! With a sim-to-real gap diagnosis (`--gap FILE`, the JSON of `wbv gap --json`, or a `gap.json`
 //! in the run directory) the page also has a gap section ([`gap`]).
@@ -14,10 +14,10 @@ pub mod json;
 pub mod seat_test;
 
 use crate::analysis::health::{self, Health};
-use crate::analysis::plots::{self, RunFigure};
 use crate::analysis::{Options, Report, WelchOptions};
 use crate::error::{Error, Result};
 use crate::io::atomic::{Overwrite, write_atomic};
+use crate::plot::iso::{self as plots, RunFigure};
 use crate::plot::svg_string;
 use crate::record::Provenance;
 use std::fmt::Write as _;
@@ -254,7 +254,7 @@ pub fn build(run: &Path, settings: &Settings) -> Result<Built> {
         Some(p) => Some(gap::read(p)?),
         None => None,
     };
-    let input = crate::analysis::load_input(&file, &settings.input)?;
+    let input = crate::measurement::read(&file, &settings.input)?;
     let declared = input.declared();
     let signals = input.signals;
     let provenance = if file

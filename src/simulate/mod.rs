@@ -3,8 +3,13 @@
 //! does not grow with duration: the excitation is streamed in blocks and observers decide what to
 //! keep.
 
+pub mod analyse;
 pub mod collect;
 pub mod observer;
+pub mod spectra;
+
+pub use analyse::AnalysisObserver;
+pub use spectra::SpectraObserver;
 
 use crate::error::{Error, Result};
 use crate::excitation::Excitation;

@@ -1,18 +1,19 @@
 //! Time-domain ISO 2631-1 figures of a study point: the point's model is simulated under one
 //! excitation (no recording) and its measured channels analysed while it runs
-//! ([`crate::analysis::AnalysisObserver`], the same analysis as `wbv simulate`).
+//! ([`crate::simulate::AnalysisObserver`], the same analysis as `wbv simulate`).
 //!
 //! Every point uses the same excitation, settings **and seed** (common random numbers): the base
 //! input is the same sample sequence at every point, so differences between points are the
 //! parameter's effect, not sampling noise of the random input.
 
 use super::sweep::PointFigures;
+use crate::analysis::Options;
 use crate::analysis::comfort::{self, Comfort};
-use crate::analysis::{AnalysisObserver, Options};
 use crate::error::{Error, Result};
 use crate::excitation::ExcitationSpec;
 use crate::model::Model;
 use crate::scenario::Scenario;
+use crate::simulate::AnalysisObserver;
 use crate::simulate::Settings;
 
 /// The time-domain run every point gets.

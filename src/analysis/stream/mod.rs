@@ -10,14 +10,10 @@ use crate::error::{Error, Result};
 use crate::signals::Signals;
 
 mod channel;
-mod observer;
-mod spectra;
 
 use channel::ChannelAnalyzer;
 pub(crate) use channel::weighting_for;
 pub use channel::{Scope, parse_name};
-pub use observer::AnalysisObserver;
-pub use spectra::SpectraObserver;
 
 /// Builds a [`Report`] from signals delivered in blocks. A clone of a builder that has received
 /// nothing is a fresh builder for the same channels, rate and options, without designing the

@@ -164,7 +164,7 @@ pub(super) fn iso_plot(
                     .styled(Style::Markers)
                     .coloured(wbv::plot::colour::pick(1)),
             ],
-            spans: wbv::analysis::plots::comfort_spans(),
+            spans: wbv::plot::iso::comfort_spans(),
             ..Chart::default()
         },
         Chart {

@@ -35,8 +35,7 @@ use assemble::TIME_NAMES;
 pub(crate) use assemble::assemble;
 pub(crate) use rate::fit_rate;
 
-/// Standard gravity g_n in m/s² (ISO 80000-3, CGPM 1901), for files in g.
-pub const STANDARD_GRAVITY: f64 = 9.80665;
+pub use crate::analysis::units::STANDARD_GRAVITY;
 
 /// Shortest run accepted, in s (measured-run spec: "files shorter than 10 s are errors").
 pub const MIN_DURATION_S: f64 = 10.0;

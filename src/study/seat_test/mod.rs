@@ -25,7 +25,7 @@ pub mod damping;
 pub mod measured;
 pub mod runs;
 
-use crate::analysis::{AnalysisObserver, SpectraObserver, Spectrum, Weighting};
+use crate::analysis::{Spectrum, Weighting};
 use crate::error::{Error, Result};
 use crate::excitation::ExcitationSpec;
 use crate::excitation::classes::{self, InputClass, PsdCheck};
@@ -33,6 +33,7 @@ use crate::integrator::Method;
 use crate::model::Model;
 use crate::scenario::Scenario;
 use crate::simulate::Settings as RunSettings;
+use crate::simulate::{AnalysisObserver, SpectraObserver};
 use crate::system::Role;
 use contacts::{ContactObserver, Contacts};
 use serde::Serialize;

@@ -1,10 +1,10 @@
 //! The analysis as a simulation [`Observer`]: the measured channels analysed while a run is
 //! simulated.
 
-use super::ReportBuilder;
+use super::observer::{Layout, Observer, Step};
+use crate::analysis::ReportBuilder;
 use crate::analysis::report::{Options, Report};
 use crate::error::{Error, Result};
-use crate::simulate::observer::{Layout, Observer, Step};
 
 /// Samples per channel buffered before they are analysed: large enough for the filters' inner
 /// loops, small enough to stay in cache.

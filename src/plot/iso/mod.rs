@@ -1,4 +1,4 @@
-//! The figures of a run, for `wbv analyze --plot DIR` and the HTML report (`wbv report`), drawn with
+//! The ISO 2631-1 figures of a run, for `wbv analyze --plot DIR` and the HTML report (`wbv report`), drawn with
 //! [`crate::plot`]:
 //!
 //! - `time_history`: every acceleration channel against time (min/max envelope);
@@ -13,12 +13,12 @@
 //! - `health`: the Annex B Figure B.1 caution zones (eqs. B.1, B.2) and the Directive 2002/44/EC
 //!   A(8) action and limit values against daily exposure, with the run's a_w; VDV beside it.
 
-use super::comfort::RANGES;
-use super::figures::{Averaging, running_rms};
-use super::filter::WeightingChain;
-use super::health::{self, Health, ZoneEquation};
-use super::report::Report;
-use super::spectrum::{Segment, Welch, WelchOptions};
+use crate::analysis::comfort::RANGES;
+use crate::analysis::figures::{Averaging, running_rms};
+use crate::analysis::filter::WeightingChain;
+use crate::analysis::health::{self, Health, ZoneEquation};
+use crate::analysis::report::Report;
+use crate::analysis::spectrum::{Segment, Welch, WelchOptions};
 use crate::error::Result;
 use crate::io::atomic::Overwrite;
 use crate::plot::{Axis, Chart, Note, Panels, Rule, Series, Span, Style, colour};

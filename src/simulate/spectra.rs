@@ -1,8 +1,8 @@
 //! Welch auto-spectra of chosen measured channels, accumulated while a run is simulated.
 
+use super::observer::{Layout, Observer, Step};
 use crate::analysis::spectrum::{PsdAccumulator, Segment, Spectrum, Welch, WelchOptions};
 use crate::error::{Error, Result};
-use crate::simulate::observer::{Layout, Observer, Step};
 
 /// Samples per channel buffered before they are handed to the accumulators.
 const BLOCK: usize = 4096;
