@@ -7,21 +7,29 @@
 //! in the run directory) the page also has a gap section ([`gap`]).
 //!
 //! The page holds no date or absolute time, so the same run gives the same bytes.
+//!
+//! The page and its gap section need the charts (feature `plot`); [`json`], the documents that
+//! `wbv <command> --json` prints and the Python binding returns, does not.
 
+#[cfg(feature = "plot")]
 pub mod gap;
 pub mod json;
 
-use crate::analysis::health::{self, Health};
-use crate::analysis::plots::{self, RunFigure};
-use crate::analysis::{Options, Report, WelchOptions};
-use crate::error::{Error, Result};
-use crate::io::atomic::{Overwrite, write_atomic};
-use crate::plot::svg_string;
-use crate::record::Provenance;
-use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
+#[cfg(feature = "plot")]
+use {
+    crate::analysis::health::{self, Health},
+    crate::analysis::plots::{self, RunFigure},
+    crate::analysis::{Options, Report, WelchOptions},
+    crate::error::{Error, Result},
+    crate::io::atomic::{Overwrite, write_atomic},
+    crate::plot::svg_string,
+    crate::record::Provenance,
+    std::fmt::Write as _,
+};
 
 /// Settings of a report.
+#[cfg(feature = "plot")]
 #[derive(Debug, Clone, PartialEq)]
 pub struct Settings {
     /// Daily exposure assumed for the health assessment, h.
@@ -34,6 +42,7 @@ pub struct Settings {
     pub input: crate::io::input::Options,
 }
 
+#[cfg(feature = "plot")]
 impl Default for Settings {
     /// A working day ([`health::DEFAULT_EXPOSURE_HOURS`]).
     fn default() -> Self {
@@ -46,6 +55,7 @@ impl Default for Settings {
 }
 
 /// What a report was built from, for the command's summary.
+#[cfg(feature = "plot")]
 #[derive(Debug, Clone)]
 pub struct Built {
     pub html: String,
@@ -75,6 +85,7 @@ pub fn default_path(run: &Path) -> PathBuf {
 
 /// Text for HTML: `&`, `<`, `>`, `"` and `'` escaped (the five characters that matter; a crate
 /// for this would be larger than the function).
+#[cfg(feature = "plot")]
 fn esc(s: &str) -> String {
     let mut out = String::with_capacity(s.len());
     for c in s.chars() {
@@ -90,6 +101,7 @@ fn esc(s: &str) -> String {
     out
 }
 
+#[cfg(feature = "plot")]
 const STYLE: &str = "body{font-family:sans-serif;max-width:1320px;margin:2em auto;padding:0 1em;\
 color:#222;background:#fff}h1{font-size:1.6em}h2{border-bottom:1px solid #ccc;padding-bottom:.2em;\
 margin-top:1.6em}table{border-collapse:collapse;margin:.6em 0}td,th{border:1px solid #ccc;\
@@ -99,6 +111,7 @@ figure{margin:1em 0}figure svg{max-width:100%;height:auto}figcaption{color:#555;
 .warning{font-size:1.1em;padding:.6em;border-left:4px solid #d55e00;background:#fdf3ec}\
 table.kv td{text-align:left}";
 
+#[cfg(feature = "plot")]
 fn figure_html(out: &mut String, fig: &RunFigure) -> Result<()> {
     let p = fig.panels();
     let svg = svg_string(&p, p.size())?;
@@ -111,6 +124,7 @@ fn figure_html(out: &mut String, fig: &RunFigure) -> Result<()> {
     Ok(())
 }
 
+#[cfg(feature = "plot")]
 fn provenance_html(out: &mut String, p: &Provenance) {
     let rows = [
         ("model", p.model.clone()),
@@ -129,6 +143,7 @@ fn provenance_html(out: &mut String, p: &Provenance) {
     out.push_str("</table>\n");
 }
 
+#[cfg(feature = "plot")]
 fn figures_table(out: &mut String, r: &Report) {
     out.push_str(
         "<table><tr><th>channel</th><th>weighting</th><th>k</th><th>r.m.s. [m/s²]</th>\
@@ -156,6 +171,7 @@ fn figures_table(out: &mut String, r: &Report) {
 }
 
 /// The model's section: FRF magnitude and phase over 0.5–80 Hz (log axis) and the modes.
+#[cfg(feature = "plot")]
 fn model_html(out: &mut String, p: &Provenance) -> Result<()> {
     // The stored text of a built-in model built from parts does not always parse alone; the
     // catalogue entry of the same name is the same model.
@@ -223,6 +239,7 @@ fn model_html(out: &mut String, p: &Provenance) -> Result<()> {
 }
 
 /// Builds the report page of the run at `run` (an MCAP run, a run directory or a measured-run CSV).
+#[cfg(feature = "plot")]
 pub fn build(run: &Path, settings: &Settings) -> Result<Built> {
     if !(settings.exposure_hours.is_finite() && settings.exposure_hours > 0.0) {
         return Err(Error::parameter(
@@ -375,6 +392,7 @@ pub fn build(run: &Path, settings: &Settings) -> Result<Built> {
 
 /// Builds the report of `run` and writes it atomically to `out`; refuses an existing `out`
 /// (unless `overwrite` allows it) before any work.
+#[cfg(feature = "plot")]
 pub fn write(run: &Path, out: &Path, settings: &Settings, overwrite: Overwrite) -> Result<Built> {
     crate::io::atomic::check_overwrite(out, overwrite)?;
     let built = build(run, settings)?;
@@ -388,6 +406,7 @@ pub fn write(run: &Path, out: &Path, settings: &Settings, overwrite: Overwrite) 
 mod tests {
     use super::*;
 
+    #[cfg(feature = "plot")]
     #[test]
     fn escapes_markup() {
         assert_eq!(esc("a<b & 'c'>\""), "a&lt;b &amp; &#39;c&#39;&gt;&quot;");

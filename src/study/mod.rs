@@ -18,6 +18,7 @@ pub mod paper000;
 pub mod papers;
 pub mod param;
 pub mod path;
+pub mod plan;
 pub mod reproduce;
 pub mod sensitivity;
 pub mod shard;
