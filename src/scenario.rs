@@ -90,6 +90,11 @@ pub struct Outcome {
     pub report: Option<crate::analysis::Report>,
     /// Why there is no report.
     pub report_skipped: Option<String>,
+    /// For an input spectral class of the seat tests: the realised platform PSD judged against
+    /// the class's tolerance ([`crate::excitation::classes::InputClass::check`]).
+    pub platform_psd: Option<crate::excitation::classes::PsdCheck>,
+    /// Why an input-class run has no PSD check (a run shorter than one Welch segment).
+    pub platform_psd_skipped: Option<String>,
     /// Wall-clock time of simulation, recording and analysis in s.
     pub elapsed_s: f64,
 }
@@ -143,8 +148,18 @@ impl Scenario {
             &format!("simulated {}", self.model.name),
             Default::default(),
         );
+        let class = self.excitation.input_class_def();
+        let mut spectra = class.map(|_| {
+            crate::analysis::SpectraObserver::new(
+                &["a_base_z"],
+                crate::excitation::classes::CHECK_RESOLUTION_HZ,
+            )
+        });
         {
             let mut observers: Vec<&mut dyn Observer> = vec![&mut analysis];
+            if let Some(s) = spectra.as_mut() {
+                observers.push(s);
+            }
             if let Some(r) = recorder.as_mut() {
                 observers.push(r);
             }
@@ -160,6 +175,19 @@ impl Scenario {
             Ok(r) => (Some(r), None),
             Err(e) => (None, Some(e.to_string())),
         };
+        let (platform_psd, platform_psd_skipped) = match (class, spectra) {
+            (Some(c), Some(s)) => match s.finish() {
+                Ok(v) => {
+                    let sp = &v[0].1;
+                    (
+                        Some(c.check(&sp.freq_hz, &sp.density, sp.df_hz, sp.segments)),
+                        None,
+                    )
+                }
+                Err(e) => (None, Some(e.to_string())),
+            },
+            _ => (None, None),
+        };
         if let Some(mut r) = recorder {
             if let Some(rep) = &report {
                 let json = serde_json::to_value(rep).expect("report serializes");
@@ -174,6 +202,8 @@ impl Scenario {
         Ok(Outcome {
             report,
             report_skipped,
+            platform_psd,
+            platform_psd_skipped,
             elapsed_s: start.elapsed().as_secs_f64(),
         })
     }

@@ -28,12 +28,14 @@ fn run(excitation: &str, duration_s: f64) -> IsoRun {
     }
 }
 
-/// Every built-in model that can be simulated on its own (configurations, occupants, planar).
+/// Every built-in linear model that can be simulated on its own (configurations, occupants,
+/// planar); a seat with friction or stops takes the time-domain path.
 fn models() -> Vec<Model> {
     catalog::all()
         .unwrap()
         .into_iter()
         .filter(|m| m.kind() != catalog::Kind::Seat)
+        .filter(|m| !m.chain().is_some_and(|c| c.is_nonlinear()))
         .collect()
 }
 

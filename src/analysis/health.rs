@@ -1,7 +1,9 @@
 //! Health assessment: ISO 2631-1:1997 clause 7 / Annex B and the EU Directive 2002/44/EC.
 //!
 //! - Exposure basis (Directive Annex Part B; ISO 2631-1 7.2.3): the highest of 1.4 a_wx, 1.4 a_wy
-//!   and a_wz measured on the seat surface.
+//!   and a_wz measured on the seat surface; for the dose, the highest of 1.4 VDV_x, 1.4 VDV_y and
+//!   VDV_z, taken axis by axis on its own (Directive Annex B.1): the axis with the largest dose need
+//!   not be the axis with the largest r.m.s. (shocks in x, steady vibration in z).
 //! - Daily exposure A(8) = a (T/T0)^½, T0 = 8 h (Directive Annex A.1).
 //! - Directive whole-body values (Article 3): action 0.5 m/s² A(8) or 9.1 m/s^1.75 VDV; limit
 //!   1.15 m/s² A(8) or 21 m/s^1.75 VDV.
@@ -186,8 +188,12 @@ pub struct Health {
     /// A(8) in m/s².
     pub a8: f64,
     pub a8_status: DirectiveStatus,
-    /// VDV of the highest k-weighted axis scaled to the exposure, (VDV⁴ T/T_run)^¼, m/s^1.75.
+    /// The highest of 1.4·VDV_x, 1.4·VDV_y and VDV_z, each scaled to the exposure as
+    /// (VDV⁴ T/T_run)^¼, m/s^1.75 (Directive 2002/44/EC Annex B.1, axis by axis).
     pub vdv_exposure: f64,
+    /// The axis of [`Health::vdv_exposure`] (not necessarily [`Health::axis`]).
+    #[serde(default)]
+    pub vdv_axis: String,
     pub vdv_status: DirectiveStatus,
     /// Caution zone by eq. B.1 and B.2.
     pub zone_b1: Zone,
@@ -222,8 +228,10 @@ impl Health {
                 t(A8_LIMIT)
             ),
             format!(
-                "  VDV = {:.2} m/s^1.75 over {}: {} (action value {VDV_ACTION}, limit value {VDV_LIMIT} m/s^1.75); the \
-                 action value is reached after {} a day, the limit value after {}",
+                "  VDV (the highest of 1.4·VDV_x, 1.4·VDV_y, VDV_z: {} axis) = {:.2} m/s^1.75 over {}: {} \
+                 (action value {VDV_ACTION}, limit value {VDV_LIMIT} m/s^1.75); the action value is reached \
+                 after {} a day, the limit value after {}",
+                self.vdv_axis,
                 self.vdv_exposure,
                 hours_text(h),
                 self.vdv_status.text(),
@@ -250,24 +258,43 @@ impl Health {
 /// the reference duration T0 of A(8).
 pub const DEFAULT_EXPOSURE_HOURS: f64 = 8.0;
 
-/// Health figures from per-axis (axis name, a_w m/s², VDV m/s^1.75) of the seat surface measured
-/// over `run_s` seconds, for a daily exposure of `hours`.
-pub fn assess(axes: &[(String, f64, f64)], run_s: f64, hours: f64) -> Option<Health> {
-    let k = |axis: &str| match axis {
+/// The health multiplying factor k of a seat axis `x`, `y` or `z` (ISO 2631-1 7.2.3).
+pub fn k_health(axis: &str) -> f64 {
+    match axis {
         "x" => K_HEALTH[0],
         "y" => K_HEALTH[1],
         _ => K_HEALTH[2],
-    };
-    let (axis, a, v) = axes
-        .iter()
-        .map(|(ax, a, v)| (ax.clone(), k(ax) * a, k(ax) * v))
-        .max_by(|l, r| l.1.total_cmp(&r.1))?;
+    }
+}
+
+/// The axis and value of the largest k·`value(axis)` over `axes` (each axis on its own: ISO 2631-1
+/// 7.2.3 and Directive 2002/44/EC Annex B.1 take the highest of 1.4·x, 1.4·y and z); `None` when
+/// `axes` is empty.
+pub fn highest_axis<'a, T>(
+    axes: &'a [T],
+    axis: impl Fn(&'a T) -> &'a str,
+    value: impl Fn(&'a T) -> f64,
+) -> Option<(&'a str, f64)> {
+    axes.iter()
+        .map(|t| (axis(t), k_health(axis(t)) * value(t)))
+        .max_by(|l, r| l.1.total_cmp(&r.1))
+}
+
+/// Health figures from per-axis (axis name, a_w m/s², VDV m/s^1.75) of the seat surface measured
+/// over `run_s` seconds, for a daily exposure of `hours`. The A(8) basis is the highest of
+/// 1.4·a_wx, 1.4·a_wy, a_wz and the dose the highest of 1.4·VDV_x, 1.4·VDV_y, VDV_z, each taken
+/// axis by axis (Directive 2002/44/EC Annex B.1); the dose is scaled to the exposure as
+/// VDV·(T/T_run)^¼ (ISO 2631-1 eq. 5 for a stationary signal).
+pub fn assess(axes: &[(String, f64, f64)], run_s: f64, hours: f64) -> Option<Health> {
+    let (axis, a) = highest_axis(axes, |t| t.0.as_str(), |t| t.1)?;
+    let (vdv_axis, v) = highest_axis(axes, |t| t.0.as_str(), |t| t.2)?;
     let a8v = a8(a, hours);
     let vdv_exposure = v * (hours * 3600.0 / run_s).powf(0.25);
     Some(Health {
         exposure_hours: hours,
         a_w_max: a,
-        axis,
+        axis: axis.to_string(),
+        vdv_axis: vdv_axis.to_string(),
         a8: a8v,
         a8_status: status(a8v, A8_ACTION, A8_LIMIT),
         vdv_exposure,
@@ -291,6 +318,20 @@ mod tests {
         assert_eq!(hours_text(0.5), "30 min");
         assert_eq!(hours_text(30.0), "more than 24 h");
         assert_eq!(hours_text(6.25), "6.2 h");
+    }
+
+    /// The issue's record: z highest by r.m.s., x carries the shocks. By hand: basis max(1.4·0.30,
+    /// 0.60) = 0.60 m/s² (z); dose max(1.4·9.43, 7.9) = 13.2 m/s^1.75 (x), above the 9.1 action
+    /// value, where the VDV of the axis highest by r.m.s. (z, 7.9) is below it.
+    #[test]
+    fn the_dose_is_the_highest_of_the_axes_doses_not_the_dose_of_the_rms_axis() {
+        let axes = vec![("x".to_string(), 0.30, 9.43), ("z".to_string(), 0.60, 7.9)];
+        let h = assess(&axes, 8.0 * 3600.0, 8.0).unwrap();
+        assert_eq!(h.axis, "z");
+        assert!((h.a_w_max - 0.60).abs() < 1e-12);
+        assert_eq!(h.vdv_axis, "x");
+        assert!((h.vdv_exposure - 13.202).abs() < 1e-9, "{}", h.vdv_exposure);
+        assert_eq!(h.vdv_status, DirectiveStatus::AboveAction);
     }
 
     #[test]

@@ -2,6 +2,7 @@
 //! assessment, seat transmissibility (SEAT) and the per-run [`Report`].
 
 pub mod comfort;
+pub mod exposure;
 pub mod faults;
 pub mod figures;
 pub mod filter;
@@ -12,6 +13,7 @@ pub mod plots;
 pub mod report;
 pub mod seat;
 pub mod spectrum;
+pub mod spine;
 pub mod stream;
 pub mod units;
 pub mod weighting;
@@ -21,7 +23,7 @@ pub use figures::Averaging;
 pub use filter::WeightingFilter;
 pub use report::{ChannelReport, Options, Report};
 pub use spectrum::{CrossSpectra, Segment, Spectrum, Welch, WelchOptions, Window};
-pub use stream::{AnalysisObserver, ReportBuilder};
+pub use stream::{AnalysisObserver, ReportBuilder, SpectraObserver};
 pub use weighting::Weighting;
 
 use crate::error::Result;

@@ -8,6 +8,7 @@ use super::health::{self, Health};
 use super::octave::{self, Band};
 use super::seat;
 use super::spectrum::WelchOptions;
+use super::spine::{Peaks, ShockSettings, Shocks};
 use super::weighting::Weighting;
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
@@ -24,6 +25,10 @@ pub struct Options {
     /// Channels whose unit the file or the user declared (`--units`): their samples are never
     /// doubted ([`ChannelReport::unit_doubt`]); every other acceleration channel is.
     pub units_declared: Vec<String>,
+    /// ISO 2631-5 shocks: asked for even without a crest factor above 9, and the exposure history
+    /// of the stress variable R.
+    #[serde(default)]
+    pub shocks: ShockSettings,
 }
 
 impl Default for Options {
@@ -33,6 +38,7 @@ impl Default for Options {
             tau_s: 1.0,
             welch: WelchOptions::default(),
             units_declared: Vec::new(),
+            shocks: ShockSettings::default(),
         }
     }
 }
@@ -93,6 +99,15 @@ pub struct Report {
     /// SEAT % from a_seat_z over a_base_z with Wk, when both exist.
     pub seat_percent: Option<f64>,
     pub health: Option<Health>,
+    /// ISO 2631-5:2018 spinal dose of the seat's z axis (seated, vertical), when its crest factor
+    /// exceeds 9 (ISO 2631-1 6.2.1) or it was asked for ([`Options::shocks`]); for the daily dose
+    /// the exposure is [`Options::exposure_hours`], or 8 h when none is given.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub iso2631_5: Option<Shocks>,
+    /// The spinal response's peaks of `a_seat_z` (ISO 2631-5 clause 5.3), whether assessed or
+    /// not: what a working day of several records adds up (`wbv::analysis::exposure`). Not serialized.
+    #[serde(skip)]
+    pub seat_spine: Option<Peaks>,
     /// Frequency-weighted one-third-octave band r.m.s. 0.5–80 Hz of each channel, m/s²: band
     /// r.m.s. times the channel's weighting at the band centre (ISO 2631-1 eq. 6, Tables 3–4).
     pub weighted_bands: BTreeMap<String, Vec<Band>>,
@@ -129,6 +144,14 @@ fn units() -> BTreeMap<String, String> {
         ("health.a_w_max", "m/s^2"),
         ("health.vdv_exposure", "m/s^1.75"),
         ("health.exposure_hours", "h"),
+        ("iso2631_5.peak_max", "m/s^2"),
+        ("iso2631_5.d_z", "m/s^2"),
+        ("iso2631_5.d_zd", "m/s^2"),
+        ("iso2631_5.measured_s", "s"),
+        ("iso2631_5.exposure_hours", "h"),
+        ("iso2631_5.s_ed_mpa", "MPa"),
+        ("iso2631_5.r", "1"),
+        ("iso2631_5.injury_probability", "1"),
     ]
     .into_iter()
     .map(|(k, u)| (k.to_string(), u.to_string()))
@@ -236,6 +259,7 @@ impl Report {
         fs: f64,
         duration_s: f64,
         mut channels: Vec<ChannelReport>,
+        seat_spine: Option<Peaks>,
         opts: &Options,
     ) -> Report {
         for c in &mut channels {
@@ -280,7 +304,23 @@ impl Report {
                 .collect();
             health::assess(&axes, duration_s, h)
         });
-        let notes = channels.iter().flat_map(|c| c.notes(duration_s)).collect();
+        let mut notes: Vec<String> = channels.iter().flat_map(|c| c.notes(duration_s)).collect();
+        let seat_z_crest = find("a_seat_z").map(|c| c.crest_factor);
+        let iso2631_5 = match (seat_spine, opts.shocks.trigger(seat_z_crest)) {
+            (Some(peaks), Some(trigger)) => {
+                let hours = opts
+                    .exposure_hours
+                    .unwrap_or(health::DEFAULT_EXPOSURE_HOURS);
+                match Shocks::of_record("a_seat_z", trigger, &peaks, hours, &opts.shocks.history) {
+                    Ok(s) => Some(s),
+                    Err(e) => {
+                        notes.push(format!("ISO 2631-5: {e}"));
+                        None
+                    }
+                }
+            }
+            _ => None,
+        };
         let weighted_bands = channels
             .iter()
             .map(|c| {
@@ -300,6 +340,8 @@ impl Report {
             comfort_statement: comfort::overlap_statement(total_value),
             seat_percent,
             health,
+            iso2631_5,
+            seat_spine,
             weighted_bands,
             warnings,
             verdict_doubtful,

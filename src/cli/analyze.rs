@@ -12,6 +12,8 @@ pub struct Args {
     path: PathBuf,
     #[command(flatten)]
     input: wbv::io::input::InputArgs,
+    #[command(flatten)]
+    shocks: super::exposure::ShockArgs,
     /// Print the report as JSON (keys `a_w`, `vdv`, `mtvv`, `crest_factor`, `seat_percent`,
     /// `comfort`, …; units under `units`).
     #[arg(long)]
@@ -75,6 +77,7 @@ pub fn run(args: Args) -> wbv::Result<()> {
         exposure_hours: args.exposure_hours,
         welch,
         units_declared: declared,
+        shocks: args.shocks.settings()?,
         ..Options::default()
     };
     let report = Report::from_signals(&signals, &opts)?;
@@ -169,6 +172,11 @@ pub(crate) fn print_table(r: &Report) {
             println!(
                 "  doubtful: it rests on a channel whose unit looks wrong (see the WARNING above)"
             );
+        }
+    }
+    if let Some(s) = &r.iso2631_5 {
+        for line in s.statement() {
+            println!("{line}");
         }
     }
     for n in &r.notes {

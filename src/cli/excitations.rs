@@ -11,7 +11,8 @@ use wbv::signals::Signals;
 /// Arguments of `wbv excitations`.
 #[derive(Debug, clap::Args)]
 pub struct ListArgs {
-    /// Print the list as JSON (`excitations`: name, description, origin, rms_m_s2).
+    /// Print the list as JSON (`excitations`: name, description, origin, rms_m_s2; for the seat-test
+    /// input classes also standard, class, machine).
     #[arg(long)]
     json: bool,
 }
@@ -48,13 +49,28 @@ pub fn list(args: ListArgs) -> wbv::Result<()> {
         return Ok(());
     }
     let width = names.iter().map(|n| n.len()).max().unwrap_or(0);
+    let mut classes = Vec::new();
     for name in names {
         let spec = ExcitationSpec::load(name)?;
         let rms = spec
             .rms_m_s2()
             .map(|r| format!(" [{r:.3} m/s² r.m.s.]"))
             .unwrap_or_default();
-        println!("  {name:width$}  {}{rms}", spec.description);
+        match spec.input_class_def() {
+            Some(c) => classes.push((name, c, rms)),
+            None => println!("  {name:width$}  {}{rms}", spec.description),
+        }
+    }
+    println!(
+        "\nSeat-test input spectral classes (ISO 10326-1 test; `wbv seat-test --class NAME`):"
+    );
+    for (name, c, rms) in classes {
+        println!(
+            "  {name:width$}  {} {}: {}{rms}",
+            c.standard.name(),
+            c.code,
+            c.machine
+        );
     }
     println!(
         "\nUse a name, a TOML file, or build one: `--excitation random --rms 1.0 --band 0.5,80`, \

@@ -5,6 +5,7 @@ mod analyze;
 mod calibrate;
 mod excitations;
 mod export;
+mod exposure;
 mod foam;
 mod frf;
 mod gap;
@@ -16,6 +17,7 @@ mod replay;
 mod report;
 mod reproduce;
 mod run;
+mod seat_test;
 mod sensitivity;
 mod simulate;
 mod sweep;
@@ -35,6 +37,8 @@ pub struct Cli {
 enum Command {
     /// ISO 2631-1 analysis of a run: weighted r.m.s., VDV, MTVV, crest factor, SEAT, comfort.
     Analyze(analyze::Args),
+    /// A working day of several operations: A(8) and VDV per axis, the Directive's values, shocks.
+    Exposure(exposure::Args),
     /// List the built-in models (occupants, seat components and configurations).
     Models(models::Args),
     /// Frequency responses (STHT, seat transmissibility, apparent mass, impedance) to CSV and plot.
@@ -75,6 +79,8 @@ enum Command {
     Gap(gap::Args),
     /// Blind benchmark of `wbv gap` on simulated cases with a hidden planted effect.
     GapBench(gap_bench::Args),
+    /// The ISO 10326-1 seat test on an ISO 7096 / EN 13490 / ISO 5007 input class: SEAT, damping test.
+    SeatTest(seat_test::Args),
 }
 
 /// The `--model` option shared by the commands that take a model.
@@ -164,6 +170,7 @@ pub fn main() -> ExitCode {
     let cli = Cli::parse();
     let result = match cli.command {
         Command::Analyze(a) => analyze::run(a),
+        Command::Exposure(a) => exposure::run(a),
         Command::Models(a) => models::run(a),
         Command::Frf(a) => frf::run(a),
         Command::Modes(a) => modes::run(a),
@@ -184,6 +191,7 @@ pub fn main() -> ExitCode {
         Command::Calibrate(a) => calibrate::run(a),
         Command::Gap(a) => gap::run(a),
         Command::GapBench(a) => gap_bench::run(a),
+        Command::SeatTest(a) => seat_test::run(a),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

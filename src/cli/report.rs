@@ -10,6 +10,12 @@ pub struct Args {
     run: PathBuf,
     #[command(flatten)]
     input: wbv::io::input::InputArgs,
+    #[command(flatten)]
+    shocks: super::exposure::ShockArgs,
+    /// Add a working-day section from these operations (`FILE_OR_RUN:HOURS`, repeat; as for
+    /// `wbv exposure`); list the reported run too if it is one of them.
+    #[arg(long = "operation", value_name = "FILE_OR_RUN:HOURS")]
+    operations: Vec<String>,
     /// Output HTML file (default: `report.html` beside the run's MCAP, `<stem>-report.html`
     /// beside a CSV).
     #[arg(long)]
@@ -25,7 +31,7 @@ pub struct Args {
     #[arg(long, value_name = "FILE")]
     gap: Option<PathBuf>,
     /// Print a JSON summary (`report_html`, `bytes`, `total_value`, `comfort`, `health`, `gap`,
-    /// `units`) on stdout instead of the path.
+    /// `iso2631_5`, `exposure`, `units`) on stdout instead of the path.
     #[arg(long)]
     json: bool,
 }
@@ -36,6 +42,12 @@ pub fn run(args: Args) -> wbv::Result<()> {
         exposure_hours: args.exposure_hours,
         gap: args.gap.clone(),
         input: args.input.options()?,
+        operations: args
+            .operations
+            .iter()
+            .map(|s| wbv::report::exposure::OperationSpec::parse(s))
+            .collect::<wbv::Result<Vec<_>>>()?,
+        shocks: args.shocks.settings()?,
     };
     let built = write(
         &args.run,

@@ -1,4 +1,5 @@
-//! Built-in excitations: the TOML files of `excitations/`, embedded in the binary.
+//! Built-in excitations: the TOML files of `excitations/`, embedded in the binary, and the input
+//! spectral classes of the seat tests ([`super::classes`]).
 
 /// (name, TOML text) of every built-in excitation.
 pub const BUILTINS: &[(&str, &str)] = &[
@@ -18,9 +19,13 @@ pub const BUILTINS: &[(&str, &str)] = &[
     ),
 ];
 
-/// Names of the built-ins.
+/// Names of the built-ins: the files, then the input spectral classes of [`super::classes`].
 pub fn names() -> Vec<&'static str> {
-    BUILTINS.iter().map(|(n, _)| *n).collect()
+    BUILTINS
+        .iter()
+        .map(|(n, _)| *n)
+        .chain(super::classes::CLASSES.iter().map(|c| c.name))
+        .collect()
 }
 
 /// The TOML text of built-in `name`.

@@ -10,6 +10,7 @@
 
 pub mod args;
 pub mod builtin;
+pub mod classes;
 pub mod helicopter;
 pub mod recorded;
 pub mod road;

@@ -50,6 +50,10 @@ pub const BUILTIN: &[(&str, &str)] = &[
     ),
     ("reference", include_str!("../../models/reference.toml")),
     (
+        "scissor-seat",
+        include_str!("../../models/scissor-seat.toml"),
+    ),
+    (
         "seed001-bare",
         include_str!("../../models/seed001-bare.toml"),
     ),
@@ -80,6 +84,10 @@ pub const BUILTIN: &[(&str, &str)] = &[
     (
         "suspension-seed001",
         include_str!("../../models/suspension-seed001.toml"),
+    ),
+    (
+        "suspension-scissor",
+        include_str!("../../models/suspension-scissor.toml"),
     ),
     (
         "wan-schimmels-4dof",

@@ -262,6 +262,10 @@ pub fn excitation_definition(spec: &crate::excitation::ExcitationSpec) -> String
             put("fade_in_s", num(*fade_in_s));
             "sweep"
         }
+        Kind::InputClass { class } => {
+            put("class", toml::Value::String(class.clone()));
+            "input-class"
+        }
         // Only files and built-ins define these; a file that went away leaves its description.
         other => return format!("# not loadable: the file it came from is gone\n# {other:?}\n"),
     };

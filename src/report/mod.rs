@@ -11,9 +11,12 @@
 //! The page and its gap section need the charts (feature `plot`); [`json`], the documents that
 //! `wbv <command> --json` prints and the Python binding returns, does not.
 
+pub mod exposure;
 #[cfg(feature = "plot")]
 pub mod gap;
 pub mod json;
+#[cfg(feature = "plot")]
+pub mod seat_test;
 
 use std::path::{Path, PathBuf};
 #[cfg(feature = "plot")]
@@ -40,6 +43,11 @@ pub struct Settings {
     /// How to read a measurement (columns, units, rate, sensitivity, topic, format), as for
     /// `wbv analyze` (`docs/inputs.md`); a wbv run needs none.
     pub input: crate::io::input::Options,
+    /// The operations of a working day (`--operation FILE:HOURS`): with any, the page has a
+    /// working-day section ([`exposure::section`]); list the reported run too if it is one of them.
+    pub operations: Vec<exposure::OperationSpec>,
+    /// ISO 2631-5 shocks: asked for, and the exposure history of R.
+    pub shocks: crate::analysis::exposure::ShockSettings,
 }
 
 #[cfg(feature = "plot")]
@@ -50,6 +58,8 @@ impl Default for Settings {
             exposure_hours: health::DEFAULT_EXPOSURE_HOURS,
             gap: None,
             input: crate::io::input::Options::default(),
+            operations: Vec::new(),
+            shocks: crate::analysis::exposure::ShockSettings::default(),
         }
     }
 }
@@ -63,6 +73,8 @@ pub struct Built {
     pub health: Option<Health>,
     /// The gap section's verdict, when the page has one.
     pub gap: Option<gap::Summary>,
+    /// The working day, when operations were given.
+    pub day: Option<crate::analysis::exposure::Day>,
     /// What the reader decided about the measurement (units taken from the file, a fitted rate,
     /// columns left out), one sentence each: shown on the page and in the command's warnings.
     pub input_notes: Vec<String>,
@@ -85,8 +97,7 @@ pub fn default_path(run: &Path) -> PathBuf {
 
 /// Text for HTML: `&`, `<`, `>`, `"` and `'` escaped (the five characters that matter; a crate
 /// for this would be larger than the function).
-#[cfg(feature = "plot")]
-fn esc(s: &str) -> String {
+pub(crate) fn esc(s: &str) -> String {
     let mut out = String::with_capacity(s.len());
     for c in s.chars() {
         match c {
@@ -102,7 +113,7 @@ fn esc(s: &str) -> String {
 }
 
 #[cfg(feature = "plot")]
-const STYLE: &str = "body{font-family:sans-serif;max-width:1320px;margin:2em auto;padding:0 1em;\
+pub(crate) const STYLE: &str = "body{font-family:sans-serif;max-width:1320px;margin:2em auto;padding:0 1em;\
 color:#222;background:#fff}h1{font-size:1.6em}h2{border-bottom:1px solid #ccc;padding-bottom:.2em;\
 margin-top:1.6em}table{border-collapse:collapse;margin:.6em 0}td,th{border:1px solid #ccc;\
 padding:.25em .6em;text-align:right}th{background:#f2f2f2}td:first-child,th:first-child{text-align:left}\
@@ -274,9 +285,16 @@ pub fn build(run: &Path, settings: &Settings) -> Result<Built> {
     let opts = Options {
         exposure_hours: Some(settings.exposure_hours),
         units_declared: declared,
+        shocks: settings.shocks,
         ..Options::default()
     };
     let report = Report::from_signals(&signals, &opts)?;
+    let (day, day_notes) = if settings.operations.is_empty() {
+        (None, Vec::new())
+    } else {
+        let (d, n) = exposure::day(&settings.operations, &settings.input, &settings.shocks)?;
+        (Some(d), n)
+    };
     let welch = WelchOptions {
         segment: crate::analysis::Segment::ResolutionHz(0.125),
         ..WelchOptions::default()
@@ -341,6 +359,20 @@ pub fn build(run: &Path, settings: &Settings) -> Result<Built> {
         }
         None => out.push_str("<p>No seat channel: no health assessment.</p>\n"),
     }
+    if let Some(s) = &report.iso2631_5 {
+        let lines = s.statement();
+        let _ = write!(out, "<div class=\"verdict\"><p>{}</p><ul>", esc(&lines[0]));
+        for l in &lines[1..] {
+            let _ = write!(out, "<li>{}</li>", esc(l.trim()));
+        }
+        out.push_str("</ul></div>\n");
+    }
+    if let Some(d) = &day {
+        exposure::section(&mut out, d);
+    }
+    for n in &day_notes {
+        let _ = writeln!(out, "<p>Input: {}</p>", esc(n));
+    }
     if let Some(s) = report.seat_percent {
         let _ = writeln!(
             out,
@@ -386,6 +418,7 @@ pub fn build(run: &Path, settings: &Settings) -> Result<Built> {
         report,
         health,
         gap,
+        day,
         input_notes: input.notes,
     })
 }

@@ -20,6 +20,7 @@ pub mod param;
 pub mod path;
 pub mod plan;
 pub mod reproduce;
+pub mod seat_test;
 pub mod sensitivity;
 pub mod shard;
 pub mod spectral;

@@ -64,6 +64,7 @@ fn kind_name(kind: &Kind) -> &'static str {
         Kind::Psd { .. } => "psd",
         Kind::Helicopter(_) => "helicopter",
         Kind::Road { .. } => "road",
+        Kind::InputClass { .. } => "input-class",
         Kind::Recorded { .. } => "recorded",
         Kind::Sine { .. } => "sine",
         Kind::Sweep { .. } => "sweep",
@@ -86,7 +87,11 @@ pub fn choose(model: &Model, excitation: &ExcitationSpec, time_domain: bool) -> 
         TimeDomainReason::Nonlinear { links }
     } else {
         match &excitation.kind {
-            Kind::Random { .. } | Kind::Psd { .. } | Kind::Helicopter(_) | Kind::Road { .. } => {
+            Kind::Random { .. }
+            | Kind::Psd { .. }
+            | Kind::Helicopter(_)
+            | Kind::Road { .. }
+            | Kind::InputClass { .. } => {
                 return Path::Spectral {
                     reason: SpectralReason::StationaryRandom,
                 };

@@ -344,7 +344,13 @@ mod tests {
     #[test]
     fn the_quadrature_has_converged_on_every_built_in_model() {
         let models = catalog::all().unwrap();
-        for model in models.iter().filter(|m| m.kind() != catalog::Kind::Seat) {
+        // Linear models: a seat with friction or stops takes the time-domain path.
+        let linear = |m: &&crate::model::Model| !m.chain().is_some_and(|c| c.is_nonlinear());
+        for model in models
+            .iter()
+            .filter(|m| m.kind() != catalog::Kind::Seat)
+            .filter(linear)
+        {
             let name = &model.name;
             for exc in ["bell-214", "white-0.5-80", "road-c-72kmh"] {
                 let e = ExcitationSpec::load(exc).unwrap();

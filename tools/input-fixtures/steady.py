@@ -105,5 +105,42 @@ for k in range(4):
     step = write(f"random-{k}-step.csv", fs, {"a_seat_z": x + offset})
     pairs.append({"rest": rest, "step": step, "fs": fs, "offset": offset})
 
-(out / "manifest.json").write_text(json.dumps({"sines": sines, "pairs": pairs}, indent=1))
-print(f"steady vectors: {len(sines)} sines, {len(pairs)} random pairs in {out}")
+
+def magnitude_sq_periodic(name, n, fs):
+    """|W(f)|² at the rfft bins of a record of n samples (the analog weighting of Annex A)."""
+    f = np.fft.rfftfreq(n, 1 / fs)
+    w2 = np.zeros_like(f)
+    w2[1:] = magnitude(name, f[1:]) ** 2
+    return w2
+
+
+# Broadband records cut anywhere out of a longer vibration: circular rotations of one periodic
+# record (its periodic extension is the longer vibration), whose steady-state MSDV is the same for
+# every rotation: [∫ a_wf² dt]^½ over one period, from the record's spectrum through the analog Wf
+# (Parseval), with no filter start at all.
+rotations = []
+for fs, T, kind in [(200.0, 300.0, "white"), (1000.0, 300.0, "white"), (200.0, 300.0, "band"),
+                    (1000.0, 300.0, "band")]:
+    n = int(T * fs)
+    x = rng.standard_normal(n)
+    if kind == "band":
+        # Periodic band-limited noise 0.05-40 Hz with a seat-like 4 Hz bump, shaped on its spectrum.
+        f = np.fft.rfftfreq(n, 1 / fs)
+        shape = ((f > 0.05) & (f < 40.0)) * (1.0 + 3.0 / (1.0 + ((f - 4.0) / 1.5) ** 2))
+        x = np.fft.irfft(np.fft.rfft(x) * shape, n)
+    x *= float(rng.uniform(0.5, 2.0)) / np.std(x)
+    X = np.fft.rfft(x)
+    w2 = magnitude_sq_periodic("Wf", n, fs)
+    # Σ y² over one period from the one-sided spectrum (Parseval for rfft).
+    e = (2 * np.sum(np.abs(X[1:]) ** 2 * w2[1:]) - (np.abs(X[-1]) ** 2 * w2[-1] if n % 2 == 0 else 0)) / n
+    msdv = float(np.sqrt(e / fs))
+    for k in range(4):
+        shift = int(rng.integers(0, n))
+        name = write(f"rotation-{kind}-{int(fs)}-{k}.csv", fs, {"a_seat_z": np.roll(x, -shift)})
+        rotations.append({"file": name, "fs": fs, "duration_s": n / fs, "kind": kind,
+                          "shift": shift, "msdv": msdv})
+
+(out / "manifest.json").write_text(
+    json.dumps({"sines": sines, "pairs": pairs, "rotations": rotations}, indent=1))
+print(f"steady vectors: {len(sines)} sines, {len(pairs)} random pairs, {len(rotations)} rotations "
+      f"in {out}")

@@ -20,7 +20,7 @@ mod oversample;
 mod settle;
 
 pub use oversample::{Interpolator, MIN_ANALYSIS_RATE_HZ, oversampling};
-pub use settle::{WeightingChain, predict_past};
+pub use settle::{FIT_S, WeightingChain, predict_past};
 
 /// One digital second-order section H(z) = (b0 + b1 z⁻¹ + b2 z⁻²)/(1 + a1 z⁻¹ + a2 z⁻²).
 #[derive(Debug, Clone, Copy, PartialEq)]

@@ -6,6 +6,7 @@ use crate::analysis::filter::WeightingChain;
 use crate::analysis::octave;
 use crate::analysis::report::{ChannelReport, Options};
 use crate::analysis::spectrum::{PsdAccumulator, Welch};
+use crate::analysis::spine::{Peaks, SpineDose};
 use crate::analysis::weighting::Weighting;
 use crate::error::Result;
 
@@ -66,6 +67,9 @@ pub(super) struct ChannelAnalyzer {
     exponential: RunningRms,
     /// The Welch spectrum of the one-third-octave bands (none in [`Scope::Figures`]).
     psd: Option<PsdAccumulator>,
+    /// The ISO 2631-5 spinal response's peaks of the seat's z axis (none elsewhere and in
+    /// [`Scope::Figures`]).
+    spine: Option<SpineDose>,
     /// Block buffers of the Wk (or Wd/Wc) and the Wf chains.
     scratch: Vec<f64>,
     scratch_sickness: Vec<f64>,
@@ -89,7 +93,13 @@ impl ChannelAnalyzer {
         } else {
             None
         };
+        let spine = if place == "seat" && axis == "z" && scope == Scope::Full {
+            Some(SpineDose::new(fs)?)
+        } else {
+            None
+        };
         Ok(ChannelAnalyzer {
+            spine,
             column,
             name: name.to_string(),
             place: place.to_string(),
@@ -136,17 +146,26 @@ impl ChannelAnalyzer {
             push_weighted(scratch, figures);
         };
         let (sick_scratch, sickness) = (&mut self.scratch_sickness, &mut self.sickness);
+        let spine = &mut self.spine;
         let sickness_chain = || {
             if let Some((chain, moments)) = sickness.as_mut() {
                 sick_scratch.clear();
                 chain.push(x, sick_scratch);
                 moments.push(sick_scratch);
             }
+            if let Some(spine) = spine.as_mut() {
+                spine.push(x);
+            }
         };
         rayon::join(spectrum, || rayon::join(weighted_chain, sickness_chain));
     }
 
-    pub(super) fn finish(mut self, fs: f64, welch: &Welch) -> Result<ChannelReport> {
+    /// The channel's figures, and the spinal response's peaks of a seat z channel.
+    pub(super) fn finish(
+        mut self,
+        fs: f64,
+        welch: &Welch,
+    ) -> Result<(ChannelReport, Option<Peaks>)> {
         self.scratch.clear();
         self.weight.finish(&mut self.scratch);
         push_weighted(
@@ -167,7 +186,8 @@ impl ChannelAnalyzer {
             Some(psd) => octave::third_octave_bands(&psd.finish(welch)?, -3, 19),
             None => Vec::new(),
         };
-        Ok(ChannelReport {
+        let spine = self.spine.map(SpineDose::finish);
+        let report = ChannelReport {
             mean,
             bands,
             name: self.name,
@@ -184,7 +204,8 @@ impl ChannelAnalyzer {
             crest_factor: self.weighted.crest_factor(),
             msdv: self.sickness.map(|(_, m)| m.msdv(fs)),
             unit_doubt: None,
-        })
+        };
+        Ok((report, spine))
     }
 }
 

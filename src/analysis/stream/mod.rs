@@ -11,11 +11,13 @@ use crate::signals::Signals;
 
 mod channel;
 mod observer;
+mod spectra;
 
 use channel::ChannelAnalyzer;
 pub(crate) use channel::weighting_for;
 pub use channel::{Scope, parse_name};
 pub use observer::AnalysisObserver;
+pub use spectra::SpectraObserver;
 
 /// Builds a [`Report`] from signals delivered in blocks. A clone of a builder that has received
 /// nothing is a fresh builder for the same channels, rate and options, without designing the
@@ -158,16 +160,19 @@ impl ReportBuilder {
             return Err(Error::data(&self.source, None, "the run has no samples"));
         }
         let duration_s = self.received as f64 / self.fs;
-        let channels = self
+        let (channels, spines): (Vec<_>, Vec<_>) = self
             .channels
             .into_iter()
             .map(|c| c.finish(self.fs, &self.welch))
-            .collect::<Result<Vec<_>>>()?;
+            .collect::<Result<Vec<_>>>()?
+            .into_iter()
+            .unzip();
         Ok(Report::assemble(
             &self.source,
             self.fs,
             duration_s,
             channels,
+            spines.into_iter().flatten().next(),
             &self.opts,
         ))
     }

@@ -193,12 +193,19 @@ fn print_result(
     Ok(())
 }
 
-/// The ISO 2631-1 table of a run on stdout (or why there is none, on stderr).
+/// The ISO 2631-1 table of a run on stdout (or why there is none, on stderr), and for a seat-test
+/// input class the platform PSD check.
 pub fn print_table(outcome: &Outcome) {
     match (&outcome.report, &outcome.report_skipped) {
         (Some(r), _) => super::analyze::print_table(r),
         (None, Some(why)) => eprintln!("analysis skipped: {why}"),
         (None, None) => {}
+    }
+    if let Some(c) = &outcome.platform_psd {
+        println!("\n{}", c.sentence());
+    }
+    if let Some(why) = &outcome.platform_psd_skipped {
+        eprintln!("platform PSD not checked: {why}");
     }
 }
 

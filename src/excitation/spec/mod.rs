@@ -6,7 +6,7 @@
 //! description = "one line shown by `wbv excitations`"
 //! source = "where the numbers come from"
 //! [excitation]
-//! type = "random"        # random | psd | helicopter | road | recorded | sine | sweep
+//! type = "random"        # random | psd | helicopter | road | recorded | sine | sweep | input-class
 //! rms_m_s2 = 1.0
 //! band_hz = [0.5, 80.0]
 //! ```
@@ -87,6 +87,10 @@ pub enum Kind {
         #[serde(default)]
         fade_in_s: f64,
     },
+    /// An input spectral class of the laboratory seat tests ([`super::classes`]): Gaussian random
+    /// platform acceleration with the class's target PSD, `class` its name (`iso7096-em3`).
+    #[serde(rename = "input-class")]
+    InputClass { class: String },
     /// A swept sine, linear or logarithmic, over `duration_s` (default: the whole run), then zero.
     Sweep {
         from_hz: f64,
@@ -137,8 +141,12 @@ impl ExcitationSpec {
         spec.finish(None)
     }
 
-    /// Loads a built-in by name (see [`builtin::names`]) or a TOML file by path.
+    /// Loads a built-in by name (see [`builtin::names`]: a file of `excitations/` or an input
+    /// spectral class of [`super::classes`]) or a TOML file by path.
     pub fn load(name_or_path: &str) -> Result<Self> {
+        if let Some(c) = super::classes::find(name_or_path) {
+            return Self::input_class(c);
+        }
         if let Some(text) = builtin::text(name_or_path) {
             return Self::parse(text, name_or_path, None);
         }
@@ -154,6 +162,27 @@ impl ExcitationSpec {
         }
         let text = std::fs::read_to_string(path).map_err(|e| Error::io(path, e))?;
         Self::parse(&text, name_or_path, path.parent())
+    }
+
+    /// The built-in excitation of input spectral class `c`.
+    pub fn input_class(c: &super::classes::InputClass) -> Result<Self> {
+        ExcitationSpec {
+            origin: c.name.to_string(),
+            description: c.describe(),
+            source: Some(c.source()),
+            kind: Kind::InputClass {
+                class: c.name.to_string(),
+            },
+        }
+        .finish(None)
+    }
+
+    /// The input spectral class this excitation is, if it is one.
+    pub fn input_class_def(&self) -> Option<&'static super::classes::InputClass> {
+        match &self.kind {
+            Kind::InputClass { class } => super::classes::find(class),
+            _ => None,
+        }
     }
 
     /// Parses TOML `text`; `origin` names it in errors; relative paths resolve against `dir`.

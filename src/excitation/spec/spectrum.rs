@@ -35,6 +35,7 @@ impl ExcitationSpec {
             Kind::Psd { table, .. } => table.as_ref().map_or(0.0, |t| t.eval(f_hz)),
             Kind::Helicopter(h) => h.broadband_psd(f_hz),
             Kind::Road { .. } => self.road().map_or(0.0, |r| r.psd(f_hz)),
+            Kind::InputClass { .. } => self.input_class_def().map_or(0.0, |c| c.psd(f_hz)),
             _ => 0.0,
         }
     }
@@ -43,7 +44,11 @@ impl ExcitationSpec {
     pub fn is_random(&self) -> bool {
         matches!(
             self.kind,
-            Kind::Random { .. } | Kind::Psd { .. } | Kind::Helicopter(_) | Kind::Road { .. }
+            Kind::Random { .. }
+                | Kind::Psd { .. }
+                | Kind::Helicopter(_)
+                | Kind::Road { .. }
+                | Kind::InputClass { .. }
         )
     }
 
@@ -54,6 +59,7 @@ impl ExcitationSpec {
             Kind::Psd { table, .. } => table.as_ref().map(PsdTable::band_hz),
             Kind::Helicopter(h) => Some(h.broadband_band_hz),
             Kind::Road { .. } => self.road().map(|r| r.band_hz()),
+            Kind::InputClass { .. } => Some(crate::excitation::classes::GENERATED_BAND_HZ),
             _ => None,
         }
     }
@@ -78,6 +84,7 @@ impl ExcitationSpec {
             Kind::Random { rms_m_s2, .. } => rms_m_s2 * rms_m_s2,
             Kind::Psd { table, .. } => table.as_ref().map_or(0.0, PsdTable::mean_square),
             Kind::Helicopter(h) => h.broadband_mean_square(),
+            Kind::InputClass { .. } => self.input_class_def().map_or(0.0, |c| c.mean_square()),
             Kind::Road { .. } => {
                 let [lo, hi] = self.band_hz().unwrap_or([1.0, 1.0]);
                 let n = 20_000;

@@ -67,6 +67,20 @@ impl ExcitationSpec {
                 self.check_band("band_hz", *band_hz)
             }
             Kind::Psd { .. } | Kind::Recorded { .. } => Ok(()),
+            Kind::InputClass { class } => match crate::excitation::classes::find(class) {
+                Some(_) => Ok(()),
+                None => Err(self.key_err(
+                    "class",
+                    format!(
+                        "unknown input spectral class `{class}`; expected one of {}",
+                        crate::excitation::classes::CLASSES
+                            .iter()
+                            .map(|c| c.name)
+                            .collect::<Vec<_>>()
+                            .join(", ")
+                    ),
+                )),
+            },
             Kind::Helicopter(h) => h.validate(&format!("{}: excitation", self.origin)),
             Kind::Road {
                 class,

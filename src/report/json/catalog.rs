@@ -49,6 +49,12 @@ pub struct ExcitationEntry {
     pub origin: String,
     /// Steady-state r.m.s., m/s² (`null` for a recording).
     pub rms_m_s2: Option<f64>,
+    /// For an input spectral class of the seat tests: the standard that defines it (`ISO 7096`).
+    pub standard: Option<&'static str>,
+    /// For an input spectral class: the class as the standard names it (`EM3`).
+    pub class: Option<&'static str>,
+    /// For an input spectral class: the machines it stands for (unverified per class).
+    pub machine: Option<&'static str>,
 }
 
 /// `wbv excitations`.
@@ -78,6 +84,9 @@ impl ExcitationEntry {
             description: spec.description.clone(),
             origin: spec.origin.clone(),
             rms_m_s2: spec.rms_m_s2().and_then(finite),
+            standard: spec.input_class_def().map(|c| c.standard.name()),
+            class: spec.input_class_def().map(|c| c.code),
+            machine: spec.input_class_def().map(|c| c.machine),
         }
     }
 }

@@ -19,6 +19,7 @@ use std::path::Path;
 
 mod calibrate;
 mod catalog;
+mod exposure;
 mod foam;
 mod gap;
 mod run;
@@ -26,6 +27,7 @@ mod study;
 
 pub use calibrate::*;
 pub use catalog::*;
+pub use exposure::*;
 pub use foam::*;
 pub use gap::*;
 pub use run::*;
@@ -119,7 +121,6 @@ impl Written {
 }
 
 /// `units` maps of the command bodies below: key → unit.
-#[cfg(feature = "plot")]
 fn units(pairs: &[(&str, &str)]) -> BTreeMap<String, String> {
     pairs
         .iter()

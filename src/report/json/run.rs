@@ -74,6 +74,12 @@ pub struct Simulated {
     pub analysis: Option<crate::analysis::Report>,
     /// Why there is no analysis.
     pub analysis_skipped: Option<String>,
+    /// For a seat-test input class: the realised platform PSD against the class's tolerance.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub platform_psd: Option<crate::excitation::classes::PsdCheck>,
+    /// Why an input-class run has no PSD check.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub platform_psd_skipped: Option<String>,
 }
 
 impl Simulated {
@@ -95,6 +101,8 @@ impl Simulated {
             written,
             analysis: outcome.report.clone(),
             analysis_skipped: outcome.report_skipped.clone(),
+            platform_psd: outcome.platform_psd.clone(),
+            platform_psd_skipped: outcome.platform_psd_skipped.clone(),
         }
     }
 }
@@ -273,6 +281,12 @@ pub struct ReportSummary {
     pub health: Option<crate::analysis::health::Health>,
     /// The gap section's verdict and named effects, when the report has one.
     pub gap: Option<crate::report::gap::Summary>,
+    /// The run's ISO 2631-5:2018 block, when assessed.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub iso2631_5: Option<crate::analysis::spine::Shocks>,
+    /// The working day of `--operation`s (the body of `wbv exposure --json`), when given.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub exposure: Option<super::Exposure>,
     pub units: BTreeMap<String, String>,
 }
 
@@ -287,6 +301,8 @@ impl ReportSummary {
             comfort: built.report.comfort,
             health: built.health.clone(),
             gap: built.gap.clone(),
+            iso2631_5: built.report.iso2631_5.clone(),
+            exposure: built.day.clone().map(super::Exposure::of),
             units: super::units(&[
                 ("total_value", "m/s^2"),
                 ("health.a8", "m/s^2"),

@@ -1,0 +1,119 @@
+//! A working day read from files: each `FILE_OR_RUN:HOURS` operation is read like `wbv analyze`
+//! reads a file ([`crate::analysis::load_input`]), analysed, and the day assessed by
+//! [`crate::analysis::exposure`]; and the day's section of the HTML report.
+
+use super::esc;
+use crate::analysis::exposure::{self, Day, Operation, ShockSettings};
+use crate::analysis::{Options, Report};
+use crate::error::{Error, Result};
+use std::fmt::Write as _;
+use std::path::PathBuf;
+
+/// One operation as given on the command line: a measurement or run, and its hours a day.
+#[derive(Debug, Clone, PartialEq)]
+pub struct OperationSpec {
+    pub path: PathBuf,
+    pub hours: f64,
+}
+
+impl OperationSpec {
+    /// Parses `FILE_OR_RUN:HOURS` (split at the last `:`).
+    pub fn parse(s: &str) -> Result<OperationSpec> {
+        let bad = |why: &str| Error::parameter("--operation", format!("`{s}`: {why}"));
+        let (path, hours) = s
+            .rsplit_once(':')
+            .ok_or_else(|| bad("expected FILE_OR_RUN:HOURS, e.g. loading.csv:3.5"))?;
+        let hours: f64 = hours
+            .trim()
+            .parse()
+            .map_err(|_| bad("the hours after the last `:` are not a number"))?;
+        if path.is_empty() {
+            return Err(bad("no file before the `:`"));
+        }
+        if !(hours.is_finite() && hours > 0.0 && hours <= 24.0) {
+            return Err(bad("expected 0 < hours ≤ 24"));
+        }
+        Ok(OperationSpec {
+            path: PathBuf::from(path),
+            hours,
+        })
+    }
+}
+
+/// Reads, analyses and assesses the day of `specs`; `input` says how to read each file (the same
+/// for all, as for `wbv analyze`), `shocks` how to assess ISO 2631-5. Returns the day and what the
+/// readers noted, prefixed by the file.
+pub fn day(
+    specs: &[OperationSpec],
+    input: &crate::io::input::Options,
+    shocks: &ShockSettings,
+) -> Result<(Day, Vec<String>)> {
+    let mut operations = Vec::with_capacity(specs.len());
+    let mut notes = Vec::new();
+    for spec in specs {
+        let file = crate::record::run_file(&spec.path);
+        let read = crate::analysis::load_input(&file, input)?;
+        let opts = Options {
+            exposure_hours: Some(spec.hours),
+            units_declared: read.declared(),
+            shocks: *shocks,
+            ..Options::default()
+        };
+        let report = Report::from_signals(&read.signals, &opts)?;
+        notes.extend(read.notes.iter().cloned());
+        notes.extend(report.warnings.iter().cloned());
+        operations.push(Operation::from_report(
+            &spec.path.display().to_string(),
+            spec.hours,
+            &report,
+        )?);
+    }
+    Ok((exposure::assess(&operations, shocks)?, notes))
+}
+
+/// The day's section of the HTML report: the verdict, a row per operation, a row per axis.
+pub fn section(out: &mut String, day: &Day) {
+    let lines = day.statement();
+    out.push_str("<h2>Working day</h2>\n");
+    let _ = write!(out, "<div class=\"verdict\"><p>{}</p><ul>", esc(&lines[0]));
+    for l in &lines[1..] {
+        let _ = write!(out, "<li>{}</li>", esc(l.trim()));
+    }
+    out.push_str("</ul></div>\n");
+    out.push_str(
+        "<table><tr><th>operation</th><th>hours a day</th><th>measured [s]</th>\
+         <th>k·a_w x / y / z [m/s²]</th><th>k·VDV over its hours x / y / z [m/s^1.75]</th>\
+         <th>share of A(8)²</th><th>share of VDV⁴</th><th>alone: action value after</th>\
+         <th>alone: limit value after</th><th>crest factor z</th><th>D_z [m/s²]</th></tr>",
+    );
+    for r in &day.operations {
+        let _ = write!(
+            out,
+            "<tr><td>{}</td><td>{:.2}</td><td>{:.1}</td><td>{}</td><td>{}</td><td>{:.0} %</td>\
+             <td>{:.0} %</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td></tr>",
+            esc(&r.name),
+            r.hours,
+            r.measured_s,
+            r.per_axis(|a| a.k_a_w, 3, " / "),
+            r.per_axis(|a| a.k_vdv, 2, " / "),
+            100.0 * r.a8_share,
+            100.0 * r.vdv_share,
+            crate::analysis::health::hours_text(r.hours_to_a8_action),
+            crate::analysis::health::hours_text(r.hours_to_a8_limit),
+            r.crest_factor_z.map_or("-".into(), |c| format!("{c:.1}")),
+            r.d_z.map_or("-".into(), |d| format!("{d:.2}")),
+        );
+    }
+    out.push_str("</table>\n<table><tr><th>axis</th><th>k</th><th>A(8) [m/s²]</th><th>VDV [m/s^1.75]</th></tr>");
+    for a in &day.axes {
+        let _ = write!(
+            out,
+            "<tr><td>{}</td><td>{:.1}</td><td>{:.3}</td><td>{:.2}</td></tr>",
+            a.axis, a.k, a.a8, a.vdv
+        );
+    }
+    out.push_str("</table>\n");
+    for n in &day.notes {
+        let _ = writeln!(out, "<p>Note: {}</p>", esc(n));
+    }
+}
