@@ -466,6 +466,60 @@ fn sweep_table(py: Python<'_>, doc: &Bound<'_, PyAny>) -> PyResult<Py<PyAny>> {
     }
 }
 
+/// A measurement as the binding got it: arrays (named `what` in messages), or a file read as the
+/// command reads one (`wbv gap --run FILE`, `wbv seat-test --run FILE`, `--operation FILE:H`).
+enum Given {
+    Arrays(String, Vec<(String, Vec<f64>)>),
+    File(PathBuf),
+}
+
+impl Given {
+    /// A mapping `{name: samples}` as arrays, anything else as a path.
+    fn of(py: Python<'_>, what: String, obj: &Bound<'_, PyAny>) -> PyResult<Given> {
+        if obj.hasattr("items")? {
+            let columns = convert::channels(py, &what, obj)?;
+            Ok(Given::Arrays(what, columns))
+        } else {
+            Ok(Given::File(convert::path(&what, obj)?))
+        }
+    }
+
+    /// Its name (`what` or the path) and its samples: arrays read with `arrays`, a file with
+    /// `files` ([`wbv::measurement::read`]).
+    fn read(
+        self,
+        arrays: &wbv::io::input::Options,
+        files: &wbv::io::input::Options,
+    ) -> wbv::Result<(String, wbv::io::input::Input)> {
+        match self {
+            Given::Arrays(what, columns) => {
+                let input = wbv::io::input::from_columns(columns, &what, arrays)?;
+                Ok((what, input))
+            }
+            Given::File(p) => Ok((p.display().to_string(), wbv::measurement::read(&p, files)?)),
+        }
+    }
+}
+
+/// How to read arrays (`fs`, `units`) and files (`units`), as `--fs` and `--units` do.
+fn read_options(
+    fs: Option<f64>,
+    units: Vec<String>,
+) -> wbv::Result<(wbv::io::input::Options, wbv::io::input::Options)> {
+    let files = InputArgs {
+        units: units.clone(),
+        ..InputArgs::default()
+    }
+    .options()?;
+    let arrays = InputArgs {
+        units,
+        fs,
+        ..InputArgs::default()
+    }
+    .options()?;
+    Ok((arrays, files))
+}
+
 /// The gap diagnosis of `model` against training runs and a held-out check run: the document
 /// of `wbv gap --json`.
 #[pyfunction]
@@ -479,53 +533,19 @@ fn gap(
     loggers: Option<Vec<String>>,
     units: Option<&Bound<'_, PyAny>>,
 ) -> PyResult<Py<PyAny>> {
-    /// A run as the binding got it: arrays, or a file read like `wbv gap --run FILE`.
-    enum Given {
-        Arrays(String, Vec<(String, Vec<f64>)>),
-        File(PathBuf),
-    }
-    let given = |what: String, obj: &Bound<'_, PyAny>| -> PyResult<Given> {
-        if obj.hasattr("items")? {
-            Ok(Given::Arrays(
-                what.clone(),
-                convert::channels(py, &what, obj)?,
-            ))
-        } else {
-            Ok(Given::File(convert::path(&what, obj)?))
-        }
-    };
     let mut train = Vec::new();
     for (i, r) in runs.try_iter()?.enumerate() {
-        train.push(given(format!("runs[{i}]"), &r?)?);
+        train.push(Given::of(py, format!("runs[{i}]"), &r?)?);
     }
-    let check = given("check".into(), check)?;
+    let check = Given::of(py, "check".into(), check)?;
     let units = convert::units(units)?;
     let loggers = loggers.unwrap_or_default();
     let doc = work::run(py, None, move || {
-        let files = InputArgs {
-            units: units.clone(),
-            ..InputArgs::default()
-        }
-        .options()?;
-        let arrays = InputArgs {
-            units,
-            fs,
-            ..InputArgs::default()
-        }
-        .options()?;
+        let (arrays, files) = read_options(fs, units)?;
         let load = |g: Given| -> wbv::Result<wbv::signals::Signals> {
-            let (origin, signals) = match g {
-                Given::Arrays(what, columns) => {
-                    let s = wbv::io::input::from_columns(columns, &what, &arrays)?.signals;
-                    (what, s)
-                }
-                Given::File(p) => {
-                    let s = wbv::analysis::load_input(&p, &files)?.signals;
-                    (p.display().to_string(), s)
-                }
-            };
-            wbv::diagnosis::require_channels(&signals, &origin)?;
-            Ok(signals)
+            let (origin, input) = g.read(&arrays, &files)?;
+            wbv::diagnosis::require_channels(&input.signals, &origin)?;
+            Ok(input.signals)
         };
         let model = catalog::resolve(&model)?;
         let loggers = wbv::diagnosis::acquisition::Loggers::parse(&loggers)?;
@@ -536,6 +556,153 @@ fn gap(
         let check = load(check)?;
         let d = wbv::diagnosis::diagnose_with(&model, &train, &check, &loggers)?;
         json::gap(&d, Vec::new())
+    })?;
+    document(py, &doc)
+}
+
+/// The ISO 10326-1 seat test: the document of `wbv seat-test --json`.
+#[pyfunction]
+#[pyo3(signature = (model, class_, *, runs=None, occupant=None, seat_limit=None, damping_limit=None, duration=wbv::study::seat_test::RUN_DURATION_S, dt=0.001, seed=1, damping=true, fs=None, units=None))]
+#[allow(clippy::too_many_arguments)]
+fn seat_test(
+    py: Python<'_>,
+    model: Option<String>,
+    class_: String,
+    runs: Option<&Bound<'_, PyAny>>,
+    occupant: Option<String>,
+    seat_limit: Option<f64>,
+    damping_limit: Option<f64>,
+    duration: f64,
+    dt: f64,
+    seed: i128,
+    damping: bool,
+    fs: Option<f64>,
+    units: Option<&Bound<'_, PyAny>>,
+) -> PyResult<Py<PyAny>> {
+    use wbv::study::seat_test::{self as st, Limits, Occupant, Settings};
+    let seed = self::seed(seed)?;
+    let limits = Limits {
+        seat: seat_limit,
+        damping: damping_limit,
+    };
+    let measured = match runs {
+        Some(runs) => {
+            if model.is_some() || occupant.is_some() {
+                return Err(bad(
+                    "runs: measured runs are not simulated; give model=None and no occupant",
+                ));
+            }
+            let mut given = Vec::new();
+            for (i, r) in runs.try_iter()?.enumerate() {
+                given.push(Given::of(py, format!("runs[{i}]"), &r?)?);
+            }
+            Some(given)
+        }
+        None => None,
+    };
+    let units = convert::units(units)?;
+    let doc = work::run(py, None, move || {
+        let class = st::find_class(&class_)?;
+        let test = match measured {
+            Some(given) => {
+                let (arrays, files) = read_options(fs, units)?;
+                let runs = given
+                    .into_iter()
+                    .map(|g| Ok(g.read(&arrays, &files).map(|(n, i)| (n, i.signals))?))
+                    .collect::<wbv::Result<Vec<_>>>()?;
+                st::measured::measured_runs(runs, class, limits)?
+            }
+            None => {
+                let name = model.ok_or_else(|| {
+                    wbv::Error::parameter("model", "required (or give measured runs with runs=)")
+                })?;
+                let settings = Settings {
+                    occupants: match &occupant {
+                        Some(o) => vec![Occupant::parse(o)?],
+                        None => Occupant::BOTH.to_vec(),
+                    },
+                    run_duration_s: duration,
+                    dt,
+                    seed,
+                    limits,
+                    damping,
+                };
+                st::simulate(&catalog::resolve(&name)?, class, &settings)?
+            }
+        };
+        json::seat_test(&test, Vec::new())
+    })?;
+    document(py, &doc)
+}
+
+/// A working day of operations: the document of `wbv exposure --json`.
+#[pyfunction]
+#[pyo3(signature = (operations, *, fs=None, units=None, iso2631_5=false, spine_sex="male".to_string(), spine_start_age=None, spine_years=None, spine_days_per_year=None))]
+#[allow(clippy::too_many_arguments)]
+fn exposure(
+    py: Python<'_>,
+    operations: &Bound<'_, PyAny>,
+    fs: Option<f64>,
+    units: Option<&Bound<'_, PyAny>>,
+    iso2631_5: bool,
+    spine_sex: String,
+    spine_start_age: Option<f64>,
+    spine_years: Option<u32>,
+    spine_days_per_year: Option<f64>,
+) -> PyResult<Py<PyAny>> {
+    let mut ops = Vec::new();
+    for (i, op) in operations.try_iter()?.enumerate() {
+        let op = op?;
+        let what = format!("operations[{i}]");
+        let parts: Vec<Bound<'_, PyAny>> = op.extract().map_err(|_| {
+            bad(format!(
+                "{what}: expected (samples or file, hours) or (name, samples or file, hours)"
+            ))
+        })?;
+        let (name, source, hours) = match parts.as_slice() {
+            [source, hours] => (what.clone(), source, hours),
+            [name, source, hours] => (name.extract::<String>()?, source, hours),
+            _ => {
+                return Err(bad(format!(
+                    "{what}: expected (samples or file, hours) or (name, samples or file, hours)"
+                )));
+            }
+        };
+        let hours: f64 = hours
+            .extract()
+            .map_err(|_| bad(format!("{what}: the hours a day are not a number")))?;
+        let given = match Given::of(py, name.clone(), source)? {
+            // A file keeps its path as its name unless one was given, as on the command line.
+            Given::File(p) if parts.len() == 2 => (None, Given::File(p)),
+            g => (Some(name), g),
+        };
+        ops.push((given, hours));
+    }
+    let units = convert::units(units)?;
+    let doc = work::run(py, None, move || {
+        // Unset: Annex C's worked example (`wbv exposure`'s defaults).
+        let example = wbv::analysis::spine::History::default();
+        let history = wbv::analysis::spine::History {
+            sex: wbv::analysis::spine::Sex::parse(&spine_sex)?,
+            start_age_years: spine_start_age.unwrap_or(example.start_age_years),
+            years: spine_years.unwrap_or(example.years),
+            days_per_year: spine_days_per_year.unwrap_or(example.days_per_year),
+        };
+        history.validate()?;
+        let shocks = wbv::analysis::exposure::ShockSettings {
+            requested: iso2631_5,
+            history,
+        };
+        let (arrays, files) = read_options(fs, units)?;
+        let read = ops
+            .into_iter()
+            .map(|((name, g), hours)| {
+                let (origin, input) = g.read(&arrays, &files)?;
+                Ok((name.unwrap_or(origin), hours, input))
+            })
+            .collect::<wbv::Result<Vec<_>>>()?;
+        let (day, notes) = wbv::report::exposure::day_of(read, &shocks)?;
+        json::exposure(day, notes)
     })?;
     document(py, &doc)
 }
@@ -554,6 +721,8 @@ fn _wbv(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(frf, m)?)?;
     m.add_function(wrap_pyfunction!(modes, m)?)?;
     m.add_function(wrap_pyfunction!(sweep, m)?)?;
+    m.add_function(wrap_pyfunction!(seat_test, m)?)?;
+    m.add_function(wrap_pyfunction!(exposure, m)?)?;
     m.add_function(wrap_pyfunction!(gap, m)?)?;
     Ok(())
 }

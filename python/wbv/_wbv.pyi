@@ -203,6 +203,77 @@ def sweep(
     ``mtvv_seat_m_s2``, ``crest_seat``.
     """
 
+def seat_test(
+    model: Optional[str],
+    class_: str,
+    *,
+    runs: Optional[Sequence[Union[Mapping[str, ArrayLike], PathLike]]] = None,
+    occupant: Optional[str] = None,
+    seat_limit: Optional[float] = None,
+    damping_limit: Optional[float] = None,
+    duration: float = 600.0,
+    dt: float = 0.001,
+    seed: int = 1,
+    damping: bool = True,
+    fs: Optional[float] = None,
+    units: Union[None, str, Mapping[str, str]] = None,
+) -> Document:
+    """The ISO 10326-1 laboratory seat test (docs/seat-test.md): the document of ``wbv seat-test
+    --json``.
+
+    Simulated: ``model`` (a chain of masses with a seat, e.g. ``"scissor-seat"``) on input spectral
+    class ``class_`` (``"iso7096-em1"`` … ``"em9"``, ``"en13490-it1"`` … ``"it4"``, ``"iso5007-ag1"``
+    … ``"ag3"``; :func:`excitations`), for the light (53.5 kg) and heavy (100.5 kg) test person or
+    the one ``occupant`` names (``"light"``, ``"heavy"``): runs of ``duration`` s (600 s each; the
+    standard's duration not read) at step ``dt`` s, run i with seed ``seed + i``, until three
+    consecutive runs agree within ±5 % in a_wP (clause 10.2.1), then the damping test (clause
+    10.3) unless ``damping`` is false. Several minutes of CPU with the defaults.
+
+    Measured: ``model=None`` and ``runs``, three or more runs in the order made, each
+    ``{channel: samples}`` at ``fs`` Hz with platform ``a_base_z`` and seat ``a_seat_z`` (m/s²
+    unless ``units`` says otherwise) or a file ``wbv seat-test --run`` reads.
+
+    ``seat_limit`` (SEAT, ratio) and ``damping_limit`` (transmissibility) are the application
+    standard's; without them there is no verdict. Returns ``a_wp``, ``a_ws``, ``a_ws_corrected``
+    and ``intended_a_wp`` (Wk-weighted r.m.s., m/s²), ``seat`` (a_wS/a_wP, clause 10.2.2),
+    ``occupants`` (per test person, with every ``runs`` entry), ``damping`` (``f_r_hz``,
+    ``transmissibility``), ``psd_within_tolerance``, ``end_stop_contacts``, ``verdict``
+    (``"pass"``, ``"fail"`` or ``None``), ``verdict_reasons``, ``notes``, ``unverified`` (what is
+    not verified against the standards' text) and ``units``.
+    """
+
+def exposure(
+    operations: Sequence[
+        Union[
+            tuple[Union[Mapping[str, ArrayLike], PathLike], float],
+            tuple[str, Union[Mapping[str, ArrayLike], PathLike], float],
+        ]
+    ],
+    *,
+    fs: Optional[float] = None,
+    units: Union[None, str, Mapping[str, str]] = None,
+    iso2631_5: bool = False,
+    spine_sex: str = "male",
+    spine_start_age: Optional[float] = None,
+    spine_years: Optional[int] = None,
+    spine_days_per_year: Optional[float] = None,
+) -> Document:
+    """A working day of several operations (docs/exposure.md): the document of ``wbv exposure
+    --json``.
+
+    Each operation is ``(samples, hours)`` or ``(name, samples, hours)``: ``samples`` a
+    ``{channel: samples}`` mapping at ``fs`` Hz (m/s² unless ``units`` says otherwise) or a file
+    ``wbv exposure --operation FILE:HOURS`` reads (named by its path), ``hours`` its hours a day
+    (0 < h ≤ 24, at most 24 in all). Returns the day's ``a8`` (A(8), m/s², ISO 2631-1 Annex B and
+    Directive 2002/44/EC, worst axis with k = 1.4, 1.4, 1), ``vdv_day`` (m/s^1.75), ``zone``
+    (``below_action``, ``above_action``, ``above_limit``), the hours to each action and limit value
+    (h, ``None`` when a day never reaches it), ``operations`` (per operation k·a_w, k·VDV and its
+    share of the day), ``axes``, and with ``iso2631_5`` (or a seat crest factor above 9) the ISO
+    2631-5:2018 block ``iso2631_5`` (D_z, S_ed in MPa, R) for the exposure history ``spine_*``
+    (Annex C; unset: its worked example, a man from 20 years of age for 20 years, 120 days a
+    year).
+    """
+
 def gap(
     runs: Sequence[Union[Mapping[str, ArrayLike], PathLike]],
     check: Union[Mapping[str, ArrayLike], PathLike],

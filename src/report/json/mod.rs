@@ -23,6 +23,7 @@ mod exposure;
 mod foam;
 mod gap;
 mod run;
+mod seat_test;
 mod study;
 
 pub use calibrate::*;
@@ -31,6 +32,7 @@ pub use exposure::*;
 pub use foam::*;
 pub use gap::*;
 pub use run::*;
+pub use seat_test::*;
 pub use study::*;
 
 /// A command's JSON document as `wbv <command> --json` prints it on stdout and the Python binding
