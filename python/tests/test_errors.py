@@ -66,7 +66,7 @@ def test_the_error_is_a_value_error():
         (lambda: wbv.seat_test(None, "iso7096-em3", runs=[{"a_base_z": GOOD, "a_seat_z": GOOD}] * 3,
                                fs=-FS), "--fs"),
         (lambda: wbv.exposure([({"a_seat_z": GOOD}, 30.0)], fs=FS), "hours"),
-        (lambda: wbv.exposure([({"a_seat_z": GOOD}, -1.0)], fs=FS), "hours"),
+        (lambda: wbv.exposure([({"a_seat_z": GOOD}, -1.0)], fs=FS), "operations[0]: -1 h; expected 0 < hours"),
         (lambda: wbv.exposure([({"a_seat_z": GOOD * np.nan}, 2.0)], fs=FS), "not finite"),
         (lambda: wbv.exposure([], fs=FS), "operation"),
         (lambda: wbv.exposure([({"a_seat_z": GOOD}, 2.0)], fs=FS, spine_years=0), "--spine-years"),

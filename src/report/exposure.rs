@@ -65,6 +65,9 @@ pub fn day_of(
     operations: Vec<(String, f64, crate::io::input::Input)>,
     shocks: &ShockSettings,
 ) -> Result<(Day, Vec<String>)> {
+    for (name, hours, _) in &operations {
+        exposure::check_hours(name, *hours)?;
+    }
     let mut assessed = Vec::with_capacity(operations.len());
     let mut notes = Vec::new();
     for (name, hours, read) in operations {
