@@ -34,7 +34,8 @@ def test_the_iso_table_of_your_own_samples_runs(tmp_path, monkeypatch, capsys):
     monkeypatch.chdir(tmp_path)
     exec(compile(intro, "README.md (Python)", "exec"), {})
     out = capsys.readouterr().out.splitlines()
-    name, a_w = out[0].split()[:2]
+    assert out[0].split()[:2] == ["channel", "a_w"]
+    name, a_w = out[1].split()[:2]
     # A 4 Hz and an 11 Hz sine: a_w = sqrt(Σ (W_k(f) A/√2)²); W_k(4 Hz) ≈ 1.0, W_k(11 Hz) ≈ 0.95
     # (ISO 2631-1 Table 3, 4 Hz: 1.036 at the band, 10 Hz: 0.988, 12.5 Hz: 0.902): about 0.36.
     assert name == "a_seat_z" and 0.33 < float(a_w) < 0.40

@@ -59,7 +59,7 @@ def main():
         with open(path, "w", newline="") as f:
             w = csv.writer(f)
             w.writerow(["t_s", "a_base_z", "a_seat_z"])
-            w.writerows(zip((repr(i / fs) for i in range(n)), map(repr, base), map(repr, seat)))
+            w.writerows(zip((repr(i / fs) for i in range(n)), map(repr, base.tolist()), map(repr, seat.tolist())))
         runs = []
         for _ in range(a.repeat):
             start = time.perf_counter()
