@@ -608,7 +608,7 @@ fn seat_test(
                 let (arrays, files) = read_options(fs, units)?;
                 let runs = given
                     .into_iter()
-                    .map(|g| Ok(g.read(&arrays, &files).map(|(n, i)| (n, i.signals))?))
+                    .map(|g| g.read(&arrays, &files).map(|(n, i)| (n, i.signals)))
                     .collect::<wbv::Result<Vec<_>>>()?;
                 st::measured::measured_runs(runs, class, limits)?
             }
