@@ -17,7 +17,6 @@ pub mod numeric;
 #[cfg(feature = "plot")]
 pub mod plot;
 pub mod record;
-#[cfg(feature = "plot")]
 pub mod report;
 pub mod reproduce;
 pub mod response;

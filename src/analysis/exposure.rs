@@ -181,6 +181,17 @@ pub struct Day {
     pub notes: Vec<String>,
 }
 
+/// Refuses hours a day of the operation `name` outside 0 < hours ≤ 24.
+pub fn check_hours(name: &str, hours: f64) -> Result<()> {
+    if !(hours.is_finite() && hours > 0.0 && hours <= 24.0) {
+        return Err(Error::parameter(
+            "--operation",
+            format!("{name}: {hours} h; expected 0 < hours ≤ 24"),
+        ));
+    }
+    Ok(())
+}
+
 /// The day of `operations` (see the module doc for the formulas).
 pub fn assess(operations: &[Operation], shocks: &ShockSettings) -> Result<Day> {
     if operations.is_empty() {
@@ -190,12 +201,7 @@ pub fn assess(operations: &[Operation], shocks: &ShockSettings) -> Result<Day> {
         ));
     }
     for op in operations {
-        if !(op.hours.is_finite() && op.hours > 0.0 && op.hours <= 24.0) {
-            return Err(Error::parameter(
-                "--operation",
-                format!("{}: {} h; expected 0 < hours ≤ 24", op.name, op.hours),
-            ));
-        }
+        check_hours(&op.name, op.hours)?;
         if !(op.measured_s.is_finite() && op.measured_s > 0.0) {
             return Err(Error::data(
                 &op.name,

@@ -142,6 +142,26 @@ impl Default for History {
 }
 
 impl History {
+    /// Refuses a history Annex C cannot take: a start age outside 0–100 years, no year of
+    /// exposure, or exposure days a year outside 0 < N ≤ 366 (each error names the command's
+    /// option).
+    pub fn validate(&self) -> Result<()> {
+        let bad = |flag: &str, what: &str| Error::parameter(flag, what.to_string());
+        if !(self.start_age_years.is_finite() && (0.0..=100.0).contains(&self.start_age_years)) {
+            return Err(bad("--spine-start-age", "expected an age in years, 0–100"));
+        }
+        if self.years == 0 {
+            return Err(bad("--spine-years", "expected at least 1 year"));
+        }
+        if !(self.days_per_year.is_finite()
+            && self.days_per_year > 0.0
+            && self.days_per_year <= 366.0)
+        {
+            return Err(bad("--spine-days-per-year", "expected 0 < days ≤ 366"));
+        }
+        Ok(())
+    }
+
     /// The history in words, for a statement.
     pub fn text(&self) -> String {
         format!(

@@ -1,7 +1,7 @@
 use std::path::PathBuf;
 use wbv::analysis::{Options, Report, Segment, WelchOptions, Window};
 use wbv::io::atomic::Overwrite;
-use wbv::report::json::{WithFiles, Written};
+use wbv::report::json::Written;
 
 /// Arguments of `wbv analyze`.
 #[derive(Debug, clap::Args)]
@@ -108,15 +108,7 @@ pub fn run(args: Args) -> wbv::Result<()> {
         for w in &report.warnings {
             eprintln!("warning: {w}");
         }
-        let notes: Vec<String> = input.notes.iter().map(|n| format!("input: {n}")).collect();
-        super::print_json(
-            "analyze",
-            &WithFiles {
-                result: &report,
-                written,
-            },
-            &notes,
-        )?;
+        super::print_document(&wbv::report::json::analyze(&report, written, &input.notes)?);
     } else {
         print_table(&report);
     }

@@ -5,7 +5,7 @@ use wbv::error::Error;
 use wbv::excitation::{ExcitationArgs, ExcitationSpec, builtin, resolve};
 use wbv::io::atomic::Overwrite;
 use wbv::io::csv_run;
-use wbv::report::json::{ExcitationEntry, Files, Written};
+use wbv::report::json::{Files, Written};
 use wbv::signals::Signals;
 
 /// Arguments of `wbv excitations`.
@@ -45,15 +45,8 @@ pub struct ExportArgs {
 pub fn list(args: ListArgs) -> wbv::Result<()> {
     let names = builtin::names();
     if args.json {
-        let list = names
-            .iter()
-            .map(|n| Ok(ExcitationEntry::of(n, &ExcitationSpec::load(n)?)))
-            .collect::<wbv::Result<Vec<_>>>()?;
-        return super::print_json(
-            "excitations",
-            &serde_json::json!({ "excitations": list }),
-            &[],
-        );
+        super::print_document(&wbv::report::json::excitations()?);
+        return Ok(());
     }
     let width = names.iter().map(|n| n.len()).max().unwrap_or(0);
     let mut classes = Vec::new();

@@ -26,27 +26,16 @@ pub struct ShockArgs {
 impl ShockArgs {
     /// The library's settings, or the option that is wrong.
     pub fn settings(&self) -> wbv::Result<ShockSettings> {
-        let bad = |flag: &str, what: &str| wbv::Error::parameter(flag, what.to_string());
-        if !(self.spine_start_age.is_finite() && (0.0..=100.0).contains(&self.spine_start_age)) {
-            return Err(bad("--spine-start-age", "expected an age in years, 0–100"));
-        }
-        if self.spine_years == 0 {
-            return Err(bad("--spine-years", "expected at least 1 year"));
-        }
-        if !(self.spine_days_per_year.is_finite()
-            && self.spine_days_per_year > 0.0
-            && self.spine_days_per_year <= 366.0)
-        {
-            return Err(bad("--spine-days-per-year", "expected 0 < days ≤ 366"));
-        }
+        let history = History {
+            sex: Sex::parse(&self.spine_sex)?,
+            start_age_years: self.spine_start_age,
+            years: self.spine_years,
+            days_per_year: self.spine_days_per_year,
+        };
+        history.validate()?;
         Ok(ShockSettings {
             requested: self.iso2631_5,
-            history: History {
-                sex: Sex::parse(&self.spine_sex)?,
-                start_age_years: self.spine_start_age,
-                years: self.spine_years,
-                days_per_year: self.spine_days_per_year,
-            },
+            history,
         })
     }
 }
@@ -76,7 +65,8 @@ pub fn run(args: Args) -> wbv::Result<()> {
     let shocks = args.shocks.settings()?;
     let (day, notes) = wbv::report::exposure::day(&specs, &args.input.options()?, &shocks)?;
     if args.json {
-        return super::print_json("exposure", &wbv::report::json::Exposure::of(day), &notes);
+        super::print_document(&wbv::report::json::exposure(day, notes)?);
+        return Ok(());
     }
     for n in &notes {
         eprintln!("input: {n}");

@@ -64,19 +64,7 @@ pub fn run(args: Args) -> wbv::Result<()> {
     let opts = args.input.options()?;
     let load = |p: &PathBuf| -> wbv::Result<wbv::signals::Signals> {
         let s = wbv::measurement::read(p, &opts)?.signals;
-        for need in ["a_base_z", "a_seat_z"] {
-            s.require(need).map_err(|_| {
-                wbv::Error::data(
-                    p,
-                    None,
-                    format!(
-                        "wbv gap needs channels a_base_z and a_seat_z (base and seat-pad vertical \
-                         acceleration); `{need}` is missing (present: {}); map it with --column",
-                        s.names.join(", ")
-                    ),
-                )
-            })?;
-        }
+        wbv::diagnosis::require_channels(&s, &p.display().to_string())?;
         Ok(s)
     };
     let train = args
@@ -97,11 +85,7 @@ pub fn run(args: Args) -> wbv::Result<()> {
         for w in &d.warnings {
             eprintln!("warning: {w}");
         }
-        let body = wbv::report::json::WithFiles {
-            result: report::json(&d),
-            written,
-        };
-        super::print_json("gap", &body, &[])?;
+        super::print_document(&wbv::report::json::gap(&d, written)?);
     } else {
         print!("{}", report::text(&d));
     }

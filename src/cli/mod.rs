@@ -148,11 +148,21 @@ pub(crate) fn print_json<T: serde::Serialize>(
     body: &T,
     warnings: &[String],
 ) -> wbv::Result<()> {
-    for w in warnings {
+    print_document(&wbv::report::json::Document::new(
+        command,
+        body,
+        warnings.to_vec(),
+    )?);
+    Ok(())
+}
+
+/// Prints a command's JSON document (built by the library, as the Python binding returns it) as
+/// the only output on stdout; its warnings also go to stderr.
+pub(crate) fn print_document(doc: &wbv::report::json::Document) {
+    for w in &doc.warnings {
         eprintln!("warning: {w}");
     }
-    println!("{}", wbv::report::json::document(command, body, warnings)?);
-    Ok(())
+    println!("{}", doc.text);
 }
 
 /// Runs the command line; prints errors as one line on stderr.

@@ -14,11 +14,8 @@ pub struct Args {
 pub fn run(args: Args) -> wbv::Result<()> {
     let models = catalog::all()?;
     if args.json {
-        return super::print_json(
-            "models",
-            &serde_json::json!({ "models": wbv::report::json::models(&models) }),
-            &[],
-        );
+        super::print_document(&wbv::report::json::models(&models)?);
+        return Ok(());
     }
     let width = models.iter().map(|m| m.name.len()).max().unwrap_or(0);
     for kind in Kind::ALL {

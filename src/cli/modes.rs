@@ -71,67 +71,20 @@ fn print_statics_and_words(system: &System) -> wbv::Result<()> {
     Ok(())
 }
 
-/// The static equilibrium as JSON: loads in N, points in m, moments in N·m.
-fn statics_json(eq: &wbv::system::Statics) -> serde_json::Value {
-    let f = eq.total_force();
-    serde_json::json!({
-        "newton_iterations": eq.iterations,
-        "body_weight_n": eq.weight,
-        "support_force_n": {"x": f[0], "z": f[1]},
-        "support_moment_nm": eq.support_moment,
-        "gravity_moment_nm": eq.gravity_moment,
-        "loads": eq.loads.iter().map(|l| serde_json::json!({
-            "contact": l.name, "role": l.role, "normal_n": l.normal,
-            "tangential_n": l.tangential, "fx_n": l.force[0], "fz_n": l.force[1],
-            "x_m": l.point[0], "z_m": l.point[1],
-        })).collect::<Vec<_>>(),
-    })
-}
-
 pub fn run(args: Args) -> wbv::Result<()> {
     let mut model = args.model.resolve()?;
     if let Some(t) = args.foam_thickness {
         model.set_foam_thickness(t)?;
     }
-    let system = model.system();
-    if !args.json {
-        print_statics_and_words(system)?;
+    if args.json {
+        super::print_document(&wbv::report::json::modes(&model)?);
+        return Ok(());
     }
+    let system = model.system();
+    print_statics_and_words(system)?;
     let und = modes::undamped(system)?;
     let dam = modes::damped(system)?;
     let names: Vec<&str> = system.dofs.iter().map(|m| m.name.as_str()).collect();
-    if args.json {
-        let mut json = serde_json::json!({
-            "model": model.name,
-            "masses": names,
-            "undamped": und.iter().map(|m| serde_json::json!({
-                "freq_hz": m.freq_hz, "shape": m.shape,
-            })).collect::<Vec<_>>(),
-            "damped": dam.iter().map(|m| serde_json::json!({
-                "damped_hz": m.damped_hz, "natural_hz": m.natural_hz, "zeta": m.zeta,
-                "overdamped": m.overdamped, "shape_mag": m.shape_mag,
-                "shape_phase_deg": m.shape_phase_deg,
-            })).collect::<Vec<_>>(),
-        });
-        if let Some(eq) = &system.statics {
-            json["equilibrium"] = statics_json(eq);
-        }
-        let described = modes::describe(system)?;
-        if !described.is_empty() {
-            json["described"] = described
-                .iter()
-                .map(|d| {
-                    serde_json::json!({
-                        "freq_hz": d.mode.freq_hz,
-                        "motions": d.components,
-                        "vertical_mass_fraction": d.vertical_mass_fraction,
-                        "fore_aft_mass_fraction": d.fore_aft_mass_fraction,
-                    })
-                })
-                .collect();
-        }
-        return super::print_json("modes", &json, &[]);
-    }
     println!("Model {} ({} DOF)", model.name, model.dof());
     println!("\nUndamped modes (dashpots locked): frequency [Hz] and shape (largest = 1)");
     let w = names.iter().map(|n| n.len() + 2).max().unwrap_or(0).max(12);

@@ -76,7 +76,7 @@ pub fn run(args: Args) -> wbv::Result<()> {
     wbv::report::write(&mcap, &html, &settings, wbv::io::atomic::Overwrite::Refuse)?;
     eprintln!("{}", super::simulate::viewer_hint(&mcap));
     if args.json {
-        let mut written = super::simulate::written(Some(&dir), None)?;
+        let mut written = Written::of_run(Some(&dir), None)?;
         written.push(Written::of(&html)?);
         let run = wbv::report::json::Run {
             run_dir: dir.display().to_string(),

@@ -136,11 +136,8 @@ pub fn run(args: Args) -> wbv::Result<()> {
         written.push(wbv::report::json::Written::of(r)?);
     }
     if args.json {
-        let doc = wbv::report::json::WithFiles {
-            result: test,
-            written,
-        };
-        return super::print_json("seat-test", &doc, &[]);
+        super::print_document(&wbv::report::json::seat_test(&test, written)?);
+        return Ok(());
     }
     print_text(&test);
     Ok(())

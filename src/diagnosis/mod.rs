@@ -60,6 +60,25 @@ use measure::Path;
 use predict::Variant;
 use verdict::Evidence;
 
+/// Refuses a run (`origin` names it in the message) without the channels every diagnosis
+/// compares: the base and seat-pad vertical accelerations `a_base_z` and `a_seat_z`.
+pub fn require_channels(run: &Signals, origin: &str) -> Result<()> {
+    for need in ["a_base_z", "a_seat_z"] {
+        run.require(need).map_err(|_| {
+            crate::error::Error::data(
+                origin,
+                None,
+                format!(
+                    "wbv gap needs channels a_base_z and a_seat_z (base and seat-pad vertical \
+                     acceleration); `{need}` is missing (present: {}); map it with --column",
+                    run.names.join(", ")
+                ),
+            )
+        })?;
+    }
+    Ok(())
+}
+
 /// Runs the diagnosis of `model` against training runs and one held-out check run with the
 /// loggers assumed ([`Loggers::default`]); see [`diagnose_with`].
 pub fn diagnose(model: &Model, train: &[Signals], check: &Signals) -> Result<Diagnosis> {

@@ -1,4 +1,5 @@
-//! Command-line choice of an excitation, shared by `wbv simulate` and `wbv excitation-export`.
+//! The choice of an excitation by options, shared by `wbv simulate`, `wbv excitation-export`,
+//! `wbv sweep` and the Python binding; clap's derive is added by the `cli` feature.
 
 use super::spec::{DEFAULT_BAND_HZ, ExcitationSpec, Kind};
 use super::synth::SweepLaw;
@@ -8,6 +9,7 @@ use std::path::PathBuf;
 
 /// Argument ids (field names) of [`ExcitationArgs`], the flattened [`InputArgs`] included: the
 /// members of its argument group (a test checks that the list is complete).
+#[cfg(feature = "cli")]
 const ARG_IDS: [&str; 18] = [
     "excitation",
     "rms",
@@ -36,8 +38,9 @@ const ARG_IDS: [&str; 18] = [
 /// empty, so its members are set here ([`ARG_IDS`]): a command taking `Option<ExcitationArgs>`
 /// then gets `Some` when any excitation option is given, an input option alone included (which
 /// [`resolve`] then refuses if unused), and `None` when none is.
-#[derive(Debug, Clone, clap::Args)]
-#[command(
+#[derive(Debug, Clone, Default)]
+#[cfg_attr(feature = "cli", derive(clap::Args))]
+#[cfg_attr(feature = "cli", command(
     mut_group("ExcitationArgs", |g| g.args(ARG_IDS)),
     mut_arg("format", |a| a.help(
         "recorded: input format csv, wav, mat, uff or mcap (default: detected; docs/inputs.md)"
@@ -54,56 +57,57 @@ const ARG_IDS: [&str; 18] = [
         "recorded, WAV: value of full scale of a channel, `CHANNEL=VALUE`"
     )),
     mut_arg("topic", |a| a.help("recorded, MCAP of another logger: the topic to read")),
-)]
+))]
 pub struct ExcitationArgs {
     /// Excitation: a built-in name (`wbv excitations`), a TOML file, or one of
     /// random | psd | road | recorded | sine | sweep built from the options below.
-    #[arg(long, default_value = "white-0.5-80")]
+    #[cfg_attr(feature = "cli", arg(long, default_value = "white-0.5-80"))]
     pub excitation: String,
     /// random: r.m.s. acceleration in m/s².
-    #[arg(long)]
+    #[cfg_attr(feature = "cli", arg(long))]
     pub rms: Option<f64>,
     /// random: band in Hz as F1,F2 (default 0.5,80).
-    #[arg(long, value_delimiter = ',')]
+    #[cfg_attr(feature = "cli", arg(long, value_delimiter = ','))]
     pub band: Option<Vec<f64>>,
     /// sine: frequency in Hz.
-    #[arg(long)]
+    #[cfg_attr(feature = "cli", arg(long))]
     pub freq: Option<f64>,
     /// sine, sweep: peak amplitude in m/s².
-    #[arg(long)]
+    #[cfg_attr(feature = "cli", arg(long))]
     pub amplitude: Option<f64>,
     /// sine, sweep: raised-cosine fade-in time in s (default 0).
-    #[arg(long)]
+    #[cfg_attr(feature = "cli", arg(long))]
     pub fade_in: Option<f64>,
     /// sweep: start and end frequency in Hz as F0,F1.
-    #[arg(long, value_delimiter = ',')]
+    #[cfg_attr(feature = "cli", arg(long, value_delimiter = ','))]
     pub sweep: Option<Vec<f64>>,
     /// sweep: frequency law (default log).
-    #[arg(long, value_enum)]
+    #[cfg_attr(feature = "cli", arg(long, value_enum))]
     pub sweep_law: Option<LawArg>,
     /// sweep: duration in s (default: the whole run).
-    #[arg(long)]
+    #[cfg_attr(feature = "cli", arg(long))]
     pub sweep_duration: Option<f64>,
     /// recorded: a measurement with channel a_base_z in any format `wbv analyze` reads (CSV, WAV,
     /// MAT, UFF58, MCAP; see the input options and docs/inputs.md); psd: CSV `freq_hz,psd` in Hz,
     /// (m/s²)²/Hz.
-    #[arg(long)]
+    #[cfg_attr(feature = "cli", arg(long))]
     pub input: Option<PathBuf>,
     /// recorded: the input options of `wbv analyze` (`--format`, `--column`, `--units`, `--fs`,
     /// `--sensitivity`, `--topic`), declared once in [`InputArgs`]; their help here is the
     /// excitation's own (`mut_arg` above).
-    #[command(flatten)]
+    #[cfg_attr(feature = "cli", command(flatten))]
     pub recorded: InputArgs,
     /// road: ISO 8608 class A–H (default C).
-    #[arg(long)]
+    #[cfg_attr(feature = "cli", arg(long))]
     pub road_class: Option<String>,
     /// road: vehicle speed in m/s.
-    #[arg(long)]
+    #[cfg_attr(feature = "cli", arg(long))]
     pub speed: Option<f64>,
 }
 
-/// Sweep law on the command line.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+/// Sweep law of the options.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+#[cfg_attr(feature = "cli", derive(clap::ValueEnum))]
 pub enum LawArg {
     Linear,
     Log,
@@ -259,7 +263,7 @@ pub fn resolve(args: &ExcitationArgs) -> Result<ExcitationSpec> {
     Ok(spec)
 }
 
-#[cfg(test)]
+#[cfg(all(test, feature = "cli"))]
 mod tests {
     use super::*;
     use clap::{Args, CommandFactory, Parser};

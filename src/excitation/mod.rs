@@ -8,7 +8,6 @@
 //! the command line ([`ExcitationArgs`], [`resolve`]); [`ExcitationSpec::psd`] and
 //! [`ExcitationSpec::tones`] give the exact target for comparison with what was generated.
 
-#[cfg(feature = "cli")]
 pub mod args;
 pub mod builtin;
 pub mod classes;
@@ -20,7 +19,6 @@ pub mod spec;
 pub mod synth;
 pub mod table;
 
-#[cfg(feature = "cli")]
 pub use args::{ExcitationArgs, resolve};
 pub use spec::{ExcitationSpec, Kind};
 

@@ -5,24 +5,35 @@
 use super::meta;
 use mcap::records::Metadata;
 use std::path::{Path, PathBuf};
-use std::sync::atomic::AtomicBool;
-use std::sync::{Arc, OnceLock};
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::{Arc, Once, OnceLock};
 
-/// Set by SIGINT or SIGTERM once a recorder exists: the recorder then closes what it has as
-/// [`interrupted_path`] and stops the run with an error. A second signal ends the process at
-/// once (exit status 130), leaving only the `.partial` that the next run removes.
-pub fn flag() -> &'static Arc<AtomicBool> {
+/// Set by SIGINT or SIGTERM once [`install`] ran.
+fn flag() -> &'static Arc<AtomicBool> {
     static FLAG: OnceLock<Arc<AtomicBool>> = OnceLock::new();
-    FLAG.get_or_init(|| {
-        let flag = Arc::new(AtomicBool::new(false));
+    FLAG.get_or_init(|| Arc::new(AtomicBool::new(false)))
+}
+
+/// Installs the handlers, once per process, when a recorder that closes on a signal
+/// ([`super::OnSignal::CloseRecording`]) is created: SIGINT or SIGTERM then set the flag, the
+/// recorder closes what it has as [`interrupted_path`] and stops the run with an error. A second
+/// signal ends the process at once (exit status 130), leaving only the `.partial` that the next
+/// run removes.
+pub fn install() {
+    static INSTALLED: Once = Once::new();
+    INSTALLED.call_once(|| {
         for signal in [signal_hook::consts::SIGINT, signal_hook::consts::SIGTERM] {
             // Registration fails only for forbidden signals; without it the default applies.
             let _ =
-                signal_hook::flag::register_conditional_shutdown(signal, 130, Arc::clone(&flag));
-            let _ = signal_hook::flag::register(signal, Arc::clone(&flag));
+                signal_hook::flag::register_conditional_shutdown(signal, 130, Arc::clone(flag()));
+            let _ = signal_hook::flag::register(signal, Arc::clone(flag()));
         }
-        flag
-    })
+    });
+}
+
+/// Whether a signal asked the run to stop (never, unless [`install`] ran).
+pub fn requested() -> bool {
+    flag().load(Ordering::Relaxed)
 }
 
 /// Steps between two looks at the interrupt flag (≈ 1 ms of simulation at 1 kHz, far less in

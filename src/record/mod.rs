@@ -30,7 +30,8 @@
 //! (`wbv.run`, `wbv.model`, `wbv.excitation` with a definition that loads again) and the exact model
 //! TOML as an attachment; `wbv simulate --from RUN` re-runs it byte for byte. Analysis results given
 //! to [`McapRecorder::attach_results`] go to `wbv.results` metadata and `<name>.json` attachments.
-//! SIGINT/SIGTERM close what was simulated as `run.interrupted.mcap` (metadata `wbv.interrupted`).
+//! SIGINT/SIGTERM close what was simulated as `run.interrupted.mcap` (metadata `wbv.interrupted`)
+//! unless the host process keeps its own handlers ([`OnSignal`]).
 //! With the feature `live`, [`live::LiveView`] streams the same channels to Foxglove or Lichtblick
 //! over the Foxglove WebSocket protocol while a run is simulated (`wbv simulate --serve`).
 
@@ -211,6 +212,21 @@ pub struct RecordOptions {
     /// Threads that format messages, and that compress chunks; `None`: one per core, at most 4.
     /// The file does not depend on it.
     pub threads: Option<usize>,
+    /// What SIGINT and SIGTERM do while the run is recorded.
+    pub on_signal: OnSignal,
+}
+
+/// What SIGINT and SIGTERM do to a recording in progress.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum OnSignal {
+    /// wbv's handlers (installed by the first such recorder of the process) close the recording
+    /// as `run.interrupted.mcap` and stop the run; a second signal ends the process. For the
+    /// `wbv` command, which owns its process.
+    CloseRecording,
+    /// The process keeps its own handlers: a host such as the Python interpreter, where Ctrl-C
+    /// raises `KeyboardInterrupt` and the binding stops the run itself (an observer that returns
+    /// an error), so the recording is dropped unfinished and no file appears.
+    LeaveToHost,
 }
 
 impl RecordOptions {
@@ -253,6 +269,7 @@ impl Default for RecordOptions {
             magnification: 20.0,
             overwrite: Overwrite::Refuse,
             threads: None,
+            on_signal: OnSignal::CloseRecording,
         }
     }
 }

@@ -12,13 +12,12 @@ use super::meta;
 use super::pipeline::{BLOCK_STEPS, Block, Channel, Encoder, Pipeline};
 use super::scene::Scene;
 use super::topics::{Quantity, Topic, eval, field_name, topics};
-use super::{Encoding, MessageLayout, Provenance, RecordOptions};
+use super::{Encoding, MessageLayout, OnSignal, Provenance, RecordOptions};
 use crate::error::{Error, Result};
 use crate::io::atomic::{Overwrite, Partial};
 use crate::simulate::observer::{Layout, Observer, Step};
 use mcap::records::{MessageHeader, Metadata};
 use std::path::{Path, PathBuf};
-use std::sync::atomic::Ordering;
 
 /// Formatter threads and chunk compressors: [`RecordOptions::threads`], else one per core (at
 /// most 4). The file is the same for any count: blocks and chunks are written in step order, and
@@ -79,7 +78,9 @@ impl McapRecorder {
             ));
         }
         options.check()?;
-        interrupt::flag();
+        if options.on_signal == OnSignal::CloseRecording {
+            interrupt::install();
+        }
         let (guard, file) = Partial::create(path, options.overwrite)?;
         let partial = guard.tmp().to_path_buf();
         let library = format!("wbv/{}", provenance.version);
@@ -381,9 +382,7 @@ impl Observer for McapRecorder {
         }
         self.record(step)?;
         self.record_scene(step)?;
-        if step.index.is_multiple_of(interrupt::CHECK_STEPS)
-            && interrupt::flag().load(Ordering::Relaxed)
-        {
+        if step.index.is_multiple_of(interrupt::CHECK_STEPS) && interrupt::requested() {
             return Err(self.interrupt(step.t));
         }
         if self.block.steps.len() >= BLOCK_STEPS {

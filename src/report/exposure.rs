@@ -48,13 +48,31 @@ pub fn day(
     input: &crate::io::input::Options,
     shocks: &ShockSettings,
 ) -> Result<(Day, Vec<String>)> {
-    let mut operations = Vec::with_capacity(specs.len());
+    let read = specs
+        .iter()
+        .map(|spec| {
+            let file = crate::record::run_file(&spec.path);
+            let read = crate::measurement::read(&file, input)?;
+            Ok((spec.path.display().to_string(), spec.hours, read))
+        })
+        .collect::<Result<Vec<_>>>()?;
+    day_of(read, shocks)
+}
+
+/// Analyses and assesses a day of operations already read: `(name, hours a day, input)` each
+/// (from a file, or arrays through [`crate::io::input::from_columns`]); as [`day`].
+pub fn day_of(
+    operations: Vec<(String, f64, crate::io::input::Input)>,
+    shocks: &ShockSettings,
+) -> Result<(Day, Vec<String>)> {
+    for (name, hours, _) in &operations {
+        exposure::check_hours(name, *hours)?;
+    }
+    let mut assessed = Vec::with_capacity(operations.len());
     let mut notes = Vec::new();
-    for spec in specs {
-        let file = crate::record::run_file(&spec.path);
-        let read = crate::measurement::read(&file, input)?;
+    for (name, hours, read) in operations {
         let opts = Options {
-            exposure_hours: Some(spec.hours),
+            exposure_hours: Some(hours),
             units_declared: read.declared(),
             shocks: *shocks,
             ..Options::default()
@@ -62,13 +80,9 @@ pub fn day(
         let report = Report::from_signals(&read.signals, &opts)?;
         notes.extend(read.notes.iter().cloned());
         notes.extend(report.warnings.iter().cloned());
-        operations.push(Operation::from_report(
-            &spec.path.display().to_string(),
-            spec.hours,
-            &report,
-        )?);
+        assessed.push(Operation::from_report(&name, hours, &report)?);
     }
-    Ok((exposure::assess(&operations, shocks)?, notes))
+    Ok((exposure::assess(&assessed, shocks)?, notes))
 }
 
 /// The day's section of the HTML report: the verdict, a row per operation, a row per axis.

@@ -7,23 +7,32 @@
 //! in the run directory) the page also has a gap section ([`gap`]).
 //!
 //! The page holds no date or absolute time, so the same run gives the same bytes.
+//!
+//! The page and its gap section need the charts (feature `plot`); [`json`], the documents that
+//! `wbv <command> --json` prints and the Python binding returns, does not.
 
 pub mod exposure;
+#[cfg(feature = "plot")]
 pub mod gap;
 pub mod json;
+#[cfg(feature = "plot")]
 pub mod seat_test;
 
-use crate::analysis::health::{self, Health};
-use crate::analysis::{Options, Report, WelchOptions};
-use crate::error::{Error, Result};
-use crate::io::atomic::{Overwrite, write_atomic};
-use crate::plot::iso::{self as plots, RunFigure};
-use crate::plot::svg_string;
-use crate::record::Provenance;
-use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
+#[cfg(feature = "plot")]
+use {
+    crate::analysis::health::{self, Health},
+    crate::analysis::{Options, Report, WelchOptions},
+    crate::error::{Error, Result},
+    crate::io::atomic::{Overwrite, write_atomic},
+    crate::plot::iso::{self as plots, RunFigure},
+    crate::plot::svg_string,
+    crate::record::Provenance,
+    std::fmt::Write as _,
+};
 
 /// Settings of a report.
+#[cfg(feature = "plot")]
 #[derive(Debug, Clone, PartialEq)]
 pub struct Settings {
     /// Daily exposure assumed for the health assessment, h.
@@ -41,6 +50,7 @@ pub struct Settings {
     pub shocks: crate::analysis::exposure::ShockSettings,
 }
 
+#[cfg(feature = "plot")]
 impl Default for Settings {
     /// A working day ([`health::DEFAULT_EXPOSURE_HOURS`]).
     fn default() -> Self {
@@ -55,6 +65,7 @@ impl Default for Settings {
 }
 
 /// What a report was built from, for the command's summary.
+#[cfg(feature = "plot")]
 #[derive(Debug, Clone)]
 pub struct Built {
     pub html: String,
@@ -101,6 +112,7 @@ pub(crate) fn esc(s: &str) -> String {
     out
 }
 
+#[cfg(feature = "plot")]
 pub(crate) const STYLE: &str = "body{font-family:sans-serif;max-width:1320px;margin:2em auto;padding:0 1em;\
 color:#222;background:#fff}h1{font-size:1.6em}h2{border-bottom:1px solid #ccc;padding-bottom:.2em;\
 margin-top:1.6em}table{border-collapse:collapse;margin:.6em 0}td,th{border:1px solid #ccc;\
@@ -110,6 +122,7 @@ figure{margin:1em 0}figure svg{max-width:100%;height:auto}figcaption{color:#555;
 .warning{font-size:1.1em;padding:.6em;border-left:4px solid #d55e00;background:#fdf3ec}\
 table.kv td{text-align:left}";
 
+#[cfg(feature = "plot")]
 fn figure_html(out: &mut String, fig: &RunFigure) -> Result<()> {
     let p = fig.panels();
     let svg = svg_string(&p, p.size())?;
@@ -122,6 +135,7 @@ fn figure_html(out: &mut String, fig: &RunFigure) -> Result<()> {
     Ok(())
 }
 
+#[cfg(feature = "plot")]
 fn provenance_html(out: &mut String, p: &Provenance) {
     let rows = [
         ("model", p.model.clone()),
@@ -140,6 +154,7 @@ fn provenance_html(out: &mut String, p: &Provenance) {
     out.push_str("</table>\n");
 }
 
+#[cfg(feature = "plot")]
 fn figures_table(out: &mut String, r: &Report) {
     out.push_str(
         "<table><tr><th>channel</th><th>weighting</th><th>k</th><th>r.m.s. [m/s²]</th>\
@@ -167,6 +182,7 @@ fn figures_table(out: &mut String, r: &Report) {
 }
 
 /// The model's section: FRF magnitude and phase over 0.5–80 Hz (log axis) and the modes.
+#[cfg(feature = "plot")]
 fn model_html(out: &mut String, p: &Provenance) -> Result<()> {
     // The stored text of a built-in model built from parts does not always parse alone; the
     // catalogue entry of the same name is the same model.
@@ -234,6 +250,7 @@ fn model_html(out: &mut String, p: &Provenance) -> Result<()> {
 }
 
 /// Builds the report page of the run at `run` (an MCAP run, a run directory or a measured-run CSV).
+#[cfg(feature = "plot")]
 pub fn build(run: &Path, settings: &Settings) -> Result<Built> {
     if !(settings.exposure_hours.is_finite() && settings.exposure_hours > 0.0) {
         return Err(Error::parameter(
@@ -408,6 +425,7 @@ pub fn build(run: &Path, settings: &Settings) -> Result<Built> {
 
 /// Builds the report of `run` and writes it atomically to `out`; refuses an existing `out`
 /// (unless `overwrite` allows it) before any work.
+#[cfg(feature = "plot")]
 pub fn write(run: &Path, out: &Path, settings: &Settings, overwrite: Overwrite) -> Result<Built> {
     crate::io::atomic::check_overwrite(out, overwrite)?;
     let built = build(run, settings)?;
@@ -421,6 +439,7 @@ pub fn write(run: &Path, out: &Path, settings: &Settings, overwrite: Overwrite) 
 mod tests {
     use super::*;
 
+    #[cfg(feature = "plot")]
     #[test]
     fn escapes_markup() {
         assert_eq!(esc("a<b & 'c'>\""), "a&lt;b &amp; &#39;c&#39;&gt;&quot;");

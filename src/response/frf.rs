@@ -92,6 +92,28 @@ pub fn grid(from: f64, to: f64, points: usize, log: bool) -> Result<Vec<f64>> {
         .collect())
 }
 
+/// Refuses frequencies given one by one (the Python binding's arrays) that a grid from [`grid`]
+/// could not hold: none, or one that is negative or not finite; `what` names them in the message.
+pub fn check_freqs(freq_hz: &[f64], what: &str) -> Result<()> {
+    if freq_hz.is_empty() {
+        return Err(Error::parameter(
+            what,
+            "no frequencies; expected at least one",
+        ));
+    }
+    match freq_hz.iter().position(|f| !(f.is_finite() && *f >= 0.0)) {
+        Some(i) => Err(Error::parameter(
+            what,
+            format!(
+                "frequency {} is {} Hz; expected finite frequencies ≥ 0",
+                i + 1,
+                freq_hz[i]
+            ),
+        )),
+        None => Ok(()),
+    }
+}
+
 /// The value of every channel of `system` per unit base acceleration at `f` Hz.
 pub fn solve_point(system: &System, f: f64) -> Result<Vec<Complex64>> {
     let (channels, _) = solve_full(system, f)?;

@@ -5,19 +5,36 @@ use crate::error::Result;
 use crate::signals::Signals;
 
 /// Collects the measured channels (`a_base_z`, `a_seat_z`, `a_head_z`, `f_seat_z`) of every step,
-/// plus any extra per-step values chosen by a closure.
+/// and with [`Collector::with_time`] the step times.
 #[derive(Default)]
 pub struct Collector {
     layout: Option<Layout>,
     names: Vec<String>,
     data: Vec<Vec<f64>>,
     scratch: Vec<f64>,
+    time: Option<Vec<f64>>,
 }
 
 impl Collector {
     /// A collector of the measured channels.
     pub fn new() -> Self {
         Self::default()
+    }
+
+    /// A collector that also keeps every step's time t in s, the `t_s` column of the CSV that
+    /// [`crate::record::csv::CsvWriter`] writes.
+    pub fn with_time() -> Self {
+        Collector {
+            time: Some(Vec::new()),
+            ..Self::default()
+        }
+    }
+
+    /// The collected signals, sampled at 1/dt, and the step times in s (empty unless
+    /// [`Collector::with_time`]).
+    pub fn into_parts(mut self, source: &str) -> Result<(Signals, Vec<f64>)> {
+        let time = self.time.take().unwrap_or_default();
+        Ok((self.into_signals(source)?, time))
     }
 
     /// The collected signals, sampled at 1/dt.
@@ -40,6 +57,9 @@ impl Observer for Collector {
             .collect();
         let cap = usize::try_from(layout.steps).unwrap_or(0);
         self.data = vec![Vec::with_capacity(cap); self.names.len()];
+        if let Some(t) = &mut self.time {
+            t.reserve(cap);
+        }
         self.layout = Some(layout.clone());
         Ok(())
     }
@@ -49,6 +69,9 @@ impl Observer for Collector {
         layout.measured(step, &mut self.scratch);
         for (d, v) in self.data.iter_mut().zip(&self.scratch) {
             d.push(*v);
+        }
+        if let Some(t) = &mut self.time {
+            t.push(step.t);
         }
         Ok(())
     }

@@ -18,6 +18,7 @@ pub mod paper000;
 pub mod papers;
 pub mod param;
 pub mod path;
+pub mod plan;
 pub mod reproduce;
 pub mod seat_test;
 pub mod sensitivity;

@@ -99,6 +99,21 @@ pub fn apply(model: &mut Model, params: &[Param], values: &[f64]) -> Result<()> 
     Ok(())
 }
 
+/// Refuses a value list given as numbers (the Python binding's arrays) that is empty or holds a
+/// value that is not finite; `option` names the list in the message.
+pub fn check_values(values: &[f64], option: &str) -> Result<()> {
+    if values.is_empty() {
+        return Err(Error::parameter(option, "no values; expected at least one"));
+    }
+    match values.iter().position(|v| !v.is_finite()) {
+        Some(i) => Err(Error::parameter(
+            option,
+            format!("value {} is {}; expected finite numbers", i + 1, values[i]),
+        )),
+        None => Ok(()),
+    }
+}
+
 /// Parses a value list: `from:to:count` (inclusive, evenly spaced) or `a,b,c`.
 pub fn parse_values(text: &str, option: &str) -> Result<Vec<f64>> {
     let bad = |what: &str| {
@@ -166,6 +181,10 @@ mod tests {
         assert!(parse_values("a,b", "v").is_err());
         assert_eq!(parse_bounds("1:3", "b").unwrap(), (1.0, 3.0));
         assert!(parse_bounds("0:3", "b").is_err());
+        assert!(check_values(&[1.0, 2.5], "v").is_ok());
+        assert!(check_values(&[], "v").is_err());
+        let e = check_values(&[1.0, f64::NAN], "v").unwrap_err().to_string();
+        assert!(e.starts_with("v: value 2 is NaN"), "{e}");
     }
 
     #[test]

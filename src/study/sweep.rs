@@ -49,6 +49,18 @@ pub struct Spec {
 }
 
 impl Spec {
+    /// The unit of the response's magnitude: kg for an apparent mass (`apms…`), N·s/m for a
+    /// driving-point mechanical impedance (`dpmi…`), `-` for a transmissibility.
+    pub fn response_unit(&self) -> &'static str {
+        if self.response.starts_with("apms") {
+            "kg"
+        } else if self.response.starts_with("dpmi") {
+            "N·s/m"
+        } else {
+            "-"
+        }
+    }
+
     /// Every grid point's parameter values, the first parameter varying slowest.
     pub fn grid(&self) -> Vec<Vec<f64>> {
         self.values.iter().fold(vec![vec![]], |acc, vals| {

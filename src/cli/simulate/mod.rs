@@ -176,19 +176,6 @@ pub fn viewer_hint(run: &Path) -> String {
     )
 }
 
-/// The files a run into `dir` (with `csv`) wrote.
-pub fn written(
-    dir: Option<&Path>,
-    csv: Option<&Path>,
-) -> wbv::Result<Vec<wbv::report::json::Written>> {
-    let run = dir.map(|d| d.join(RUN_FILE));
-    let files: Vec<PathBuf> = (run.iter())
-        .flat_map(|r| std::iter::once(r.clone()).chain(wbv::record::viewer::paths(r)))
-        .chain(csv.map(Path::to_path_buf))
-        .collect();
-    wbv::report::json::Written::existing(&files)
-}
-
 /// The result of a run on stdout: its ISO 2631-1 table, or with `json` the JSON document.
 fn print_result(
     scenario: &Scenario,
@@ -198,8 +185,9 @@ fn print_result(
     json: bool,
 ) -> wbv::Result<()> {
     if json {
-        let s = wbv::report::json::Simulated::of(scenario, outcome, written(dir, csv)?);
-        return super::print_json("simulate", &s, &[]);
+        let written = wbv::report::json::Written::of_run(dir, csv)?;
+        super::print_document(&wbv::report::json::simulate(scenario, outcome, written)?);
+        return Ok(());
     }
     print_table(outcome);
     Ok(())

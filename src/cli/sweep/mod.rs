@@ -4,13 +4,11 @@ use wbv::excitation::ExcitationArgs;
 use wbv::io::atomic::{Overwrite, write_atomic};
 use wbv::report::json::{Files, Written};
 use wbv::response::frf;
-use wbv::study::batch::BatchIso;
 use wbv::study::iso::IsoRun;
 use wbv::study::param::{Param, parse_values};
-use wbv::study::path as study_path;
+use wbv::study::plan::Plan;
 use wbv::study::shard::{self, Shard};
-use wbv::study::spectral::SpectralIso;
-use wbv::study::sweep::{self, PointFigures, Spec};
+use wbv::study::sweep::{self, Spec};
 
 mod plots;
 
@@ -131,17 +129,6 @@ pub(crate) fn progress(len: usize) -> indicatif::ProgressBar {
     bar
 }
 
-/// The unit of a response's magnitude.
-fn response_unit(response: &str) -> &'static str {
-    if response.starts_with("apms") {
-        "kg"
-    } else if response.starts_with("dpmi") {
-        "N·s/m"
-    } else {
-        "-"
-    }
-}
-
 pub fn run(args: Args) -> wbv::Result<()> {
     let ow = overwrite(args.force);
     // Every output is checked before the sweep runs, so a refusal costs nothing.
@@ -211,23 +198,9 @@ pub fn run(args: Args) -> wbv::Result<()> {
         }
         (None, None) => None,
     };
-    if args.time_domain && iso.is_none() {
-        return Err(Error::parameter(
-            "--time-domain",
-            "it chooses how the ISO figures of an excitation are computed; give an excitation too",
-        ));
-    }
-    let path = iso
-        .as_ref()
-        .map(|iso| study_path::choose(&model, &iso.excitation, args.time_domain));
-    let figures: Option<Box<dyn PointFigures>> = match (&iso, &path) {
-        (Some(iso), Some(p)) if p.is_spectral() => {
-            Some(Box::new(SpectralIso::for_run(&model, iso)?))
-        }
-        (Some(iso), Some(_)) => Some(Box::new(BatchIso::new(iso)?)),
-        _ => None,
-    };
-    if let Some(p) = &path {
+    let plan = Plan::new(&model, spec, iso.as_ref(), args.time_domain)?;
+    let spec = &plan.spec;
+    if let Some(p) = plan.path() {
         let ignored = if p.is_spectral() && args.time.is_some() {
             "; --duration, --dt, --seed and --integrator set a simulation, which the spectral \
              figures do not need (give --time-domain to simulate)"
@@ -236,30 +209,30 @@ pub fn run(args: Args) -> wbv::Result<()> {
         };
         eprintln!("ISO figures: {p}{ignored}");
     }
-    let hooks: Vec<&dyn PointFigures> = figures.iter().map(|h| h.as_ref()).collect();
+    let hooks = plan.hooks();
     let bar = progress(shard.points(spec.grid().len()).len());
-    let pts = sweep::run(&model, &spec, shard, &hooks, &|| bar.inc(1))?;
+    let pts = plan.run(&model, shard, &|| bar.inc(1))?;
     bar.finish_and_clear();
     let mut written = Vec::new();
     match &args.out {
         Some(out) => {
             write_atomic(out, ow, |w| {
-                sweep::write_long(&spec, &pts, w).map_err(|e| Error::io(out, e))
+                sweep::write_long(spec, &pts, w).map_err(|e| Error::io(out, e))
             })?;
             let peaks = sibling(out, "-peaks");
             write_atomic(&peaks, ow, |w| {
-                sweep::write_peaks(&spec, &pts, &hooks, w).map_err(|e| Error::io(&peaks, e))
+                sweep::write_peaks(spec, &pts, &hooks, w).map_err(|e| Error::io(&peaks, e))
             })?;
             written = Written::existing(&[out.clone(), peaks])?;
         }
         None if args.json => {}
-        None => sweep::write_peaks(&spec, &pts, &hooks, &mut std::io::stdout().lock())
+        None => sweep::write_peaks(spec, &pts, &hooks, &mut std::io::stdout().lock())
             .map_err(|e| Error::io("stdout", e))?,
     }
     if let Some(files) = &plot_files {
-        plots(&spec, &pts, &model.name, files, ow)?;
+        plots(spec, &pts, &model.name, files, ow)?;
         if let (Some(iso), Some(path)) = (&iso, files.get(2)) {
-            iso_plot(&spec, &pts, &model.name, iso, path, ow)?;
+            iso_plot(spec, &pts, &model.name, iso, path, ow)?;
         }
         for f in files.iter().filter(|f| f.exists()) {
             eprintln!("wrote {}", f.display());
@@ -267,16 +240,12 @@ pub fn run(args: Args) -> wbv::Result<()> {
         written.extend(Written::existing(files)?);
     }
     if args.json {
-        let mut table = wbv::report::json::Sweep::of(
+        super::print_document(&wbv::report::json::sweep(
             &model.name,
-            &spec,
+            &plan,
             &pts,
-            &hooks,
-            response_unit(&spec.response),
-        );
-        table.written = written;
-        table.path = path.as_ref().map(wbv::report::json::StudyPath::of);
-        super::print_json("sweep", &table, &[])?;
+            written,
+        )?);
     }
     Ok(())
 }

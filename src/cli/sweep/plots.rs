@@ -1,7 +1,6 @@
 //! The plots of `wbv sweep --plot`: peak curves, the heat map and the ISO figures over the swept
 //! parameter.
 
-use super::response_unit;
 use std::path::{Path, PathBuf};
 use wbv::io::atomic::Overwrite;
 use wbv::plot::{Axis, Chart, Rule, Series, Style};
@@ -54,7 +53,7 @@ pub(super) fn plots(
         .filter(|&i| spec.values[i].len() > 1)
         .collect();
     let a = axes.first().copied().unwrap_or(0);
-    let unit = response_unit(&spec.response);
+    let unit = spec.response_unit();
     // Every curve, coloured by the (first) varying parameter on a viridis scale with a colour bar.
     let (lo, hi) = spec.values[a]
         .iter()

@@ -1,35 +1,39 @@
-//! The command-line input options ([`InputArgs`]) and their validation into [`Options`].
+//! The input options as the command line and the Python binding give them ([`InputArgs`]:
+//! strings such as `a_seat_z=g`) and their validation into [`Options`]; clap's derive is added by
+//! the `cli` feature.
 
 use super::{Format, Options, UNITS, is_channel_name, scale_of};
 use crate::error::{Error, Result};
 
 /// Input options of the commands that read measurements (flattened into their arguments).
-#[cfg(feature = "cli")]
-#[derive(Debug, Clone, Default, clap::Args)]
+#[derive(Debug, Clone, Default)]
+#[cfg_attr(feature = "cli", derive(clap::Args))]
 pub struct InputArgs {
     /// Input format: csv, wav, mat, uff or mcap (default: detected from the file).
-    #[arg(long, value_enum)]
+    #[cfg_attr(feature = "cli", arg(long, value_enum))]
     pub format: Option<Format>,
     /// Map a channel to a column, variable, WAV channel (1-based), UFF58 dataset (1-based) or
     /// MCAP field: `--column a_seat_z="Acc Z"`; `t_s=NAME` names the time column. Repeat.
-    #[arg(long = "column", value_name = "CHANNEL=SOURCE")]
+    #[cfg_attr(feature = "cli", arg(long = "column", value_name = "CHANNEL=SOURCE"))]
     pub columns: Vec<String>,
     /// Unit of the samples: `g`, `mg`, `m/s2` (accelerations), `N`, `kN` (forces), for all
     /// channels or one (`--units a_seat_z=g`). Repeat.
-    #[arg(long = "units", value_name = "[CHANNEL=]UNIT")]
+    #[cfg_attr(feature = "cli", arg(long = "units", value_name = "[CHANNEL=]UNIT"))]
     pub units: Vec<String>,
     /// Sample rate in Hz, for files without a time column or stated rate.
-    #[arg(long)]
+    #[cfg_attr(feature = "cli", arg(long))]
     pub fs: Option<f64>,
     /// WAV: value of full scale (±1.0) of a channel in its unit: `--sensitivity a_seat_z=49.05`.
-    #[arg(long = "sensitivity", value_name = "CHANNEL=VALUE")]
+    #[cfg_attr(
+        feature = "cli",
+        arg(long = "sensitivity", value_name = "CHANNEL=VALUE")
+    )]
     pub sensitivity: Vec<String>,
     /// MCAP of another logger: topic to read (fields chosen with --column CHANNEL=FIELD.PATH).
-    #[arg(long)]
+    #[cfg_attr(feature = "cli", arg(long))]
     pub topic: Option<String>,
 }
 
-#[cfg(feature = "cli")]
 fn split_pair<'a>(flag: &str, v: &'a str) -> Result<(&'a str, &'a str)> {
     v.split_once('=')
         .map(|(a, b)| (a.trim(), unquote(b.trim())))
@@ -37,14 +41,12 @@ fn split_pair<'a>(flag: &str, v: &'a str) -> Result<(&'a str, &'a str)> {
         .ok_or_else(|| Error::parameter(flag, format!("`{v}`: expected CHANNEL=VALUE")))
 }
 
-#[cfg(feature = "cli")]
 fn unquote(s: &str) -> &str {
     s.strip_prefix('"')
         .and_then(|s| s.strip_suffix('"'))
         .unwrap_or(s)
 }
 
-#[cfg(feature = "cli")]
 impl InputArgs {
     /// Validates the options (pairs well formed, channel names valid, values positive).
     pub fn options(&self) -> Result<Options> {
@@ -110,8 +112,7 @@ impl InputArgs {
         Ok(o)
     }
 }
-#[cfg(feature = "cli")]
-fn check_channel_name(flag: &str, name: &str) -> Result<()> {
+pub(super) fn check_channel_name(flag: &str, name: &str) -> Result<()> {
     if is_channel_name(name) {
         Ok(())
     } else {

@@ -24,12 +24,10 @@ use crate::error::{Error, Result};
 use crate::signals::Signals;
 use std::path::Path;
 
-#[cfg(feature = "cli")]
 mod args;
 mod assemble;
 mod rate;
 
-#[cfg(feature = "cli")]
 pub use args::InputArgs;
 use assemble::TIME_NAMES;
 pub(crate) use assemble::assemble;
@@ -290,6 +288,41 @@ pub fn read_bytes(bytes: &[u8], path: &Path, opts: &Options) -> Result<Input> {
     assemble(raw, &source, opts)
 }
 
+/// Reads a measurement held in memory (the Python binding's arrays): `columns` named by the
+/// measured-run convention (`a_seat_z`, `f_seat_z`, …; any other name is refused), sampled at
+/// `opts.fs` Hz, in the units `opts.units` declares. The same unit conversion, plausibility and
+/// duration rules apply as to a file's columns, and the same notes come back; `source` names the
+/// measurement in messages.
+pub fn from_columns(
+    columns: Vec<(String, Vec<f64>)>,
+    source: &str,
+    opts: &Options,
+) -> Result<Input> {
+    for (name, _) in &columns {
+        args::check_channel_name("channels", name)?;
+    }
+    if opts.fs.is_none() {
+        return Err(refuse(
+            "fs",
+            "the sample rate in Hz of the arrays is needed",
+        ));
+    }
+    let raw = Raw {
+        columns: columns
+            .into_iter()
+            .map(|(name, data)| Column {
+                name,
+                data,
+                ..Column::default()
+            })
+            .collect(),
+        timing: Timing::InColumns,
+        lines: None,
+        notes: Vec::new(),
+    };
+    assemble(raw, source, opts)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -311,6 +344,52 @@ mod tests {
             .unwrap_err()
             .to_string();
         assert!(e.starts_with("f.csv:") && e.contains("gap"), "{e}");
+    }
+
+    #[test]
+    fn arrays_read_like_a_files_columns() {
+        // 10 s at 200 Hz in g: converted with g_n = 9.80665 m/s² (ISO 80000-3).
+        let g: Vec<f64> = (0..2000).map(|i| (i as f64 * 0.01).sin()).collect();
+        let opts = Options {
+            fs: Some(200.0),
+            units: vec![(None, "g".into())],
+            ..Options::default()
+        };
+        let input = from_columns(vec![("a_seat_z".into(), g.clone())], "arrays", &opts).unwrap();
+        assert_eq!(input.signals.sample_rate_hz, 200.0);
+        assert_eq!(input.signals.names, ["a_seat_z"]);
+        assert!((input.signals.data[0][157] - 9.80665 * g[157]).abs() < 1e-15);
+        assert!(input.undeclared.is_empty());
+        let err = |columns: Vec<(String, Vec<f64>)>, opts: &Options| {
+            from_columns(columns, "arrays", opts)
+                .unwrap_err()
+                .to_string()
+        };
+        let e = err(vec![("seat".into(), g.clone())], &opts);
+        assert!(
+            e.starts_with("channels: `seat` is not a channel name"),
+            "{e}"
+        );
+        let e = err(vec![("a_seat_z".into(), g.clone())], &Options::default());
+        assert!(e.starts_with("fs:"), "{e}");
+        let mut nan = g.clone();
+        nan[3] = f64::NAN;
+        let e = err(vec![("a_seat_z".into(), nan)], &opts);
+        assert!(e.contains("sample 4 is not finite"), "{e}");
+        let e = err(vec![("a_seat_z".into(), g[..1000].to_vec())], &opts);
+        assert!(e.contains("at least 10 s"), "{e}");
+        // Without units the samples are read as m/s², and said so.
+        let plain = Options {
+            fs: Some(200.0),
+            ..Options::default()
+        };
+        let input = from_columns(vec![("a_seat_z".into(), g)], "arrays", &plain).unwrap();
+        assert_eq!(input.undeclared, ["a_seat_z"]);
+        assert!(
+            input.notes[0].contains("no declared unit"),
+            "{:?}",
+            input.notes
+        );
     }
 
     #[test]

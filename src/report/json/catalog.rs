@@ -1,8 +1,10 @@
-//! `wbv models`, `wbv excitations` and `wbv frf`: the built-in models and excitations, and a
-//! model's frequency responses.
+//! `wbv models`, `wbv excitations`, `wbv frf` and `wbv modes`: the built-in models and
+//! excitations, and a model's frequency responses and modes.
 
-use super::{Written, finite};
+use super::{Document, Written, finite};
+use crate::error::Result;
 use serde::Serialize;
+use serde_json::{Value, json};
 
 /// One entry of `wbv models`.
 #[derive(Debug, Clone, Serialize)]
@@ -17,9 +19,16 @@ pub struct ModelEntry {
     pub params: Vec<String>,
 }
 
-/// `wbv models`: every built-in model.
-pub fn models(models: &[crate::model::Model]) -> Vec<ModelEntry> {
-    models
+/// `wbv models`.
+#[derive(Debug, Clone, Serialize)]
+pub struct Models {
+    pub models: Vec<ModelEntry>,
+}
+
+/// The document of `wbv models --json`: every model of `models` (the catalogue,
+/// [`crate::model::catalog::all`]).
+pub fn models(models: &[crate::model::Model]) -> Result<Document> {
+    let models = models
         .iter()
         .map(|m| ModelEntry {
             name: m.name.clone(),
@@ -28,7 +37,8 @@ pub fn models(models: &[crate::model::Model]) -> Vec<ModelEntry> {
             description: m.description.clone(),
             params: m.params(),
         })
-        .collect()
+        .collect();
+    Document::new("models", &Models { models }, Vec::new())
 }
 
 /// One entry of `wbv excitations`.
@@ -45,6 +55,25 @@ pub struct ExcitationEntry {
     pub class: Option<&'static str>,
     /// For an input spectral class: the machines it stands for (unverified per class).
     pub machine: Option<&'static str>,
+}
+
+/// `wbv excitations`.
+#[derive(Debug, Clone, Serialize)]
+pub struct Excitations {
+    pub excitations: Vec<ExcitationEntry>,
+}
+
+/// The document of `wbv excitations --json`: every built-in excitation
+/// ([`crate::excitation::builtin::names`]).
+pub fn excitations() -> Result<Document> {
+    let excitations = crate::excitation::builtin::names()
+        .iter()
+        .map(|n| {
+            let spec = crate::excitation::ExcitationSpec::load(n)?;
+            Ok(ExcitationEntry::of(n, &spec))
+        })
+        .collect::<Result<Vec<_>>>()?;
+    Document::new("excitations", &Excitations { excitations }, Vec::new())
 }
 
 impl ExcitationEntry {
@@ -126,4 +155,63 @@ impl Frf {
             written: Vec::new(),
         }
     }
+}
+
+/// The static equilibrium of a model that solves one: loads in N, points in m, moments in N·m.
+fn statics(eq: &crate::system::Statics) -> Value {
+    let f = eq.total_force();
+    json!({
+        "newton_iterations": eq.iterations,
+        "body_weight_n": eq.weight,
+        "support_force_n": {"x": f[0], "z": f[1]},
+        "support_moment_nm": eq.support_moment,
+        "gravity_moment_nm": eq.gravity_moment,
+        "loads": eq.loads.iter().map(|l| json!({
+            "contact": l.name, "role": l.role, "normal_n": l.normal,
+            "tangential_n": l.tangential, "fx_n": l.force[0], "fz_n": l.force[1],
+            "x_m": l.point[0], "z_m": l.point[1],
+        })).collect::<Vec<_>>(),
+    })
+}
+
+/// The document of `wbv modes --json`: the undamped modes (frequency in Hz, shape over the
+/// coordinates `masses`), the damped ones (state-space eigenvalues: damped and natural frequency
+/// in Hz, damping ratio, shape magnitude and phase in degrees), and where the model has them its
+/// static equilibrium and the modes described in words ([`crate::response::modes::describe`]).
+pub fn modes(model: &crate::model::Model) -> Result<Document> {
+    use crate::response::modes;
+    let system = model.system();
+    let und = modes::undamped(system)?;
+    let dam = modes::damped(system)?;
+    let names: Vec<&str> = system.dofs.iter().map(|m| m.name.as_str()).collect();
+    let mut doc = json!({
+        "model": model.name,
+        "masses": names,
+        "undamped": und.iter().map(|m| json!({
+            "freq_hz": m.freq_hz, "shape": m.shape,
+        })).collect::<Vec<_>>(),
+        "damped": dam.iter().map(|m| json!({
+            "damped_hz": m.damped_hz, "natural_hz": m.natural_hz, "zeta": m.zeta,
+            "overdamped": m.overdamped, "shape_mag": m.shape_mag,
+            "shape_phase_deg": m.shape_phase_deg,
+        })).collect::<Vec<_>>(),
+    });
+    if let Some(eq) = &system.statics {
+        doc["equilibrium"] = statics(eq);
+    }
+    let described = modes::describe(system)?;
+    if !described.is_empty() {
+        doc["described"] = described
+            .iter()
+            .map(|d| {
+                json!({
+                    "freq_hz": d.mode.freq_hz,
+                    "motions": d.components,
+                    "vertical_mass_fraction": d.vertical_mass_fraction,
+                    "fore_aft_mass_fraction": d.fore_aft_mass_fraction,
+                })
+            })
+            .collect();
+    }
+    Document::new("modes", &doc, Vec::new())
 }

@@ -1,7 +1,8 @@
 //! `wbv exposure`: a working day of several operations.
 
-use super::units;
+use super::{Document, units};
 use crate::analysis::exposure::Day;
+use crate::error::Result;
 use serde::Serialize;
 use std::collections::BTreeMap;
 
@@ -48,4 +49,10 @@ impl Exposure {
             ]),
         }
     }
+}
+
+/// The document of `wbv exposure --json` (and of the Python binding's `wbv.exposure`): the day
+/// ([`Exposure`]) with what the readers and the analysis noted as its `warnings`.
+pub fn exposure(day: Day, notes: Vec<String>) -> Result<Document> {
+    Document::new("exposure", &Exposure::of(day), notes)
 }

@@ -8,7 +8,8 @@
 //! that does not exist (no seat channel, a figure that is not finite) is `null`, never `NaN`.
 //!
 //! The structures here are views of the library's results (studies, runs, models) for the command
-//! line; they compute nothing that the library does not already give.
+//! line and the Python binding (`python/`), which return the same [`Document`] built by the same
+//! function; they compute nothing that the library does not already give.
 
 use crate::error::{Error, Result};
 use serde::Serialize;
@@ -20,15 +21,40 @@ mod calibrate;
 mod catalog;
 mod exposure;
 mod foam;
+mod gap;
 mod run;
+mod seat_test;
 mod study;
 
 pub use calibrate::*;
 pub use catalog::*;
 pub use exposure::*;
 pub use foam::*;
+pub use gap::*;
 pub use run::*;
+pub use seat_test::*;
 pub use study::*;
+
+/// A command's JSON document as `wbv <command> --json` prints it on stdout and the Python binding
+/// returns it (parsed), with the warnings handed to it beside the body (they are in the text's
+/// `warnings` too; the command also prints them on stderr).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Document {
+    /// The pretty-printed JSON ([`document`]).
+    pub text: String,
+    /// The warnings merged into the body's `warnings`.
+    pub warnings: Vec<String>,
+}
+
+impl Document {
+    /// The document of `command`: `body` with `warnings` merged ([`document`]).
+    pub fn new<T: Serialize>(command: &str, body: &T, warnings: Vec<String>) -> Result<Document> {
+        Ok(Document {
+            text: document(command, body, &warnings)?,
+            warnings,
+        })
+    }
+}
 
 /// The JSON document of `command`: `body`'s keys plus `command` and `warnings` (merged with a
 /// `warnings` array the body already has), pretty-printed. Keys are sorted, so the same results

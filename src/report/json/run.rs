@@ -1,12 +1,58 @@
 //! `wbv simulate`, `wbv inspect`, `wbv replay`, `wbv report` and `wbv run`: one run, simulated,
 //! read back, replayed or reported.
 
-use super::{Written, finite, units};
+use super::{Document, WithFiles, Written, finite};
 use crate::error::{Error, Result};
 use serde::Serialize;
 use serde_json::Value;
 use std::collections::BTreeMap;
 use std::path::Path;
+
+/// The document of `wbv analyze --json`: the ISO 2631-1 `report`, the plot files `written`, and
+/// what the reader decided about the measurement (`input_notes`) as warnings, each prefixed
+/// `input: ` (the report's own warnings are its `warnings`).
+pub fn analyze(
+    report: &crate::analysis::Report,
+    written: Vec<Written>,
+    input_notes: &[String],
+) -> Result<Document> {
+    let notes = input_notes.iter().map(|n| format!("input: {n}")).collect();
+    Document::new(
+        "analyze",
+        &WithFiles {
+            result: report,
+            written,
+        },
+        notes,
+    )
+}
+
+/// The document of `wbv simulate --json`: the run of `scenario`, its `outcome` and the files it
+/// `written` ([`Written::of_run`]).
+pub fn simulate(
+    scenario: &crate::scenario::Scenario,
+    outcome: &crate::scenario::Outcome,
+    written: Vec<Written>,
+) -> Result<Document> {
+    Document::new(
+        "simulate",
+        &Simulated::of(scenario, outcome, written),
+        Vec::new(),
+    )
+}
+
+impl Written {
+    /// The files a run wrote: the recording in `dir` ([`crate::record::RUN_FILE`]) with the
+    /// viewer files beside it ([`crate::record::viewer::paths`]), and the CSV `csv`.
+    pub fn of_run(dir: Option<&Path>, csv: Option<&Path>) -> Result<Vec<Written>> {
+        let run = dir.map(|d| d.join(crate::record::RUN_FILE));
+        let files: Vec<std::path::PathBuf> = (run.iter())
+            .flat_map(|r| std::iter::once(r.clone()).chain(crate::record::viewer::paths(r)))
+            .chain(csv.map(Path::to_path_buf))
+            .collect();
+        Written::existing(&files)
+    }
+}
 
 /// `wbv simulate` and the simulation part of `wbv run`.
 #[derive(Debug, Clone, Serialize)]
@@ -224,6 +270,7 @@ impl Replay {
 }
 
 /// `wbv report` (and the report of `wbv run`).
+#[cfg(feature = "plot")]
 #[derive(Debug, Clone, Serialize)]
 pub struct ReportSummary {
     pub report_html: String,
@@ -243,6 +290,7 @@ pub struct ReportSummary {
     pub units: BTreeMap<String, String>,
 }
 
+#[cfg(feature = "plot")]
 impl ReportSummary {
     /// The summary of a report written to `out`.
     pub fn of(out: &Path, built: &crate::report::Built) -> Result<ReportSummary> {
@@ -255,7 +303,7 @@ impl ReportSummary {
             gap: built.gap.clone(),
             iso2631_5: built.report.iso2631_5.clone(),
             exposure: built.day.clone().map(super::Exposure::of),
-            units: units(&[
+            units: super::units(&[
                 ("total_value", "m/s^2"),
                 ("health.a8", "m/s^2"),
                 ("health.a_w_max", "m/s^2"),

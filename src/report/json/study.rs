@@ -1,6 +1,7 @@
 //! `wbv reproduce`, `wbv sweep` and `wbv sensitivity`: the studies' tables.
 
-use super::{Written, finite};
+use super::{Document, Written, finite};
+use crate::error::Result;
 use serde::Serialize;
 use serde_json::Value;
 use std::collections::BTreeMap;
@@ -171,6 +172,21 @@ impl Sweep {
             path: None,
         }
     }
+}
+
+/// The document of `wbv sweep --json`: the peaks table of the sweep `plan` of `model` run into
+/// `points`, with every point's ISO figures and how they were computed, and the files `written`.
+pub fn sweep(
+    model: &str,
+    plan: &crate::study::plan::Plan,
+    points: &[crate::study::sweep::Point],
+    written: Vec<Written>,
+) -> Result<Document> {
+    let spec = &plan.spec;
+    let mut table = Sweep::of(model, spec, points, &plan.hooks(), spec.response_unit());
+    table.written = written;
+    table.path = plan.path().map(StudyPath::of);
+    Document::new("sweep", &table, Vec::new())
 }
 
 /// One row of `wbv sensitivity`.

@@ -1,0 +1,83 @@
+"""Long work runs with the GIL released, and Ctrl-C (SIGINT) interrupts it: the interpreter
+raises KeyboardInterrupt, a recording in progress leaves no file, and the interpreter carries on
+(a later recorded run works, a later Ctrl-C is an ordinary KeyboardInterrupt)."""
+
+import os
+import signal
+import subprocess
+import sys
+import textwrap
+import threading
+import time
+
+import pytest
+
+import wbv
+
+CHILD = textwrap.dedent(
+    """
+    import os, signal, sys, time, wbv
+    # Python's own Ctrl-C handling, also when started with SIGINT ignored (a background job).
+    signal.signal(signal.SIGINT, signal.default_int_handler)
+    out = sys.argv[1]
+    print("ready", flush=True)
+    try:
+        # An hour at 1 kHz, recorded per sample: seconds of work, interrupted after one.
+        wbv.simulate("reference", "bell-214", 3600, 1, record=os.path.join(out, "long"))
+        print("completed", flush=True)
+    except KeyboardInterrupt:
+        print("interrupted", flush=True)
+    run = wbv.simulate("reference", "bell-214", 2, 1, record=os.path.join(out, "short"))
+    print("recorded", run.path, flush=True)
+    try:
+        print("waiting", flush=True)
+        time.sleep(60)
+    except KeyboardInterrupt:
+        print("second interrupt", flush=True)
+    """
+)
+
+
+@pytest.mark.skipif(os.name != "posix", reason="SIGINT from another process")
+def test_ctrl_c_stops_a_simulation_and_leaves_no_file(tmp_path):
+    child = subprocess.Popen(
+        [sys.executable, "-c", CHILD, str(tmp_path)],
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+        text=True,
+    )
+    assert child.stdout.readline().strip() == "ready"
+    time.sleep(1.5)
+    child.send_signal(signal.SIGINT)
+    lines = []
+    for line in child.stdout:
+        lines.append(line.strip())
+        if line.strip() == "waiting":
+            time.sleep(0.5)
+            child.send_signal(signal.SIGINT)
+    assert child.wait(timeout=120) == 0, child.stderr.read()
+    assert lines[0] == "interrupted", lines
+    assert lines[1].startswith("recorded") and lines[-1] == "second interrupt", lines
+    long = tmp_path / "long"
+    assert not long.exists() or list(long.iterdir()) == []
+    assert (tmp_path / "short" / "run.mcap").is_file()
+
+
+def test_the_gil_is_released_while_simulating():
+    done = threading.Event()
+    result = {}
+
+    def work():
+        result["run"] = wbv.simulate("reference", "bell-214", 1200, 1)
+        done.set()
+
+    thread = threading.Thread(target=work)
+    thread.start()
+    ticks = 0
+    while not done.is_set():
+        ticks += 1
+        time.sleep(0.002)
+    thread.join()
+    # About a second of simulation: Python kept running beside it (a held GIL gives ~1 tick).
+    assert ticks >= 20, ticks
+    assert result["run"].channels["a_seat_z"].size == 1_200_001
