@@ -96,6 +96,11 @@ pub struct Sweep {
     /// How the ISO figures were computed, with an excitation.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub path: Option<StudyPath>,
+    /// Wall time of the sweep's points (responses, peaks and ISO figures), s: the only figure
+    /// of the document that differs between two runs.
+    pub elapsed_s: f64,
+    /// `elapsed_s` over the number of points, s.
+    pub seconds_per_point: f64,
 }
 
 /// How a study computed its ISO figures ([`crate::study::path::Path`]).
@@ -169,6 +174,8 @@ impl Sweep {
             params,
             written: Vec::new(),
             path: None,
+            elapsed_s: 0.0,
+            seconds_per_point: 0.0,
         }
     }
 }
