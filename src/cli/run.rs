@@ -64,7 +64,7 @@ pub fn run(args: Args) -> wbv::Result<()> {
         health::assess(&axes, r.duration_s, exposure_hours)
     });
     let settings = wbv::report::Settings {
-        exposure_hours: exposure_hours,
+        exposure_hours,
         ..wbv::report::Settings::default()
     };
     wbv::report::write(&mcap, &html, &settings, wbv::io::atomic::Overwrite::Refuse)?;
@@ -75,7 +75,7 @@ pub fn run(args: Args) -> wbv::Result<()> {
         let run = wbv::report::json::Run {
             run_dir: dir.display().to_string(),
             simulated: wbv::report::json::Simulated::of(&scenario, &outcome, written),
-            exposure_hours: exposure_hours,
+            exposure_hours,
             health,
             report_html: html.display().to_string(),
         };

@@ -138,9 +138,14 @@ fn figures_table(out: &mut String, r: &Report) {
     );
     for c in &r.channels {
         let ratio = if c.a_w > 0.0 { c.mtvv / c.a_w } else { 0.0 };
+        let assumed = if r.unit_assumed_channels.contains(&c.name) {
+            " <small>(unit not declared: m/s² assumed)</small>"
+        } else {
+            ""
+        };
         let _ = write!(
             out,
-            "<tr><td>{}</td><td>{}</td><td>{:.2}</td><td>{:.4}</td><td>{:.4}</td><td>{:.4}</td>\
+            "<tr><td>{}{assumed}</td><td>{}</td><td>{:.2}</td><td>{:.4}</td><td>{:.4}</td><td>{:.4}</td>\
              <td>{:.4}</td><td>{ratio:.2}</td><td>{:.2}</td><td>{}</td></tr>",
             esc(&c.name),
             c.weighting.name(),
