@@ -8,7 +8,7 @@ use std::path::PathBuf;
 
 /// Argument ids (field names) of [`ExcitationArgs`], the flattened [`InputArgs`] included: the
 /// members of its argument group (a test checks that the list is complete).
-const ARG_IDS: [&str; 18] = [
+const ARG_IDS: [&str; 19] = [
     "excitation",
     "rms",
     "band",
@@ -23,6 +23,7 @@ const ARG_IDS: [&str; 18] = [
     "columns",
     "units",
     "fs",
+    "ignore_time",
     "sensitivity",
     "topic",
     "road_class",
