@@ -267,6 +267,23 @@ fn attr(el: &str, name: &str) -> Option<f64> {
     el[i..].split('"').next()?.parse().ok()
 }
 
+/// The boxes `(x0, y0, x1, y1)` of an SVG's `<rect>` elements that `keep` selects.
+fn svg_rects(svg: &str, keep: impl Fn(&str) -> bool) -> Vec<(f64, f64, f64, f64)> {
+    svg.split("<rect")
+        .skip(1)
+        .filter(|r| keep(r))
+        .map(|r| {
+            let (x, y) = (attr(r, "x").unwrap(), attr(r, "y").unwrap());
+            (
+                x,
+                y,
+                x + attr(r, "width").unwrap(),
+                y + attr(r, "height").unwrap(),
+            )
+        })
+        .collect()
+}
+
 /// (element text up to `>`, text content) of every `<text>` of an SVG file.
 fn svg_text_elements(svg: &str) -> Vec<(String, String)> {
     svg.split("<text")
@@ -355,20 +372,7 @@ fn chart_texts_leave_the_curves_and_bars_clear() {
     assert!(!texts.iter().any(|t| t.contains("e5")), "{texts:?}");
     // Both legends (grey-bordered boxes) are crossed by no curve but their own marks, which lie
     // wholly inside them.
-    let legends: Vec<(f64, f64, f64, f64)> = svg
-        .split("<rect")
-        .skip(1)
-        .filter(|r| r.contains("stroke=\"#A0A0A0\""))
-        .map(|r| {
-            let (x, y) = (attr(r, "x").unwrap(), attr(r, "y").unwrap());
-            (
-                x,
-                y,
-                x + attr(r, "width").unwrap(),
-                y + attr(r, "height").unwrap(),
-            )
-        })
-        .collect();
+    let legends = svg_rects(&svg, |r| r.contains("stroke=\"#A0A0A0\""));
     assert_eq!(legends.len(), 2, "{svg}");
     let lines = curves(&svg);
     assert!(lines.len() >= 3);
@@ -410,20 +414,9 @@ fn chart_texts_leave_the_curves_and_bars_clear() {
         "svg",
     ]));
     let svg = std::fs::read_to_string(out.join("comfort.svg")).unwrap();
-    let bars: Vec<(f64, f64, f64, f64)> = svg
-        .split("<rect")
-        .skip(1)
-        .filter(|r| r.contains("opacity=\"1\"") && !r.contains("#FFFFFF"))
-        .map(|r| {
-            let (x, y) = (attr(r, "x").unwrap(), attr(r, "y").unwrap());
-            (
-                x,
-                y,
-                x + attr(r, "width").unwrap(),
-                y + attr(r, "height").unwrap(),
-            )
-        })
-        .collect();
+    let bars = svg_rects(&svg, |r| {
+        r.contains("opacity=\"1\"") && !r.contains("#FFFFFF")
+    });
     assert_eq!(bars.len(), 6, "{svg}");
     let labels: Vec<(String, String)> = svg_text_elements(&svg)
         .into_iter()
