@@ -63,6 +63,16 @@ fn a_mistyped_option_is_one_error_line_with_the_suggestion_for_every_command() {
         ),
         (&["anlyze", "x.csv"], "did you mean `analyze`?"),
         (&["analyze", "x.csv", "--ignore-time"], "needs --fs"),
+        // A long option typed with one dash, as MATLAB and scipy users do.
+        (
+            &["analyze", "x.csv", "-fs", "1000"],
+            "-fs: not an option of `wbv analyze` (long options take two dashes); did you mean `--fs`?",
+        ),
+        // A negative value reaches the option's own check, not "unknown option -1".
+        (
+            &["report", "x.csv", "--exposure-hours", "-1"],
+            "--exposure-hours: -1 h; expected a daily exposure in hours > 0",
+        ),
     ] {
         let out = wbv(args);
         let err = text(&out.stderr);

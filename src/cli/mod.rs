@@ -180,14 +180,39 @@ pub(crate) fn print_json<T: serde::Serialize>(
     Ok(())
 }
 
+/// The command line's parser: every subcommand takes a negative number as an option's value, so
+/// that `--exposure-hours -1` reaches the option's own check (and its error) instead of being
+/// taken for an unknown option `-1`.
+fn command() -> clap::Command {
+    use clap::CommandFactory;
+    Cli::command().mut_subcommands(|s| s.allow_negative_numbers(true))
+}
+
 /// The command the user typed (`wbv analyze`): the first argument when it names a subcommand,
 /// else `wbv`.
 fn typed_command() -> String {
-    use clap::CommandFactory;
     match std::env::args().nth(1) {
-        Some(a) if Cli::command().find_subcommand(&a).is_some() => format!("wbv {a}"),
+        Some(a) if command().find_subcommand(&a).is_some() => format!("wbv {a}"),
         _ => "wbv".into(),
     }
+}
+
+/// The single-dash word the user typed and the long option it means (`-fs` → `--fs`), when clap
+/// read it as the unknown short option `short` (`-f`) and the typed command has that long option.
+fn single_dash_long(short: &str) -> Option<(String, String)> {
+    let cmd = command();
+    let sub = std::env::args()
+        .nth(1)
+        .and_then(|a| cmd.find_subcommand(&a).cloned())?;
+    std::env::args().skip(2).find_map(|a| {
+        let word = a.split('=').next()?;
+        let name = word.strip_prefix('-')?;
+        (word.len() > short.len() && word.starts_with(short) && !name.starts_with('-'))
+            .then_some(())?;
+        sub.get_arguments()
+            .any(|arg| arg.get_long() == Some(name))
+            .then(|| (word.to_string(), format!("--{name}")))
+    })
 }
 
 /// A clap context value as text: strings joined by `, `.
@@ -223,8 +248,18 @@ pub(crate) fn argument_error(e: &clap::Error) -> String {
     };
     let arg = flag(get(ContextKind::InvalidArg).unwrap_or_default());
     let value = get(ContextKind::InvalidValue).unwrap_or_default();
+    // `-fs` read as `-f`: named as typed, with the long option it means instead of clap's tip
+    // (pass `-f` as a value after `--`), which misleads there.
+    let dash = (e.kind() == ErrorKind::UnknownArgument)
+        .then(|| single_dash_long(&arg))
+        .flatten();
     let mut what = match e.kind() {
-        ErrorKind::UnknownArgument => format!("{arg}: not an option of `{cmd}`"),
+        ErrorKind::UnknownArgument => match &dash {
+            Some((word, _)) => {
+                format!("{word}: not an option of `{cmd}` (long options take two dashes)")
+            }
+            None => format!("{arg}: not an option of `{cmd}`"),
+        },
         ErrorKind::InvalidSubcommand => format!(
             "`{}` is not a wbv command",
             get(ContextKind::InvalidSubcommand).unwrap_or_default()
@@ -271,7 +306,8 @@ pub(crate) fn argument_error(e: &clap::Error) -> String {
     };
     let suggestion = get(ContextKind::SuggestedArg)
         .or_else(|| get(ContextKind::SuggestedSubcommand))
-        .or_else(|| get(ContextKind::SuggestedValue));
+        .or_else(|| get(ContextKind::SuggestedValue))
+        .or_else(|| dash.map(|(_, long)| long));
     if let Some(s) = suggestion {
         what += &format!("; did you mean `{s}`?");
     } else if let Some(s) = get(ContextKind::Suggested) {
@@ -282,7 +318,10 @@ pub(crate) fn argument_error(e: &clap::Error) -> String {
 
 /// Runs the command line; prints errors as one line on stderr.
 pub fn main() -> ExitCode {
-    let cli = match Cli::try_parse() {
+    let parsed = command()
+        .try_get_matches()
+        .and_then(|m| <Cli as clap::FromArgMatches>::from_arg_matches(&m));
+    let cli = match parsed {
         Ok(cli) => cli,
         Err(e)
             if matches!(
