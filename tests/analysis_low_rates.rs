@@ -180,14 +180,21 @@ fn gravity_and_g_units_are_named_in_the_notes() {
         .collect();
     let with_g: Vec<f64> = vib.iter().map(|v| v + 9.80665).collect();
     let in_g: Vec<f64> = vib.iter().map(|v| 1.0 + v / 9.80665).collect();
-    let r = report(
-        fs,
-        &[
-            ("a_seat_z", &with_g),
-            ("a_back_x", &in_g),
-            ("a_seat_x", &vib),
-        ],
-    );
+    let mut s = Signals::new(fs, "test");
+    for (n, x) in [
+        ("a_seat_z", &with_g),
+        ("a_back_x", &in_g),
+        ("a_seat_x", &vib),
+    ] {
+        s.push(n, x.to_vec()).unwrap();
+    }
+    // None of the three declared a unit (as a file without units read by `wbv analyze`).
+    let opts = Options {
+        units_assumed: vec!["a_seat_z".into(), "a_back_x".into(), "a_seat_x".into()],
+        ..Options::default()
+    };
+    let r = Report::from_signals(&s, &opts).unwrap();
+    assert!(r.unit_assumed && r.unit_assumed_channels.len() == 3);
     let notes = r.notes.join("\n");
     assert!(
         notes.contains("a_seat_z") && notes.contains("1 g"),

@@ -201,7 +201,16 @@ fn every_subcommand_prints_one_json_document() {
         (
             "analyze",
             args(&["analyze", "run", "--json"]),
-            &["channels", "total_value", "comfort", "units", "written"],
+            &[
+                "channels",
+                "total_value",
+                "comfort",
+                "units",
+                "written",
+                "unit_assumed",
+                "unit_assumed_channels",
+                "health",
+            ],
         ),
         (
             "exposure",
@@ -250,6 +259,7 @@ fn every_subcommand_prints_one_json_document() {
                 "comfort",
                 "gap",
                 "units",
+                "unit_assumed",
             ],
         ),
         (
@@ -304,7 +314,13 @@ fn every_subcommand_prints_one_json_document() {
         (
             "sweep",
             sweep(&["--excitation", "sine-4hz", "--duration", "2", "--json"]),
-            &["params", "points", "written"],
+            &[
+                "params",
+                "points",
+                "written",
+                "elapsed_s",
+                "seconds_per_point",
+            ],
         ),
         (
             "merge-shards",

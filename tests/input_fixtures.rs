@@ -37,6 +37,7 @@ fn every_format_reads_the_samples_its_writer_wrote() {
             sensitivity: strings(o, "sensitivity"),
             fs: o.get("fs_option").and_then(|v| v.as_f64()),
             topic: o.get("topic").and_then(|v| v.as_str()).map(str::to_string),
+            ignore_time: o.get("ignore_time").and_then(|v| v.as_bool()) == Some(true),
             format: None,
         };
         // Text formats printed with 12 significant digits (UFF58 ASCII) hold to 5e-12 relative;

@@ -207,6 +207,7 @@ fn seeds() -> Vec<(Vec<u8>, String, Options)> {
                 sensitivity: strs("sensitivity"),
                 fs: o.get("fs_option").and_then(|v| v.as_f64()),
                 topic: o.get("topic").and_then(|v| v.as_str()).map(str::to_string),
+                ignore_time: o.get("ignore_time").and_then(|v| v.as_bool()) == Some(true),
                 format: None,
             };
             // Keep seeds small: the first 64 KiB (a truncated file is a mutation of its own).

@@ -84,12 +84,17 @@ fn analyze_plots_are_clean_and_byte_identical() {
         );
         assert_clean(&fa);
     }
-    // The PSD's log axes: decades labelled, the 1e-14 noise floor of the input not reached.
+    // The PSD's log axes: decades labelled, the 1e-14 noise floor of the input not reached; the
+    // frequency axis plain, the PSD axis (below 10⁻³) all in one `e` notation.
     let psd = svg_texts(&a.join("psd.svg"));
-    for label in ["1", "10", "0.01"] {
+    assert!(!psd.iter().any(|t| t == "0.01" || t == "0.1"), "{psd:?}");
+    for label in ["1", "10", "1e-2", "1e-1", "1e0"] {
         assert!(psd.iter().any(|t| t == label), "psd label {label}: {psd:?}");
     }
-    assert!(!psd.iter().any(|t| t.starts_with("1e-1")), "{psd:?}");
+    assert!(
+        !psd.iter().any(|t| t.starts_with("1e-1") && t.len() > 4),
+        "{psd:?}"
+    );
     // Health words and limits on the Annex B chart, and the comfort chart's a_v.
     let health = svg_texts(&a.join("health.svg")).join(" ");
     assert!(
@@ -253,4 +258,176 @@ fn report_is_self_contained_and_worded_from_the_standard() {
     // Refused without --force, before the work.
     let r = wbv(&["report", &run]);
     assert!(!r.status.success());
+}
+
+/// The numbers of an SVG element's attribute `name` (`x="87"`).
+fn attr(el: &str, name: &str) -> Option<f64> {
+    let key = format!(" {name}=\"");
+    let i = el.find(&key)? + key.len();
+    el[i..].split('"').next()?.parse().ok()
+}
+
+/// The boxes `(x0, y0, x1, y1)` of an SVG's `<rect>` elements that `keep` selects.
+fn svg_rects(svg: &str, keep: impl Fn(&str) -> bool) -> Vec<(f64, f64, f64, f64)> {
+    svg.split("<rect")
+        .skip(1)
+        .filter(|r| keep(r))
+        .map(|r| {
+            let (x, y) = (attr(r, "x").unwrap(), attr(r, "y").unwrap());
+            (
+                x,
+                y,
+                x + attr(r, "width").unwrap(),
+                y + attr(r, "height").unwrap(),
+            )
+        })
+        .collect()
+}
+
+/// (element text up to `>`, text content) of every `<text>` of an SVG file.
+fn svg_text_elements(svg: &str) -> Vec<(String, String)> {
+    svg.split("<text")
+        .skip(1)
+        .filter_map(|t| {
+            let end = t.find('>')?;
+            let body = &t[end + 1..];
+            Some((
+                t[..end].to_string(),
+                body[..body.find("</text>")?].trim().to_string(),
+            ))
+        })
+        .collect()
+}
+
+/// A text's box in SVG pixels, estimated here on its own: anchored at its left end at mid height
+/// (`dy="0.5ex"`), 0.62 em a character at the 12 px the plot asks for, cap height above and
+/// descenders below.
+fn text_rect(el: &str, text: &str) -> (f64, f64, f64, f64) {
+    let (x, y) = (attr(el, "x").unwrap(), attr(el, "y").unwrap());
+    (
+        x,
+        y - 8.0,
+        x + 0.62 * 12.0 * text.chars().count() as f64,
+        y + 6.0,
+    )
+}
+
+/// Whether the segment a–b comes into box r, sampled every 0.25 px (a check of its own, apart
+/// from the plot's clipping test).
+fn crosses(a: (f64, f64), b: (f64, f64), r: (f64, f64, f64, f64)) -> bool {
+    let n = (((b.0 - a.0).hypot(b.1 - a.1)) * 4.0).ceil().max(1.0) as usize;
+    (0..=n).any(|k| {
+        let t = k as f64 / n as f64;
+        let (x, y) = (a.0 + t * (b.0 - a.0), a.1 + t * (b.1 - a.1));
+        x > r.0 && x < r.2 && y > r.1 && y < r.3
+    })
+}
+
+/// The curves of an SVG chart (2 px polylines) as point lists.
+fn curves(svg: &str) -> Vec<Vec<(f64, f64)>> {
+    svg.split("<polyline")
+        .skip(1)
+        .filter(|p| p.contains("stroke-width=\"2\""))
+        .map(|p| {
+            let i = p.find("points=\"").unwrap() + 8;
+            p[i..]
+                .split('"')
+                .next()
+                .unwrap()
+                .split_whitespace()
+                .map(|xy| {
+                    let (x, y) = xy.split_once(',').unwrap();
+                    (x.parse().unwrap(), y.parse().unwrap())
+                })
+                .collect()
+        })
+        .collect()
+}
+
+#[test]
+fn chart_texts_leave_the_curves_and_bars_clear() {
+    let dir = tempfile::tempdir().unwrap();
+    let plot = dir.path().join("sweep");
+    ok(&wbv(&[
+        "sweep",
+        "--model",
+        "reference",
+        "--param",
+        "link.cushion.k",
+        "--values",
+        "20000:200000:9",
+        "--excitation",
+        "bell-214",
+        "--plot",
+        plot.to_str().unwrap(),
+        "--plot-format",
+        "svg",
+    ]));
+    let svg = std::fs::read_to_string(plot.join("iso.svg")).unwrap();
+    // One notation on the stiffness axis: 50000 … 200000, no 1e5 beside them.
+    let texts = svg_texts(&plot.join("iso.svg"));
+    for t in ["50000", "100000", "150000", "200000"] {
+        assert!(texts.iter().any(|x| x == t), "{t}: {texts:?}");
+    }
+    assert!(!texts.iter().any(|t| t.contains("e5")), "{texts:?}");
+    // Both legends (grey-bordered boxes) are crossed by no curve but their own marks, which lie
+    // wholly inside them.
+    let legends = svg_rects(&svg, |r| r.contains("stroke=\"#A0A0A0\""));
+    assert_eq!(legends.len(), 2, "{svg}");
+    let lines = curves(&svg);
+    assert!(lines.len() >= 3);
+    for l in &lines {
+        for r in &legends {
+            let inside = l
+                .iter()
+                .all(|p| p.0 >= r.0 && p.0 <= r.2 && p.1 >= r.1 && p.1 <= r.3);
+            if !inside {
+                assert!(
+                    !l.windows(2).any(|w| crosses(w[0], w[1], *r)),
+                    "a curve crosses the legend at {r:?}"
+                );
+            }
+        }
+    }
+    // The comfort bands' labels: no curve passes through them.
+    for (el, t) in svg_text_elements(&svg) {
+        if t.ends_with("uncomfortable") {
+            let r = text_rect(&el, &t);
+            for l in &lines {
+                assert!(
+                    !l.windows(2).any(|w| crosses(w[0], w[1], r)),
+                    "`{t}` at {r:?}"
+                );
+            }
+        }
+    }
+
+    // The report's comfort chart: each range's label clear of every bar.
+    let run = simulate(dir.path());
+    let out = dir.path().join("analysis");
+    ok(&wbv(&[
+        "analyze",
+        &run,
+        "--plot",
+        out.to_str().unwrap(),
+        "--plot-format",
+        "svg",
+    ]));
+    let svg = std::fs::read_to_string(out.join("comfort.svg")).unwrap();
+    let bars = svg_rects(&svg, |r| {
+        r.contains("opacity=\"1\"") && !r.contains("#FFFFFF")
+    });
+    assert_eq!(bars.len(), 6, "{svg}");
+    let labels: Vec<(String, String)> = svg_text_elements(&svg)
+        .into_iter()
+        .filter(|(_, t)| t.ends_with("m/s²)"))
+        .collect();
+    assert_eq!(labels.len(), 6);
+    for (el, t) in labels {
+        let r = text_rect(&el, &t);
+        for b in &bars {
+            let overlap = r.0 < b.2 && b.0 < r.2 && r.1 < b.3 && b.1 < r.3;
+            assert!(!overlap, "`{t}` at {r:?} runs into the bar {b:?}");
+        }
+    }
 }

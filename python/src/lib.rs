@@ -141,7 +141,7 @@ fn analyze(
                 segment: wbv::analysis::Segment::ResolutionHz(resolution_hz),
                 ..wbv::analysis::WelchOptions::default()
             },
-            units_declared: input.declared(),
+            units_assumed: input.undeclared.clone(),
             ..wbv::analysis::Options::default()
         };
         let report = wbv::analysis::Report::from_signals(&input.signals, &options)?;
@@ -416,8 +416,15 @@ fn sweep(
             None => None,
         };
         let plan = wbv::study::plan::Plan::new(&model, spec, iso.as_ref(), time_domain)?;
+        let start = std::time::Instant::now();
         let pts = plan.run(&model, wbv::study::shard::Shard::default(), &|| {})?;
-        json::sweep(&model.name, &plan, &pts, Vec::new())
+        json::sweep(
+            &model.name,
+            &plan,
+            &pts,
+            Vec::new(),
+            start.elapsed().as_secs_f64(),
+        )
     })?;
     sweep_table(py, document(py, &doc)?.bind(py))
 }

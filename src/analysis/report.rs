@@ -22,9 +22,12 @@ pub struct Options {
     pub tau_s: f64,
     /// Spectral estimation of the one-third-octave bands.
     pub welch: WelchOptions,
-    /// Channels whose unit the file or the user declared (`--units`): their samples are never
-    /// doubted ([`ChannelReport::unit_doubt`]); every other acceleration channel is.
-    pub units_declared: Vec<String>,
+    /// Channels whose unit neither the file nor the user (`--units`) declared, read as m/s²
+    /// (`crate::io::input::Input::undeclared`): every figure of theirs assumes m/s²
+    /// ([`Report::unit_assumed`]) and their samples are checked for another unit
+    /// ([`ChannelReport::unit_doubt`]). Empty (the default) for signals in SI units by
+    /// construction: a simulation, a wbv run.
+    pub units_assumed: Vec<String>,
     /// ISO 2631-5 shocks: asked for even without a crest factor above 9, and the exposure history
     /// of the stress variable R.
     #[serde(default)]
@@ -37,7 +40,7 @@ impl Default for Options {
             exposure_hours: None,
             tau_s: 1.0,
             welch: WelchOptions::default(),
-            units_declared: Vec::new(),
+            units_assumed: Vec::new(),
             shocks: ShockSettings::default(),
         }
     }
@@ -118,6 +121,16 @@ pub struct Report {
     /// Whether the comfort and health verdicts rest on a channel with a [`ChannelReport::unit_doubt`].
     #[serde(default)]
     pub verdict_doubtful: bool,
+    /// Whether any analysed channel's unit was assumed (m/s²) rather than declared by the file or
+    /// `--units`: then every figure of those channels, and every verdict that uses them, assumes
+    /// m/s². No number can tell g from m/s² on a channel without gravity (a mean-free channel in g
+    /// reads 9.81 × too low, its comfort class two or three classes too good), so the assumption
+    /// is stated beside every verdict ([`Report::unit_assumption`]).
+    #[serde(default)]
+    pub unit_assumed: bool,
+    /// The analysed channels whose unit was assumed (m/s²), in the order analysed.
+    #[serde(default)]
+    pub unit_assumed_channels: Vec<String>,
     /// Advice triggered by the figures (crest factor > 9, 6.3.3 ratios).
     pub notes: Vec<String>,
     /// Unit of every numeric key.
@@ -264,7 +277,7 @@ impl Report {
     ) -> Report {
         for c in &mut channels {
             let ac = (c.rms * c.rms - c.mean * c.mean).max(0.0).sqrt();
-            if opts.units_declared.contains(&c.name) {
+            if !opts.units_assumed.contains(&c.name) {
                 continue;
             }
             c.unit_doubt = super::units::looks_like(c.mean, ac).map(|like| {
@@ -321,6 +334,11 @@ impl Report {
             }
             _ => None,
         };
+        let unit_assumed_channels: Vec<String> = channels
+            .iter()
+            .filter(|c| opts.units_assumed.contains(&c.name))
+            .map(|c| c.name.clone())
+            .collect();
         let weighted_bands = channels
             .iter()
             .map(|c| {
@@ -345,10 +363,26 @@ impl Report {
             weighted_bands,
             warnings,
             verdict_doubtful,
+            unit_assumed: !unit_assumed_channels.is_empty(),
+            unit_assumed_channels,
             notes,
             channels,
             units: units(),
         }
+    }
+
+    /// The sentence that goes beside every verdict when a channel's unit was assumed
+    /// ([`Report::unit_assumed`]): which channels, and what to give; None when every unit was
+    /// declared.
+    pub fn unit_assumption(&self) -> Option<String> {
+        self.unit_assumed.then(|| {
+            let names = self.unit_assumed_channels.join(", ");
+            format!(
+                "assumes m/s²: no unit was declared for {names}; data in g would read 9.81 × too \
+                 low and their verdicts several classes too mild: give --units (m/s2, g, mg or \
+                 mm/s2, or CHANNEL=UNIT)"
+            )
+        })
     }
 
     /// Comfort class of the total value (ISO 2631-1 Annex C; rule in [`comfort`]).

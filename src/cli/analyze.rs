@@ -19,15 +19,14 @@ pub struct Args {
     #[arg(long)]
     json: bool,
     /// Write the run's figures into this directory (time histories, PSDs, weighted bands, running
-    /// r.m.s., transmissibilities, comfort and, with --exposure-hours, health).
+    /// r.m.s., transmissibilities, comfort and health).
     #[arg(long, value_name = "DIR")]
     plot: Option<PathBuf>,
     /// Plot file format.
     #[arg(long, default_value = "png", value_parser = ["png", "svg"])]
     plot_format: String,
-    /// Daily exposure in hours for the health figures (A(8), VDV, caution zone).
-    #[arg(long)]
-    exposure_hours: Option<f64>,
+    #[command(flatten)]
+    exposure: super::ExposureArg,
     /// Spectral resolution of the Welch PSD in Hz.
     #[arg(long, default_value_t = 0.125)]
     resolution: f64,
@@ -53,6 +52,7 @@ pub fn run(args: Args) -> wbv::Result<()> {
             }
         }
     }
+    let exposure_hours = args.exposure.hours()?;
     let ow = Overwrite::from_force(args.force);
     // Refuse an overwrite before any work.
     let plot = match &args.plot {
@@ -65,7 +65,6 @@ pub fn run(args: Args) -> wbv::Result<()> {
     };
     let start = std::time::Instant::now();
     let input = wbv::measurement::read(&args.path, &args.input.options()?)?;
-    let declared = input.declared();
     let signals = input.signals;
     let loaded = start.elapsed().as_secs_f64();
     let welch = WelchOptions {
@@ -74,9 +73,9 @@ pub fn run(args: Args) -> wbv::Result<()> {
         ..WelchOptions::default()
     };
     let opts = Options {
-        exposure_hours: args.exposure_hours,
+        exposure_hours: Some(exposure_hours),
         welch,
-        units_declared: declared,
+        units_assumed: input.undeclared.clone(),
         shocks: args.shocks.settings()?,
         ..Options::default()
     };
@@ -123,6 +122,10 @@ pub(crate) fn print_table(r: &Report) {
         "{}: {:.1} s at {} Hz",
         r.source, r.duration_s, r.sample_rate_hz
     );
+    let assumed = r.unit_assumption();
+    if let Some(a) = &assumed {
+        println!("UNIT NOT DECLARED: every figure below {a}");
+    }
     println!(
         "  {:<12} {:>4} {:>5} {:>10} {:>10} {:>11} {:>10} {:>8} {:>11}",
         "channel",
@@ -136,9 +139,15 @@ pub(crate) fn print_table(r: &Report) {
         "MSDV m/s^1.5"
     );
     for c in &r.channels {
+        // A channel whose unit was assumed is marked `*`: its figures assume m/s².
+        let name = if r.unit_assumed_channels.contains(&c.name) {
+            format!("{} *", c.name)
+        } else {
+            c.name.clone()
+        };
         println!(
             "  {:<12} {:>4} {:>5.2} {:>10.4} {:>10.4} {:>11.4} {:>10.4} {:>8.2} {:>11}",
-            c.name,
+            name,
             c.weighting.name(),
             c.k,
             c.rms,
@@ -149,8 +158,17 @@ pub(crate) fn print_table(r: &Report) {
             c.msdv.map_or("-".into(), |m| format!("{m:.4}"))
         );
     }
+    if assumed.is_some() {
+        println!("  * unit not declared: read as m/s²");
+    }
+    // Every verdict line carries the unit assumption when there is one.
+    let assumes = if assumed.is_some() {
+        " (assumes m/s²: unit not declared)"
+    } else {
+        ""
+    };
     println!(
-        "\nComfort ({}): a_v = {:.4} m/s², class: {}{}",
+        "\nComfort ({}): a_v = {:.4} m/s², class: {}{}{assumes}",
         r.comfort_place,
         r.total_value,
         r.comfort,
@@ -165,8 +183,11 @@ pub(crate) fn print_table(r: &Report) {
         println!("SEAT (a_seat_z / a_base_z, Wk): {s:.1} %");
     }
     if let Some(h) = &r.health {
-        for line in h.statement() {
+        for (i, line) in h.statement().iter().enumerate() {
             println!("{line}");
+            if i == 0 && assumed.is_some() {
+                println!("  assumes m/s²: unit not declared (see UNIT NOT DECLARED above)");
+            }
         }
         if r.verdict_doubtful {
             println!(

@@ -22,6 +22,7 @@ mod sensitivity;
 mod simulate;
 mod sweep;
 
+use clap::error::{ContextKind, ContextValue, ErrorKind};
 use clap::{Parser, Subcommand};
 use std::process::ExitCode;
 
@@ -98,6 +99,36 @@ impl ModelArg {
     }
 }
 
+/// The daily exposure of the health assessment: one option and one default for every command
+/// that assesses health (`analyze`, `report`, `run`).
+#[derive(Debug, Clone, clap::Args)]
+pub struct ExposureArg {
+    /// Daily exposure to this vibration in hours, for the health assessment (ISO 2631-1 clause 7
+    /// and Annex B; A(8) and VDV of Directive 2002/44/EC). Default 8 h, a working day, in
+    /// `wbv analyze`, `wbv report` and `wbv run` alike; the health section states the exposure it
+    /// assumes and after how many hours each action and limit value is reached.
+    #[arg(
+        long = "exposure-hours",
+        value_name = "H",
+        default_value_t = wbv::analysis::health::DEFAULT_EXPOSURE_HOURS
+    )]
+    pub hours: f64,
+}
+
+impl ExposureArg {
+    /// The exposure in hours, refused unless finite and > 0.
+    pub fn hours(&self) -> wbv::Result<f64> {
+        if self.hours.is_finite() && self.hours > 0.0 {
+            Ok(self.hours)
+        } else {
+            Err(wbv::Error::parameter(
+                "--exposure-hours",
+                format!("{} h; expected a daily exposure in hours > 0", self.hours),
+            ))
+        }
+    }
+}
+
 /// The time-domain run options shared by the commands that simulate (`simulate`, `sweep`, `foam`).
 #[derive(Debug, Clone, clap::Args)]
 pub struct TimeArgs {
@@ -165,9 +196,164 @@ pub(crate) fn print_document(doc: &wbv::report::json::Document) {
     println!("{}", doc.text);
 }
 
+/// The command line's parser: every subcommand takes a negative number as an option's value, so
+/// that `--exposure-hours -1` reaches the option's own check (and its error) instead of being
+/// taken for an unknown option `-1`.
+fn command() -> clap::Command {
+    use clap::CommandFactory;
+    Cli::command().mut_subcommands(|s| s.allow_negative_numbers(true))
+}
+
+/// The command the user typed (`wbv analyze`): the first argument when it names a subcommand,
+/// else `wbv`.
+fn typed_command() -> String {
+    match std::env::args().nth(1) {
+        Some(a) if command().find_subcommand(&a).is_some() => format!("wbv {a}"),
+        _ => "wbv".into(),
+    }
+}
+
+/// The single-dash word the user typed and the long option it means (`-fs` → `--fs`), when clap
+/// read it as the unknown short option `short` (`-f`) and the typed command has that long option.
+fn single_dash_long(short: &str) -> Option<(String, String)> {
+    let cmd = command();
+    let sub = std::env::args()
+        .nth(1)
+        .and_then(|a| cmd.find_subcommand(&a).cloned())?;
+    std::env::args().skip(2).find_map(|a| {
+        let word = a.split('=').next()?;
+        let name = word.strip_prefix('-')?;
+        (word.len() > short.len() && word.starts_with(short) && !name.starts_with('-'))
+            .then_some(())?;
+        sub.get_arguments()
+            .any(|arg| arg.get_long() == Some(name))
+            .then(|| (word.to_string(), format!("--{name}")))
+    })
+}
+
+/// A clap context value as text: strings joined by `, `.
+fn context_text(e: &clap::Error, kind: ContextKind) -> Option<String> {
+    Some(match e.get(kind)? {
+        ContextValue::String(s) => s.clone(),
+        ContextValue::Strings(v) => v.join(", "),
+        ContextValue::StyledStr(s) => s.to_string(),
+        ContextValue::StyledStrs(v) => v
+            .iter()
+            .map(|s| s.to_string())
+            .collect::<Vec<_>>()
+            .join("; "),
+        ContextValue::Number(n) => n.to_string(),
+        ContextValue::Bool(b) => b.to_string(),
+        _ => return None,
+    })
+}
+
+/// A command-line error of the parser as the one line every wbv error is (`wbv: error: …` is
+/// prefixed by [`main`]): what is wrong, with clap's suggestion (`did you mean --units?`) and
+/// where the options are listed. Each error kind is worded here; clap's own multi-line layout
+/// (usage block, tips) is not printed.
+pub(crate) fn argument_error(e: &clap::Error) -> String {
+    let cmd = typed_command();
+    let get = |k| context_text(e, k);
+    // `--fs <FS>` names the option as `--fs` (but for a missing one, whose value is wanted too).
+    let flag = |a: String| match a.split_once(" <") {
+        Some((f, _)) if f.starts_with('-') && e.kind() != ErrorKind::MissingRequiredArgument => {
+            f.to_string()
+        }
+        _ => a,
+    };
+    let arg = flag(get(ContextKind::InvalidArg).unwrap_or_default());
+    let value = get(ContextKind::InvalidValue).unwrap_or_default();
+    // `-fs` read as `-f`: named as typed, with the long option it means instead of clap's tip
+    // (pass `-f` as a value after `--`), which misleads there.
+    let dash = (e.kind() == ErrorKind::UnknownArgument)
+        .then(|| single_dash_long(&arg))
+        .flatten();
+    let mut what = match e.kind() {
+        ErrorKind::UnknownArgument => match &dash {
+            Some((word, _)) => {
+                format!("{word}: not an option of `{cmd}` (long options take two dashes)")
+            }
+            None => format!("{arg}: not an option of `{cmd}`"),
+        },
+        ErrorKind::InvalidSubcommand => format!(
+            "`{}` is not a wbv command",
+            get(ContextKind::InvalidSubcommand).unwrap_or_default()
+        ),
+        ErrorKind::InvalidValue if value.is_empty() => format!("{arg}: a value is required"),
+        ErrorKind::InvalidValue => format!(
+            "{arg}: `{value}` is not one of {}",
+            get(ContextKind::ValidValue).unwrap_or_default()
+        ),
+        ErrorKind::ValueValidation => format!(
+            "{arg}: `{value}`{}",
+            std::error::Error::source(e)
+                .map(|s| format!(": {s}"))
+                .unwrap_or_default()
+        ),
+        ErrorKind::MissingRequiredArgument => format!("`{cmd}` needs {arg}"),
+        ErrorKind::MissingSubcommand => format!(
+            "`{cmd}` needs a command: {}",
+            get(ContextKind::ValidSubcommand).unwrap_or_default()
+        ),
+        ErrorKind::ArgumentConflict => match get(ContextKind::PriorArg).map(flag) {
+            Some(prior) if prior != arg => format!("{arg} cannot be used with {prior}"),
+            _ => format!("{arg} is given more than once"),
+        },
+        ErrorKind::NoEquals => format!("{arg}: give its value with `=`"),
+        ErrorKind::TooManyValues => format!("{arg}: unexpected value `{value}`"),
+        ErrorKind::TooFewValues | ErrorKind::WrongNumberOfValues => format!(
+            "{arg}: {} values given, {} expected",
+            get(ContextKind::ActualNumValues).unwrap_or_default(),
+            get(ContextKind::ExpectedNumValues)
+                .or_else(|| get(ContextKind::MinValues))
+                .unwrap_or_default()
+        ),
+        ErrorKind::InvalidUtf8 => format!("{arg}: not valid UTF-8"),
+        // Any other kind: clap's own first line, without its `error: ` prefix.
+        _ => e
+            .render()
+            .to_string()
+            .lines()
+            .next()
+            .unwrap_or_default()
+            .trim_start_matches("error: ")
+            .to_string(),
+    };
+    let suggestion = get(ContextKind::SuggestedArg)
+        .or_else(|| get(ContextKind::SuggestedSubcommand))
+        .or_else(|| get(ContextKind::SuggestedValue))
+        .or_else(|| dash.map(|(_, long)| long));
+    if let Some(s) = suggestion {
+        what += &format!("; did you mean `{s}`?");
+    } else if let Some(s) = get(ContextKind::Suggested) {
+        what += &format!("; {s}");
+    }
+    format!("{what} (`{cmd} --help` lists the options)")
+}
+
 /// Runs the command line; prints errors as one line on stderr.
 pub fn main() -> ExitCode {
-    let cli = Cli::parse();
+    let parsed = command()
+        .try_get_matches()
+        .and_then(|m| <Cli as clap::FromArgMatches>::from_arg_matches(&m));
+    let cli = match parsed {
+        Ok(cli) => cli,
+        Err(e)
+            if matches!(
+                e.kind(),
+                ErrorKind::DisplayHelp
+                    | ErrorKind::DisplayVersion
+                    | ErrorKind::DisplayHelpOnMissingArgumentOrSubcommand
+            ) =>
+        {
+            e.exit()
+        }
+        Err(e) => {
+            eprintln!("wbv: error: {}", argument_error(&e));
+            return ExitCode::from(2);
+        }
+    };
     let result = match cli.command {
         Command::Analyze(a) => analyze::run(a),
         Command::Exposure(a) => exposure::run(a),

@@ -20,9 +20,8 @@ pub struct Args {
     /// beside a CSV).
     #[arg(long)]
     out: Option<PathBuf>,
-    /// Daily exposure in hours assumed for the health assessment.
-    #[arg(long, default_value_t = wbv::analysis::health::DEFAULT_EXPOSURE_HOURS)]
-    exposure_hours: f64,
+    #[command(flatten)]
+    exposure: super::ExposureArg,
     /// Replace an existing report.
     #[arg(long)]
     force: bool,
@@ -39,7 +38,7 @@ pub struct Args {
 pub fn run(args: Args) -> wbv::Result<()> {
     let out = args.out.clone().unwrap_or_else(|| default_path(&args.run));
     let settings = Settings {
-        exposure_hours: args.exposure_hours,
+        exposure_hours: args.exposure.hours()?,
         gap: args.gap.clone(),
         input: args.input.options()?,
         operations: args
@@ -68,6 +67,9 @@ pub fn run(args: Args) -> wbv::Result<()> {
     }
     for w in &built.report.warnings {
         eprintln!("WARNING: {w}");
+    }
+    if let Some(a) = built.report.unit_assumption() {
+        eprintln!("UNIT NOT DECLARED: every figure and verdict of the report {a}");
     }
     for n in &built.input_notes {
         eprintln!("input: {n}");

@@ -1,5 +1,5 @@
 use std::path::PathBuf;
-use wbv::analysis::health::{self, DEFAULT_EXPOSURE_HOURS};
+use wbv::analysis::health;
 use wbv::record::{RUN_FILE, RecordOptions};
 use wbv::report::json::Written;
 use wbv::scenario::default_scenario;
@@ -10,9 +10,8 @@ pub struct Args {
     /// Run directory (default: the first free `runs/default-s1[-N]`).
     #[arg(long)]
     out: Option<PathBuf>,
-    /// Daily exposure in hours assumed for the health assessment (default: a working day).
-    #[arg(long, default_value_t = DEFAULT_EXPOSURE_HOURS)]
-    exposure_hours: f64,
+    #[command(flatten)]
+    exposure: super::ExposureArg,
     /// Print the result as JSON (`run_dir`, `written`, `analysis`, `health`, `report_html`);
     /// status lines stay on stderr.
     #[arg(long)]
@@ -35,12 +34,7 @@ fn free_dir(stem: &str) -> PathBuf {
 }
 
 pub fn run(args: Args) -> wbv::Result<()> {
-    if !(args.exposure_hours.is_finite() && args.exposure_hours > 0.0) {
-        return Err(wbv::Error::parameter(
-            "--exposure-hours",
-            "expected a daily exposure in hours > 0",
-        ));
-    }
+    let exposure_hours = args.exposure.hours()?;
     let scenario = default_scenario()?;
     let dir = args
         .out
@@ -67,10 +61,10 @@ pub fn run(args: Args) -> wbv::Result<()> {
             .filter(|c| c.place == "seat")
             .map(|c| (c.axis.clone(), c.a_w, c.vdv))
             .collect();
-        health::assess(&axes, r.duration_s, args.exposure_hours)
+        health::assess(&axes, r.duration_s, exposure_hours)
     });
     let settings = wbv::report::Settings {
-        exposure_hours: args.exposure_hours,
+        exposure_hours,
         ..wbv::report::Settings::default()
     };
     wbv::report::write(&mcap, &html, &settings, wbv::io::atomic::Overwrite::Refuse)?;
@@ -81,7 +75,7 @@ pub fn run(args: Args) -> wbv::Result<()> {
         let run = wbv::report::json::Run {
             run_dir: dir.display().to_string(),
             simulated: wbv::report::json::Simulated::of(&scenario, &outcome, written),
-            exposure_hours: args.exposure_hours,
+            exposure_hours,
             health,
             report_html: html.display().to_string(),
         };

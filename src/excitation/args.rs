@@ -10,7 +10,7 @@ use std::path::PathBuf;
 /// Argument ids (field names) of [`ExcitationArgs`], the flattened [`InputArgs`] included: the
 /// members of its argument group (a test checks that the list is complete).
 #[cfg(feature = "cli")]
-const ARG_IDS: [&str; 18] = [
+const ARG_IDS: [&str; 19] = [
     "excitation",
     "rms",
     "band",
@@ -25,6 +25,7 @@ const ARG_IDS: [&str; 18] = [
     "columns",
     "units",
     "fs",
+    "ignore_time",
     "sensitivity",
     "topic",
     "road_class",
@@ -50,9 +51,16 @@ const ARG_IDS: [&str; 18] = [
          MCAP field: `--column a_base_z=\"Floor Z\"` (`t_s=NAME`: the time column)"
     )),
     mut_arg("units", |a| a.help(
-        "recorded: unit of the samples, `g`, `mg`, `m/s2`, for all channels or `CHANNEL=UNIT`"
+        "recorded: unit of the samples, `m/s2`, `g`, `mg`, `mm/s2`, for all channels or \
+         `CHANNEL=UNIT`"
     )),
-    mut_arg("fs", |a| a.help("recorded: sample rate in Hz of a file without time stamps")),
+    mut_arg("fs", |a| a.help(
+        "recorded: sample rate in Hz of a file without time stamps (with them it must agree, \
+         unless --ignore-time)"
+    )),
+    mut_arg("ignore_time", |a| a.help(
+        "recorded: take --fs over the file's time column or time stamps"
+    )),
     mut_arg("sensitivity", |a| a.help(
         "recorded, WAV: value of full scale of a channel, `CHANNEL=VALUE`"
     )),
@@ -150,6 +158,7 @@ fn refuse_unused(args: &ExcitationArgs, kind: &str) -> Result<()> {
         ("--column", !r.columns.is_empty(), &["recorded"]),
         ("--units", !r.units.is_empty(), &["recorded"]),
         ("--fs", r.fs.is_some(), &["recorded"]),
+        ("--ignore-time", r.ignore_time, &["recorded"]),
         ("--sensitivity", !r.sensitivity.is_empty(), &["recorded"]),
         ("--topic", r.topic.is_some(), &["recorded"]),
     ];

@@ -1,7 +1,8 @@
 //! Tick positions and labels. plotters' own key points on a log axis are computed by repeated
 //! multiplication and printed with `{}` (`1.0000000000000002e-14`), and it labels a short log range
 //! at one or two points only; here every tick is the f64 nearest a short decimal (parsed from its
-//! text), so its label is that text.
+//! text), so its label is that text. The labels of one axis share one [`Notation`]: all plain
+//! decimals or all `m e k`, never `80000` beside `1e5` or `0.001` beside `1e-4`.
 
 use plotters::coord::ranged1d::{AsRangedCoord, DefaultFormatting, KeyPointHint, Ranged};
 use std::ops::Range;
@@ -133,36 +134,76 @@ pub fn linear_ticks(lo: f64, hi: f64) -> Vec<f64> {
         .collect()
 }
 
-/// A short decimal label of a tick value: at most four significant digits, no float noise,
-/// `e` notation outside 10⁻³…10⁵ (`1e-14`, `2.5e6`), `0` for zero and never `-0`.
-pub fn label(v: f64) -> String {
-    if !v.is_finite() {
-        return String::new();
-    }
-    if v == 0.0 || v.abs() < 1e-300 {
-        return "0".into();
-    }
-    let a = v.abs();
-    if (1e-3..1e5).contains(&a) {
-        // Fewest decimals that give back v to 4 significant digits.
-        let digits = (4 - 1 - a.log10().floor() as i32).max(0) as usize;
-        let text = format!("{v:.digits$}");
-        let text = if text.contains('.') {
-            text.trim_end_matches('0').trim_end_matches('.').to_string()
+/// How every tick label of one axis is written.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Notation {
+    /// Plain decimals (`0.005`, `150000`): every non-zero tick within 10⁻³ ≤ |v| < 10⁶.
+    Plain,
+    /// `m e k` (`5e4`, `1.5e5`, `1e-4`) for every tick, when any lies outside that range.
+    Exponent,
+}
+
+impl Notation {
+    /// The one notation of an axis with labelled ticks `ticks`: plain when every finite,
+    /// non-zero tick has at most six integer digits and its first significant digit at most
+    /// three places after the point, else exponent for all of them.
+    pub fn of(ticks: &[f64]) -> Notation {
+        let plain = ticks
+            .iter()
+            .filter(|v| v.is_finite() && v.abs() >= 1e-300)
+            .all(|v| (1e-3..1e6).contains(&v.abs()));
+        if plain {
+            Notation::Plain
         } else {
-            text
-        };
-        if text == "-0" { "0".into() } else { text }
-    } else {
-        let e = a.log10().floor() as i32;
-        let m = v / 10f64.powi(e);
-        let mut mt = format!("{m:.3}");
-        mt = mt.trim_end_matches('0').trim_end_matches('.').to_string();
-        // Rounding can reach 10 (9.9996 → "10.000").
-        if mt == "10" || mt == "-10" {
-            return format!("{}e{}", if v < 0.0 { "-1" } else { "1" }, e + 1);
+            Notation::Exponent
         }
-        format!("{mt}e{e}")
+    }
+
+    /// A short label of tick value `v`: at most four significant digits, no float noise, `0`
+    /// for zero and never `-0`.
+    pub fn label(self, v: f64) -> String {
+        if !v.is_finite() {
+            return String::new();
+        }
+        if v == 0.0 || v.abs() < 1e-300 {
+            return "0".into();
+        }
+        let a = v.abs();
+        match self {
+            Notation::Plain => {
+                // Fewest decimals that give back v to 4 significant digits.
+                let digits = (4 - 1 - a.log10().floor() as i32).max(0) as usize;
+                let text = format!("{v:.digits$}");
+                let text = if text.contains('.') {
+                    text.trim_end_matches('0').trim_end_matches('.').to_string()
+                } else {
+                    text
+                };
+                if text == "-0" { "0".into() } else { text }
+            }
+            Notation::Exponent => {
+                let e = a.log10().floor() as i32;
+                let m = v / 10f64.powi(e);
+                let mut mt = format!("{m:.3}");
+                mt = mt.trim_end_matches('0').trim_end_matches('.').to_string();
+                // Rounding can reach 10 (9.9996 → "10.000").
+                if mt == "10" || mt == "-10" {
+                    return format!("{}e{}", if v < 0.0 { "-1" } else { "1" }, e + 1);
+                }
+                format!("{mt}e{e}")
+            }
+        }
+    }
+}
+
+/// A short decimal label of one value on its own (a tick without its axis): plain within
+/// 10⁻³ ≤ |v| < 10⁵, else `e` notation (`1e-14`, `2.5e6`); see [`Notation::label`].
+pub fn label(v: f64) -> String {
+    let a = v.abs();
+    if (1e5..1e6).contains(&a) {
+        Notation::Exponent.label(v)
+    } else {
+        Notation::of(&[v]).label(v)
     }
 }
 
@@ -182,6 +223,26 @@ mod tests {
         assert_eq!(label(0.315), "0.315");
         assert_eq!(label(-180.0), "-180");
         assert_eq!(label(1234.6), "1235");
+    }
+
+    #[test]
+    fn one_notation_per_axis() {
+        // Expected texts written by hand: a stiffness axis, a PSD axis, a plain axis.
+        let n = Notation::of(&[50000.0, 100000.0, 150000.0, 200000.0]);
+        let t: Vec<String> = [50000.0, 100000.0, 150000.0, 200000.0]
+            .iter()
+            .map(|v| n.label(*v))
+            .collect();
+        assert_eq!(t, ["50000", "100000", "150000", "200000"]);
+        let ticks = [1e-4, 1e-3, 1e-2, 0.1];
+        let n = Notation::of(&ticks);
+        let t: Vec<String> = ticks.iter().map(|v| n.label(*v)).collect();
+        assert_eq!(t, ["1e-4", "1e-3", "1e-2", "1e-1"]);
+        let ticks = [0.0, 2e5, 4e5, 6e5, 8e5, 1e6];
+        let n = Notation::of(&ticks);
+        let t: Vec<String> = ticks.iter().map(|v| n.label(*v)).collect();
+        assert_eq!(t, ["0", "2e5", "4e5", "6e5", "8e5", "1e6"]);
+        assert_eq!(Notation::of(&[0.0, 0.5, 1.0]), Notation::Plain);
     }
 
     #[test]

@@ -68,6 +68,7 @@ impl ColourBar {
             (self.lo - 0.5, self.lo + 0.5)
         };
         let ticks = axis::linear_ticks(lo, hi);
+        let notation = axis::Notation::of(&ticks);
         let mut ctx = ChartBuilder::on(area)
             .margin_top(40)
             .margin_bottom(48)
@@ -80,7 +81,7 @@ impl ColourBar {
             .disable_mesh()
             .disable_x_axis()
             .y_desc(self.label.as_str())
-            .y_label_formatter(&|v| axis::label(*v))
+            .y_label_formatter(&|v| notation.label(*v))
             .label_style(("sans-serif", 13))
             .axis_desc_style(("sans-serif", 14))
             .draw()

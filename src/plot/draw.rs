@@ -1,6 +1,7 @@
 //! A [`Chart`] drawn on any plotters backend, and [`Panels`] of charts laid out in a grid.
 
-use super::{Axis, Chart, Series, Style, register_font};
+use super::place::{Obstacles, Rect, text_box};
+use super::{Axis, Chart, Rule, Series, Style, register_font};
 use super::{Rgb, axis, colour};
 use plotters::chart::SeriesAnno;
 use plotters::coord::Shift;
@@ -170,8 +171,9 @@ fn draw_header<DB: DrawingBackend>(
     .map_err(message)
 }
 
-/// Everything inside the axes, in drawing order: mesh, spans, curves, rules, notes, legend. `x`
-/// and `y` are the axis ranges `(lo, hi)` in data units.
+/// Everything inside the axes, in drawing order: mesh, spans, curves, rules, then the texts
+/// placed where they cover no curve ([`place`]): legend, span labels, rule labels, notes. `x` and
+/// `y` are the axis ranges `(lo, hi)` in data units.
 fn draw_plot<'a, DB, X, Y>(
     mut ctx: ChartContext<'a, DB, Cartesian2d<X, Y>>,
     chart: &Chart,
@@ -183,11 +185,14 @@ where
     X: NumberAxis,
     Y: NumberAxis,
 {
+    // One notation per axis, from the labelled ticks drawn.
+    let (xt, yt) = chart.ticks();
+    let (xn, yn) = (axis::Notation::of(&xt), axis::Notation::of(&yt));
     ctx.configure_mesh()
         .x_desc(chart.x_label.as_str())
         .y_desc(chart.y_label.as_str())
-        .x_label_formatter(&|v| axis::label(*v))
-        .y_label_formatter(&|v| axis::label(*v))
+        .x_label_formatter(&|v| xn.label(*v))
+        .y_label_formatter(&|v| yn.label(*v))
         .label_style(("sans-serif", 13))
         .axis_desc_style(("sans-serif", 14))
         .bold_line_style(RGBColor(205, 205, 205))
@@ -199,34 +204,45 @@ where
         chart,
         x,
         y,
+        obstacles: Obstacles::default(),
     };
     plot.spans()?;
     plot.curves()?;
     plot.rules()?;
+    let legend = plot.legend_place()?;
+    plot.span_labels()?;
+    plot.rule_labels()?;
     plot.notes()?;
-    if chart.series.iter().any(|s| !s.label.is_empty()) {
+    if let Some((lx, ly)) = legend {
         ctx.configure_series_labels()
-            .position(if chart.legend_low {
-                SeriesLabelPosition::LowerRight
-            } else {
-                SeriesLabelPosition::UpperRight
-            })
+            .position(SeriesLabelPosition::Coordinate(lx, ly))
+            .margin(LEGEND_MARGIN)
+            .legend_area_size(LEGEND_MARK)
             .background_style(WHITE.mix(0.85))
             .border_style(RGBColor(160, 160, 160))
-            .label_font(("sans-serif", 12))
+            .label_font(("sans-serif", LEGEND_FONT))
             .draw()
             .map_err(message)?;
     }
     Ok(())
 }
 
-/// One chart's plotting area: the plotters context, the chart and its axis ranges `(lo, hi)` in
-/// data units, drawn onto in layers.
+/// Legend layout (plotters' `SeriesLabelStyle`): margin inside the box, the mark's width, the
+/// text size, px.
+const LEGEND_MARGIN: u32 = 10;
+const LEGEND_MARK: u32 = 30;
+const LEGEND_FONT: u32 = 12;
+/// Size of the labels of spans, rules and notes, px.
+const LABEL_FONT: u32 = 12;
+
+/// One chart's plotting area: the plotters context, the chart, its axis ranges `(lo, hi)` in
+/// data units and what the texts placed so far must not cover, drawn onto in layers.
 struct Plot<'c, 'a, DB: DrawingBackend, X: NumberAxis, Y: NumberAxis> {
     ctx: &'c mut ChartContext<'a, DB, Cartesian2d<X, Y>>,
     chart: &'c Chart,
     x: (f64, f64),
     y: (f64, f64),
+    obstacles: Obstacles,
 }
 
 impl<'a, DB, X, Y> Plot<'_, 'a, DB, X, Y>
@@ -235,55 +251,144 @@ where
     X: NumberAxis,
     Y: NumberAxis,
 {
-    /// The shaded bands (a range of x or of y, clipped to the axes) with their labels at the band's
-    /// left end (x) or at its middle on the y axis (geometric middle on a log axis).
+    /// The pixel of data point `p`, relative to the plotting area's top left.
+    fn px(&self, p: (f64, f64)) -> (i32, i32) {
+        let (bx, by) = self.ctx.backend_coord(&p);
+        let (ox, oy) = self.ctx.plotting_area().get_base_pixel();
+        (bx - ox, by - oy)
+    }
+
+    /// The plotting area as a box of its own pixels.
+    fn area(&self) -> Rect {
+        let (w, h) = self.ctx.plotting_area().dim_in_pixel();
+        Rect::at(0, 0, w as i32, h as i32)
+    }
+
+    /// The width in px of `text` at `size` px (the embedded DejaVu Sans).
+    fn text_width(&self, text: &str, size: u32) -> u32 {
+        self.ctx
+            .plotting_area()
+            .estimate_text_size(text, &TextStyle::from(("sans-serif", size).into_font()))
+            .map_or(text.chars().count() as u32 * size * 6 / 10, |(w, _)| w)
+    }
+
+    /// Draws `text` at the first of the `anchors` (left end, mid height, in plotting-area
+    /// pixels) where it covers nothing drawn or placed so far ([`Obstacles::best`]), inside
+    /// `within`; the text then becomes an obstacle itself.
+    fn place<C: Color>(
+        &mut self,
+        text: &str,
+        colour: &C,
+        anchors: &[(i32, i32)],
+        within: Rect,
+    ) -> std::result::Result<(), String> {
+        let w = self.text_width(text, LABEL_FONT);
+        let boxes: Vec<Rect> = anchors
+            .iter()
+            .map(|&(x, y)| text_box(x, y, w, LABEL_FONT))
+            .collect();
+        let Some(i) = self.obstacles.best(&boxes, &within) else {
+            return Ok(());
+        };
+        self.obstacles.add(boxes[i]);
+        let area = self.ctx.plotting_area().strip_coord_spec();
+        area.draw(&Text::new(
+            text.to_string(),
+            anchors[i],
+            anchored(LABEL_FONT, colour, HPos::Left, VPos::Center),
+        ))
+        .map_err(message)
+    }
+
+    /// The shaded bands (a range of x or of y, clipped to the axes); their labels are placed by
+    /// [`Plot::span_labels`].
     fn spans(&mut self) -> std::result::Result<(), String> {
         let ((x0, x1), (y0, y1)) = (self.x, self.y);
         for s in &self.chart.spans {
             let c = rgb(s.colour);
-            let (from, to) = match s.axis {
-                Axis::X => (s.from.max(x0), s.to.min(x1)),
-                Axis::Y => (s.from.max(y0), s.to.min(y1)),
-            };
-            if from >= to {
+            let Some(rect) = self.span_rect(s.axis, s.from, s.to) else {
                 continue;
-            }
+            };
             let rect = match s.axis {
-                Axis::X => [(from, y0), (to, y1)],
-                Axis::Y => [(x0, from), (x1, to)],
+                Axis::X => [(rect.0, y0), (rect.1, y1)],
+                Axis::Y => [(x0, rect.0), (x1, rect.1)],
             };
             self.ctx
                 .draw_series(std::iter::once(Rectangle::new(rect, c.mix(0.16).filled())))
-                .map_err(message)?;
-            let at = match s.axis {
-                Axis::X => (from, y1),
-                Axis::Y => (
-                    x0,
-                    if self.chart.log_y {
-                        (from * to).sqrt()
-                    } else {
-                        0.5 * (from + to)
-                    },
-                ),
-            };
-            let style = anchored(12, &c.mix(0.9), HPos::Left, VPos::Center);
-            self.ctx
-                .draw_series(std::iter::once(
-                    EmptyElement::at(at) + Text::new(format!(" {}", s.label), (2, 0), style),
-                ))
                 .map_err(message)?;
         }
         Ok(())
     }
 
+    /// The part `(from, to)` of a span inside the axes, None when none is.
+    fn span_rect(&self, axis: Axis, from: f64, to: f64) -> Option<(f64, f64)> {
+        let (lo, hi) = match axis {
+            Axis::X => self.x,
+            Axis::Y => self.y,
+        };
+        let (a, b) = (from.max(lo), to.min(hi));
+        (a < b).then_some((a, b))
+    }
+
+    /// Each span's label inside its band where no curve passes: a y range's at its left or right
+    /// end, at mid height, then at its top or bottom; an x range's at its top or bottom, left or
+    /// right. A band too thin for the text lets it out over the whole area.
+    fn span_labels(&mut self) -> std::result::Result<(), String> {
+        let ((x0, x1), (y0, y1)) = (self.x, self.y);
+        let area = self.area();
+        let (above, below) = (
+            (0.68 * LABEL_FONT as f64).round() as i32 + 3,
+            (0.52 * LABEL_FONT as f64).round() as i32 + 3,
+        );
+        for s in &self.chart.spans {
+            let Some((from, to)) = self.span_rect(s.axis, s.from, s.to) else {
+                continue;
+            };
+            let w = (self.text_width(&s.label, LABEL_FONT) as f64 * 1.08).ceil() as i32;
+            let band = match s.axis {
+                Axis::X => Rect::spanning(self.px((from, y0)), self.px((to, y1))),
+                Axis::Y => Rect::spanning(self.px((x0, from)), self.px((x1, to))),
+            };
+            let (left, right) = (band.x0 + 4, band.x1 - 4 - w);
+            let (top, mid, bottom) = (band.y0 + above, (band.y0 + band.y1) / 2, band.y1 - below);
+            let anchors = match s.axis {
+                Axis::Y => [
+                    (left, mid),
+                    (right, mid),
+                    (left, top),
+                    (right, top),
+                    (left, bottom),
+                    (right, bottom),
+                ],
+                Axis::X => [
+                    (left, top),
+                    (left, bottom),
+                    (right, top),
+                    (right, bottom),
+                    (left, mid),
+                    (right, mid),
+                ],
+            };
+            let within = if band.y1 - band.y0 >= above + below && band.x1 - band.x0 > w + 8 {
+                band
+            } else {
+                area
+            };
+            self.place(&s.label, &rgb(s.colour).mix(0.9), &anchors, within)?;
+        }
+        Ok(())
+    }
+
     /// The series, each as its runs of drawable points ([`runs`]) in its colour (or the palette's
-    /// `i`-th), the first run of a labelled series entered in the legend.
+    /// `i`-th), the first run of a labelled series entered in the legend; every run's pixels
+    /// become obstacles of the texts.
     fn curves(&mut self) -> std::result::Result<(), String> {
         let (x, y) = (self.x, self.y);
         for (i, s) in self.chart.series.iter().enumerate() {
             let c = rgb(s.colour.unwrap_or_else(|| colour::pick(i)));
             let mut labelled = false;
             for run in runs(s, x, y, (self.chart.log_x, self.chart.log_y)) {
+                self.obstruct(s.style, &run);
                 let anno = draw_run(self.ctx, s.style, run, c, self.chart.log_y, y)?;
                 if !labelled && !s.label.is_empty() {
                     labelled = true;
@@ -296,56 +401,180 @@ where
         Ok(())
     }
 
-    /// The dashed reference lines across the axes (those inside the range), each labelled at its top
-    /// end (x) or right end (y), in its colour.
+    /// Records the pixels a run drawn in `style` covers: its polyline, its markers, bars or
+    /// ribbon as boxes.
+    fn obstruct(&mut self, style: Style, run: &[(f64, f64)]) {
+        let base = if self.chart.log_y {
+            self.y.0
+        } else {
+            0f64.clamp(self.y.0, self.y.1)
+        };
+        match style {
+            Style::Line | Style::Dashed => {
+                let pts: Vec<(i32, i32)> = run.iter().map(|&p| self.px(p)).collect();
+                self.obstacles.polyline(&pts);
+            }
+            Style::Markers => {
+                for &p in run {
+                    let (a, b) = self.px(p);
+                    self.obstacles.add(Rect::at(a - 4, b - 4, 8, 8));
+                }
+            }
+            Style::Bars { ratio } => {
+                for &(x, y) in run {
+                    let r = Rect::spanning(self.px((x / ratio, base)), self.px((x * ratio, y)));
+                    self.obstacles.add(r);
+                }
+            }
+            Style::Ribbon { half_height } => {
+                if let (Some(a), Some(b)) = (run.first(), run.last()) {
+                    let r = Rect::spanning(
+                        self.px((a.0, a.1 - half_height)),
+                        self.px((b.0, a.1 + half_height)),
+                    );
+                    self.obstacles.add(r);
+                }
+            }
+        }
+    }
+
+    /// The top-left pixel of the legend box at the first corner (upper right, upper left, lower
+    /// right, lower left; the lower ones first with [`Chart::legend_low`]) where it covers no
+    /// curve; None without labelled series. The box becomes an obstacle of the other texts.
+    fn legend_place(&mut self) -> std::result::Result<Option<(i32, i32)>, String> {
+        let labels: Vec<&str> = self
+            .chart
+            .series
+            .iter()
+            .filter(|s| !s.label.is_empty())
+            .map(|s| s.label.as_str())
+            .collect();
+        if labels.is_empty() {
+            return Ok(None);
+        }
+        // The box plotters draws: the lines' extent, the mark's width and a margin all round.
+        let font = TextStyle::from(("sans-serif", LEGEND_FONT).into_font());
+        let mut text = MultiLineText::<_, &str>::new((0, 0), &font);
+        for l in &labels {
+            text.push_line(*l);
+        }
+        let (tw, th) = text.estimate_dimension().map_err(|e| e.to_string())?;
+        let m = LEGEND_MARGIN as i32;
+        let (w, h) = (
+            (tw as f64 * 1.08).ceil() as i32 + LEGEND_MARK as i32 + 2 * m,
+            th + 2 * m,
+        );
+        let area = self.area();
+        let (l, r) = (5, area.x1 - w - 5);
+        let (t, b) = (5, area.y1 - h - 5);
+        let mut corners = [(r, t), (l, t), (r, b), (l, b)];
+        if self.chart.legend_low {
+            corners.rotate_left(2);
+        }
+        // A curve may not pass within 6 px of the box either.
+        let boxes: Vec<Rect> = corners
+            .iter()
+            .map(|&(x, y)| Rect::at(x, y, w, h).grown(6))
+            .collect();
+        let i = self.obstacles.best(&boxes, &area.grown(6)).unwrap_or(0);
+        self.obstacles.add(boxes[i]);
+        Ok(Some(corners[i]))
+    }
+
+    /// The dashed reference lines across the axes (those inside the range), in their colours;
+    /// their labels are placed by [`Plot::rule_labels`].
     fn rules(&mut self) -> std::result::Result<(), String> {
         let ((x0, x1), (y0, y1)) = (self.x, self.y);
-        for r in &self.chart.rules {
-            let c = rgb(r.colour);
-            let (pts, at) = match r.axis {
-                Axis::X => (vec![(r.at, y0), (r.at, y1)], (r.at, y1)),
-                Axis::Y => (vec![(x0, r.at), (x1, r.at)], (x1, r.at)),
+        let chart = self.chart;
+        let rules: Vec<&Rule> = chart.rules.iter().filter(|r| self.rule_inside(r)).collect();
+        for r in rules {
+            let pts = match r.axis {
+                Axis::X => vec![(r.at, y0), (r.at, y1)],
+                Axis::Y => vec![(x0, r.at), (x1, r.at)],
             };
-            let inside = match r.axis {
-                Axis::X => r.at >= x0 && r.at <= x1,
-                Axis::Y => r.at >= y0 && r.at <= y1,
-            };
-            if !inside {
-                continue;
-            }
             self.ctx
-                .draw_series(DashedLineSeries::new(pts, 4, 4, c.stroke_width(1)))
-                .map_err(message)?;
-            let (h, v, dx, dy) = match r.axis {
-                Axis::X => (HPos::Left, VPos::Top, 3, 3),
-                Axis::Y => (HPos::Right, VPos::Top, -3, -2),
-            };
-            let style = anchored(12, &c, h, v);
-            // plotters' bitmap text sits about a line lower than its anchor says; this offset
-            // keeps the label above the line in PNG and SVG alike.
-            let dy = if r.axis == Axis::Y { -28 } else { dy };
-            self.ctx
-                .draw_series(std::iter::once(
-                    EmptyElement::at(at) + Text::new(r.label.clone(), (dx, dy), style),
+                .draw_series(DashedLineSeries::new(
+                    pts,
+                    4,
+                    4,
+                    rgb(r.colour).stroke_width(1),
                 ))
                 .map_err(message)?;
         }
         Ok(())
     }
 
-    /// The text notes at their data points (those inside the axes), 6 px right and `dy` px down.
+    fn rule_inside(&self, r: &Rule) -> bool {
+        let (lo, hi) = match r.axis {
+            Axis::X => self.x,
+            Axis::Y => self.y,
+        };
+        r.at >= lo && r.at <= hi
+    }
+
+    /// Each rule's label beside its line where no curve passes: a horizontal line's above it at
+    /// the right end, else below it, else at the left end; a vertical line's right of it at the
+    /// top, else left of it, else at the bottom.
+    fn rule_labels(&mut self) -> std::result::Result<(), String> {
+        let area = self.area();
+        let (above, below) = (
+            (0.52 * LABEL_FONT as f64).round() as i32 + 3,
+            (0.68 * LABEL_FONT as f64).round() as i32 + 3,
+        );
+        let chart = self.chart;
+        let rules: Vec<&Rule> = chart.rules.iter().filter(|r| self.rule_inside(r)).collect();
+        for r in rules {
+            let w = (self.text_width(&r.label, LABEL_FONT) as f64 * 1.08).ceil() as i32;
+            let anchors = match r.axis {
+                Axis::Y => {
+                    let at = self.px((self.x.0, r.at)).1;
+                    let (left, right) = (4, area.x1 - 4 - w);
+                    [
+                        (right, at - above),
+                        (right, at + below),
+                        (left, at - above),
+                        (left, at + below),
+                    ]
+                }
+                Axis::X => {
+                    let at = self.px((r.at, self.y.0)).0;
+                    let (top, bottom) = (below + 1, area.y1 - above - 1);
+                    [
+                        (at + 4, top),
+                        (at - 4 - w, top),
+                        (at + 4, bottom),
+                        (at - 4 - w, bottom),
+                    ]
+                }
+            };
+            self.place(&r.label, &rgb(r.colour), &anchors, area)?;
+        }
+        Ok(())
+    }
+
+    /// The text notes at their data points (those inside the axes): 6 px right of the point with
+    /// the text's top `dy` px below it, else above or below the point, else left of it.
     fn notes(&mut self) -> std::result::Result<(), String> {
         let ((x0, x1), (y0, y1)) = (self.x, self.y);
+        let area = self.area();
+        let (up, down) = (
+            (0.68 * LABEL_FONT as f64).round() as i32,
+            (0.52 * LABEL_FONT as f64).round() as i32,
+        );
         for n in &self.chart.notes {
             let inside = n.x >= x0 && n.x <= x1 && n.y >= y0 && n.y <= y1;
-            if inside {
-                self.ctx
-                    .draw_series(std::iter::once(
-                        EmptyElement::at((n.x, n.y))
-                            + Text::new(n.text.clone(), (6, n.dy), ("sans-serif", 12)),
-                    ))
-                    .map_err(message)?;
+            if !inside {
+                continue;
             }
+            let (px, py) = self.px((n.x, n.y));
+            let w = (self.text_width(&n.text, LABEL_FONT) as f64 * 1.08).ceil() as i32;
+            let anchors = [
+                (px + 6, py + n.dy + up),
+                (px + 6, py - down - 3),
+                (px + 6, py + up + 3),
+                (px - 6 - w, py),
+            ];
+            self.place(&n.text, &BLACK, &anchors, area)?;
         }
         Ok(())
     }

@@ -1,7 +1,11 @@
 //! Every plot of wbv: line, marker and bar charts with reference lines and shaded ranges, heat-map
 //! colour bars, written as PNG or SVG files or as SVG text for the HTML report.
 //!
-//! - Axes: ticks and labels from [`axis`] (decades and 1-2-5 sub-decades, no float noise).
+//! - Axes: ticks and labels from [`axis`] (decades and 1-2-5 sub-decades, no float noise, one
+//!   notation per axis).
+//! - Texts: the legend, the labels of shaded ranges and reference lines and the notes go where
+//!   they cover no curve, bar or earlier text (`place`: the first free of a few candidate places,
+//!   else the least covered), so no chart's label runs into its data.
 //! - Ranges: from the data inside an optional x range (the band of interest), a log axis floored
 //!   [`Chart::floor_decades`] below its maximum; points outside an explicit range, non-finite
 //!   points (a masked value is NaN) and non-positive points on a log axis break the curve.
@@ -24,6 +28,7 @@ use std::sync::Once;
 mod chart;
 mod draw;
 mod frf;
+mod place;
 
 pub use chart::*;
 pub use draw::{Figure, Panels};

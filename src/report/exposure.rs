@@ -73,7 +73,7 @@ pub fn day_of(
     for (name, hours, read) in operations {
         let opts = Options {
             exposure_hours: Some(hours),
-            units_declared: read.declared(),
+            units_assumed: read.undeclared.clone(),
             shocks: *shocks,
             ..Options::default()
         };

@@ -120,6 +120,7 @@ padding:.25em .6em;text-align:right}th{background:#f2f2f2}td:first-child,th:firs
 figure{margin:1em 0}figure svg{max-width:100%;height:auto}figcaption{color:#555;font-size:.9em}\
 .verdict{font-size:1.1em;padding:.6em;border-left:4px solid #0072b2;background:#f5f9fc}\
 .warning{font-size:1.1em;padding:.6em;border-left:4px solid #d55e00;background:#fdf3ec}\
+.assumed{display:block;margin-top:.4em;padding:.3em .5em;background:#fdf3ec;color:#7a3300}\
 table.kv td{text-align:left}";
 
 #[cfg(feature = "plot")]
@@ -163,9 +164,14 @@ fn figures_table(out: &mut String, r: &Report) {
     );
     for c in &r.channels {
         let ratio = if c.a_w > 0.0 { c.mtvv / c.a_w } else { 0.0 };
+        let assumed = if r.unit_assumed_channels.contains(&c.name) {
+            " <small>(unit not declared: m/s² assumed)</small>"
+        } else {
+            ""
+        };
         let _ = write!(
             out,
-            "<tr><td>{}</td><td>{}</td><td>{:.2}</td><td>{:.4}</td><td>{:.4}</td><td>{:.4}</td>\
+            "<tr><td>{}{assumed}</td><td>{}</td><td>{:.2}</td><td>{:.4}</td><td>{:.4}</td><td>{:.4}</td>\
              <td>{:.4}</td><td>{ratio:.2}</td><td>{:.2}</td><td>{}</td></tr>",
             esc(&c.name),
             c.weighting.name(),
@@ -272,7 +278,6 @@ pub fn build(run: &Path, settings: &Settings) -> Result<Built> {
         None => None,
     };
     let input = crate::measurement::read(&file, &settings.input)?;
-    let declared = input.declared();
     let signals = input.signals;
     let provenance = if file
         .extension()
@@ -284,7 +289,7 @@ pub fn build(run: &Path, settings: &Settings) -> Result<Built> {
     };
     let opts = Options {
         exposure_hours: Some(settings.exposure_hours),
-        units_declared: declared,
+        units_assumed: input.undeclared.clone(),
         shocks: settings.shocks,
         ..Options::default()
     };
@@ -326,10 +331,20 @@ pub fn build(run: &Path, settings: &Settings) -> Result<Built> {
         let _ = writeln!(out, "<p class=\"warning\"><b>Warning:</b> {}</p>", esc(w));
     }
     out.push_str("<h2>Verdict</h2>\n");
+    // Inside every verdict box when a channel's unit was assumed: the verdict assumes m/s².
+    let assumes = report
+        .unit_assumption()
+        .map(|a| {
+            format!(
+                "<span class=\"assumed\"><b>Assumes m/s²</b>: {}</span>",
+                esc(a.trim_start_matches("assumes m/s²: "))
+            )
+        })
+        .unwrap_or_default();
     let _ = writeln!(
         out,
         "<p class=\"verdict\">Comfort (ISO 2631-1 Annex C, public transport): the vibration total \
-         value over the {} is a<sub>v</sub> = {:.3} m/s², <b>{}</b> (Annex C: {}).{}</p>",
+         value over the {} is a<sub>v</sub> = {:.3} m/s², <b>{}</b> (Annex C: {}).{}{assumes}</p>",
         esc(&report.comfort_place),
         report.total_value,
         report.comfort,
@@ -355,7 +370,9 @@ pub fn build(run: &Path, settings: &Settings) -> Result<Built> {
                      above).</li>",
                 );
             }
-            out.push_str("</ul></div>\n");
+            out.push_str("</ul>");
+            out.push_str(&assumes);
+            out.push_str("</div>\n");
         }
         None => out.push_str("<p>No seat channel: no health assessment.</p>\n"),
     }

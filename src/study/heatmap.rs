@@ -63,22 +63,24 @@ fn render<DB: DrawingBackend>(
     let (main, strip) = root.split_horizontally(w.saturating_sub(120));
     bar.draw(&strip)?;
     let (x0, x1, y0, y1) = (xe[0], xe[xe.len() - 1], ye[0], ye[ye.len() - 1]);
+    let (xt, yt) = (axis::linear_ticks(x0, x1), axis::linear_ticks(y0, y1));
+    let (xn, yn) = (axis::Notation::of(&xt), axis::Notation::of(&yt));
     let mut ctx = ChartBuilder::on(&main)
         .caption(&h.title, ("sans-serif", 17))
         .margin(12)
         .x_label_area_size(42)
         .y_label_area_size(80)
         .build_cartesian_2d(
-            axis::ticked(x0..x1, axis::linear_ticks(x0, x1), vec![]),
-            axis::ticked(y0..y1, axis::linear_ticks(y0, y1), vec![]),
+            axis::ticked(x0..x1, xt, vec![]),
+            axis::ticked(y0..y1, yt, vec![]),
         )
         .map_err(e)?;
     ctx.configure_mesh()
         .disable_mesh()
         .x_desc(h.x_label.as_str())
         .y_desc(h.y_label.as_str())
-        .x_label_formatter(&|v| axis::label(*v))
-        .y_label_formatter(&|v| axis::label(*v))
+        .x_label_formatter(&|v| xn.label(*v))
+        .y_label_formatter(&|v| yn.label(*v))
         .label_style(("sans-serif", 13))
         .axis_desc_style(("sans-serif", 14))
         .draw()

@@ -1,5 +1,6 @@
 """Writes measurement files with independent tools (scipy, soundfile, pyuff, the PyPI mcap writers,
-Python's csv module) and a manifest of what each holds, for tests/input_fixtures.rs.
+Python's csv module in the styles spreadsheets export, numpy.savetxt) and a manifest of what each
+holds, for tests/input_fixtures.rs (and the files tests/first_hour.rs runs `wbv` on).
 
 Usage: gen.py OUTDIR. The manifest (OUTDIR/manifest.json) lists, per file, the wbv input options
 to read it with and the exact samples (float64, JSON round-trip exact) each channel must have after
@@ -297,6 +298,58 @@ with open(out / "no-time.tsv", "w", newline="") as f:
     for v in z:
         wr.writerow([float(v)])
 add("no-time.tsv", fs, {"a_seat_z": z}, fs_option=fs)
+
+
+# A spreadsheet's CSV export in a decimal-comma locale (Python's csv module, Excel's dialect):
+# `,` between fields, every field quoted, decimal commas inside the quotes (`"0,001953"`), CRLF
+# line ends, no units row; time to 6 decimals at 512 Hz. Line 2 is numbers, never a units row.
+fs, n = 512, 512 * 12
+z, b = signal(n, fs) * 2.0, signal(n, fs, 3.0)
+t_text = [f"{i / fs:.6f}".replace(".", ",") for i in range(n)]
+z_text = [f"{v:.6f}".replace(".", ",") for v in z]
+b_text = [f"{v:.6f}".replace(".", ",") for v in b]
+with open(out / "sheet-comma.csv", "w", newline="") as f:
+    wr = csv.writer(f, dialect="excel", quoting=csv.QUOTE_ALL)
+    wr.writerow(["Time", "Acc Z seat", "Acc Z base"])
+    for row in zip(t_text, z_text, b_text):
+        wr.writerow(row)
+
+
+def comma_value(texts):
+    """The samples a decimal-comma text holds, parsed here with Python's float."""
+    return [float(v.replace(",", ".")) for v in texts]
+
+
+add(
+    "sheet-comma.csv",
+    fs,
+    {"a_seat_z": comma_value(z_text), "a_base_z": comma_value(b_text)},
+    column=["a_seat_z=Acc Z seat", "a_base_z=Acc Z base"],
+)
+
+# The same export with a BOM and a units row (s; m/s²; g), channels named by the measured-run
+# convention: the units row is read, the g column converted.
+with open(out / "sheet-comma-units.csv", "w", newline="", encoding="utf-8-sig") as f:
+    wr = csv.writer(f, dialect="excel", quoting=csv.QUOTE_ALL)
+    wr.writerow(["t_s", "a_seat_z", "a_base_z"])
+    wr.writerow(["s", "m/s²", "g"])
+    for row in zip(t_text, z_text, b_text):
+        wr.writerow(row)
+add(
+    "sheet-comma-units.csv",
+    fs,
+    {"a_seat_z": comma_value(z_text), "a_base_z": [v * G for v in comma_value(b_text)]},
+)
+
+# numpy.savetxt of a seat channel recorded in g with gravity removed (mean zero) and no unit
+# anywhere: nothing in the numbers tells g from m/s², so every figure must say it assumes m/s².
+# 512 Hz with a time column, 30 s; tests/first_hour.rs reads it with and without --units g.
+fs, n = 512, 512 * 30
+t = np.arange(n) / fs
+g_seat = 0.09 * np.sin(2 * np.pi * 5.0 * t) + 0.02 * np.tanh(rng.standard_normal(n))
+np.savetxt(out / "g-seat.csv", np.column_stack([t, g_seat]), fmt="%.6f", delimiter=",",
+           header="t_s,a_seat_z", comments="")
+add("g-seat.csv", fs, {"a_seat_z": [float(f"{v:.6f}") for v in g_seat]})
 
 (out / "manifest.json").write_text(json.dumps(manifest))
 print(f"input fixtures: {len(manifest)} files in {out}")

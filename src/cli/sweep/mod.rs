@@ -16,7 +16,16 @@ use plots::{iso_plot, plot_paths, plots};
 
 /// Arguments of `wbv sweep`.
 #[derive(Debug, clap::Args)]
-#[command(allow_negative_numbers = true)]
+#[command(
+    allow_negative_numbers = true,
+    // The excitation's default applies only once another excitation option is given: without
+    // any, the sweep has no ISO columns, so no default is shown.
+    mut_arg("excitation", |a| a.hide_default_value(true).help(
+        "Excitation of the ISO figures: a built-in name (`wbv excitations`), a TOML file, or \
+         random | psd | road | recorded | sine | sweep built from the options below. Without any \
+         excitation option the sweep gives responses and peaks only, no ISO figures"
+    )),
+)]
 pub struct Args {
     #[command(flatten)]
     model: super::ModelArg,
@@ -25,7 +34,7 @@ pub struct Args {
     #[arg(long = "param", required = true)]
     params: Vec<String>,
     /// Values of each parameter, in order: `from:to:count` or `a,b,c`.
-    #[arg(long = "values", required = true)]
+    #[arg(long = "values", required = true, allow_hyphen_values = true)]
     values: Vec<String>,
     /// Response: stht, seat, apms, dpmi or t_<mass>; models with fore-and-aft motion also seat_x (v-h), head_z,
     /// head_x, apms_z, apms_x and t_<coordinate>.
@@ -57,8 +66,8 @@ pub struct Args {
     /// Replace existing output files.
     #[arg(long)]
     force: bool,
-    /// Print the peaks table as JSON (`points`: values, peak, time-domain `figures`; `written`)
-    /// instead of CSV.
+    /// Print the peaks table as JSON (`points`: values, peak, ISO `figures`; `path`; `written`;
+    /// `elapsed_s` and `seconds_per_point`) instead of CSV.
     #[arg(long)]
     json: bool,
     /// Compute the ISO figures by simulating every point (batched, same seed at every point),
@@ -71,12 +80,14 @@ pub struct Args {
     /// excitation, else (or with --time-domain) simulated with the same seed at every point.
     #[command(
         flatten,
-        next_help_heading = "Time-domain ISO 2631-1 figures (given an excitation)"
+        next_help_heading = "ISO 2631-1 figures (given an excitation; from its spectrum for a \
+                             linear model under a stationary excitation, else simulated)"
     )]
     excitation: Option<ExcitationArgs>,
     #[command(
         flatten,
-        next_help_heading = "Time-domain ISO 2631-1 figures (given an excitation)"
+        next_help_heading = "Simulated run of the ISO figures (with --time-domain, a nonlinear \
+                             model or a non-stationary excitation)"
     )]
     time: Option<super::TimeArgs>,
 }
@@ -200,6 +211,13 @@ pub fn run(args: Args) -> wbv::Result<()> {
     };
     let plan = Plan::new(&model, spec, iso.as_ref(), args.time_domain)?;
     let spec = &plan.spec;
+    let bar = progress(shard.points(spec.grid().len()).len());
+    let start = std::time::Instant::now();
+    let pts = plan.run(&model, shard, &|| bar.inc(1))?;
+    let elapsed_s = start.elapsed().as_secs_f64();
+    bar.finish_and_clear();
+    let hooks = plan.hooks();
+    // Status lines once the sweep has run, so that an error is the only line of a failed one.
     if let Some(p) = plan.path() {
         let ignored = if p.is_spectral() && args.time.is_some() {
             "; --duration, --dt, --seed and --integrator set a simulation, which the spectral \
@@ -209,10 +227,13 @@ pub fn run(args: Args) -> wbv::Result<()> {
         };
         eprintln!("ISO figures: {p}{ignored}");
     }
-    let hooks = plan.hooks();
-    let bar = progress(shard.points(spec.grid().len()).len());
-    let pts = plan.run(&model, shard, &|| bar.inc(1))?;
-    bar.finish_and_clear();
+    let per_point_s = elapsed_s / pts.len().max(1) as f64;
+    eprintln!(
+        "timing: {} points in {elapsed_s:.3} s ({:.3} ms a point, {} threads)",
+        pts.len(),
+        1e3 * per_point_s,
+        rayon::current_num_threads()
+    );
     let mut written = Vec::new();
     match &args.out {
         Some(out) => {
@@ -245,6 +266,7 @@ pub fn run(args: Args) -> wbv::Result<()> {
             &plan,
             &pts,
             written,
+            elapsed_s,
         )?);
     }
     Ok(())

@@ -16,13 +16,20 @@ pub struct InputArgs {
     /// MCAP field: `--column a_seat_z="Acc Z"`; `t_s=NAME` names the time column. Repeat.
     #[cfg_attr(feature = "cli", arg(long = "column", value_name = "CHANNEL=SOURCE"))]
     pub columns: Vec<String>,
-    /// Unit of the samples: `g`, `mg`, `m/s2` (accelerations), `N`, `kN` (forces), for all
-    /// channels or one (`--units a_seat_z=g`). Repeat.
+    /// Unit of the samples: `m/s2`, `g`, `mg`, `mm/s2` (accelerations), `N`, `kN` (forces), for
+    /// all channels or one (`--units a_seat_z=g`). Repeat. Without it (and without a unit in the
+    /// file) every figure assumes m/s², and the output says so.
     #[cfg_attr(feature = "cli", arg(long = "units", value_name = "[CHANNEL=]UNIT"))]
     pub units: Vec<String>,
-    /// Sample rate in Hz, for files without a time column or stated rate.
+    /// Sample rate in Hz, for files without a time column or stated rate (the output states it
+    /// with the duration it gives). With a time column or time stamps it must agree with them
+    /// (an error names both rates) unless --ignore-time is given too.
     #[cfg_attr(feature = "cli", arg(long))]
     pub fs: Option<f64>,
+    /// Take --fs over the file's time column or time stamps (for stamps with a gap or jitter, or a
+    /// wrong time column); the note says they were ignored.
+    #[cfg_attr(feature = "cli", arg(long, requires = "fs"))]
+    pub ignore_time: bool,
     /// WAV: value of full scale (±1.0) of a channel in its unit: `--sensitivity a_seat_z=49.05`.
     #[cfg_attr(
         feature = "cli",
@@ -94,6 +101,7 @@ impl InputArgs {
             ));
         }
         o.fs = self.fs;
+        o.ignore_time = self.ignore_time;
         for s in &self.sensitivity {
             let (ch, v) = split_pair("--sensitivity", s)?;
             check_channel_name("--sensitivity", ch)?;

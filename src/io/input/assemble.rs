@@ -3,7 +3,7 @@
 
 use super::{
     Column, FULL_SCALE, Input, MAX_ACCELERATION_M_S2, MAX_FORCE_N, MIN_DURATION_S, Options, Raw,
-    Timing, UNITS, fit_rate, is_channel_name, refuse, scale_of,
+    Timing, UNITS, fit_rate, is_channel_name, on_grid, refuse, scale_of,
 };
 use crate::error::{Error, Result};
 use crate::signals::Signals;
@@ -47,14 +47,21 @@ pub(crate) fn assemble(raw: Raw, source: &str, opts: &Options) -> Result<Input> 
         mut notes,
     } = raw;
     let line_of = |i: usize| lines.as_ref().and_then(|l| l.get(i).copied());
-    let time = take_time_column(&mut columns, &timing, source, opts)?;
+    // Every column of the file (name and aliases), for the errors of a `--column` whose column is
+    // not among those left.
+    let all: Vec<(String, Vec<String>)> = columns
+        .iter()
+        .map(|c| (c.name.clone(), c.aliases.clone()))
+        .collect();
+    let time = take_time_column(&mut columns, &timing, source, opts, &all)?;
     let picked = if opts.columns.iter().any(|(c, _)| c != "t_s") {
-        pick_mapped(columns, source, opts, &mut notes)?
+        pick_mapped(columns, source, opts, &mut notes, &all)?
     } else {
         pick_by_name(columns, source, &mut notes)?
     };
     check_channel_options(&picked, source, opts)?;
-    let (fs, rate_note) = sample_rate(&timing, time, opts.fs, source, &line_of)?;
+    let samples = picked.first().map_or(0, |(_, c)| c.data.len());
+    let (fs, rate_note) = sample_rate(&timing, time, opts, samples, source, &line_of)?;
     if let Some(n) = rate_note {
         notes.push(format!("{source}: {n}"));
     }
@@ -99,6 +106,32 @@ fn available(cols: &[Column]) -> String {
         .join(", ")
 }
 
+/// The error of `--column CH=SRC` whose source is not among the columns left: taken already (by
+/// the time column or an earlier mapping) when the file has it, else no such column; either way
+/// with every column of the file (`all`: names and aliases).
+fn no_column(ch: &str, src: &str, source: &str, all: &[(String, Vec<String>)]) -> Error {
+    let taken = all
+        .iter()
+        .any(|(n, aliases)| n == src || aliases.iter().any(|a| a == src));
+    let why = if taken {
+        "is already taken by the time column or another --column"
+    } else {
+        "names no column of the file"
+    };
+    let names = if all.is_empty() {
+        "none".to_string()
+    } else {
+        all.iter()
+            .map(|(n, _)| format!("`{n}`"))
+            .collect::<Vec<_>>()
+            .join(", ")
+    };
+    Error::parameter(
+        "--column",
+        format!("{ch}={src}: `{src}` {why} (columns of {source}: {names})"),
+    )
+}
+
 /// The time column, taken out of `columns`: the one `--column t_s=…` maps, else one named like
 /// time ([`TIME_NAMES`]); only for formats whose time is a column. A format that states its own
 /// rate refuses `--column t_s=…`.
@@ -107,18 +140,13 @@ fn take_time_column(
     timing: &Timing,
     source: &str,
     opts: &Options,
+    all: &[(String, Vec<String>)],
 ) -> Result<Option<Column>> {
     if let Timing::InColumns = timing {
         let idx = match opts.columns.iter().find(|(c, _)| c == "t_s") {
-            Some((_, src)) => Some(find_column(columns, src).ok_or_else(|| {
-                Error::parameter(
-                    "--column",
-                    format!(
-                        "t_s={src}: {source} has no such column (columns: {})",
-                        available(columns)
-                    ),
-                )
-            })?),
+            Some((_, src)) => {
+                Some(find_column(columns, src).ok_or_else(|| no_column("t_s", src, source, all))?)
+            }
             None => columns
                 .iter()
                 .position(|c| TIME_NAMES.iter().any(|n| c.name.eq_ignore_ascii_case(n))),
@@ -183,18 +211,11 @@ fn pick_mapped(
     source: &str,
     opts: &Options,
     notes: &mut Vec<String>,
+    all: &[(String, Vec<String>)],
 ) -> Result<Vec<(String, Column)>> {
     let mut picked: Vec<(String, Column)> = Vec::new();
     for (ch, src) in opts.columns.iter().filter(|(c, _)| c != "t_s") {
-        let i = find_column(&columns, src).ok_or_else(|| {
-            Error::parameter(
-                "--column",
-                format!(
-                    "{ch}={src}: {source} has no such column (columns: {})",
-                    available(&columns)
-                ),
-            )
-        })?;
+        let i = find_column(&columns, src).ok_or_else(|| no_column(ch, src, source, all))?;
         let mut c = columns.remove(i).usable()?;
         c.aliases.clear();
         if picked.iter().any(|(n, _)| n == ch) {
@@ -236,51 +257,94 @@ fn check_channel_options(picked: &[(String, Column)], source: &str, opts: &Optio
     Ok(())
 }
 
-/// The sample rate (Hz) and a note on where it came from: the rate the file states (which
-/// `--fs`, `flag_fs`, may not override), `--fs`, or one fitted to the file's time stamps or time
-/// column.
+/// The sample rate (Hz) and a note on where it came from (the rules of `--fs` and
+/// `--ignore-time`, `opts`):
+/// - a rate the file states (WAV, UFF58): that rate; `--fs` and `--ignore-time` are refused;
+/// - time stamps or a time column: the rate fitted to them ([`fit_rate`]); `--fs` must agree with
+///   them (the stamps lie on its grid, [`on_grid`]), else the error names both rates; with
+///   `--ignore-time` `--fs` replaces them;
+/// - neither: `--fs`, stated in the note with the duration it gives to the `samples`.
 fn sample_rate(
     timing: &Timing,
     time: Option<Column>,
-    flag_fs: Option<f64>,
+    opts: &Options,
+    samples: usize,
     source: &str,
     line_of: &dyn Fn(usize) -> Option<usize>,
 ) -> Result<(f64, Option<String>)> {
-    Ok(match (timing, time, flag_fs) {
-        (Timing::Rate { .. }, _, Some(given)) | (Timing::Stamps { .. }, _, Some(given)) => {
-            if matches!(timing, Timing::Stamps { .. }) {
-                (given, Some("time stamps ignored: --fs given".to_string()))
-            } else {
+    if opts.ignore_time && opts.fs.is_none() {
+        return Err(refuse(
+            "--ignore-time",
+            "it takes the rate from --fs instead of the file's time stamps; give --fs HZ too",
+        ));
+    }
+    // The stamps in s with their printed resolution, and what they are, when the file has them.
+    let stamps = match (timing, &time) {
+        (Timing::Rate { fs, what }, _) => {
+            if opts.fs.is_some() || opts.ignore_time {
                 return Err(refuse(
-                    "--fs",
-                    "the file states its sample rate; --fs is for files without one",
+                    if opts.ignore_time {
+                        "--ignore-time"
+                    } else {
+                        "--fs"
+                    },
+                    &format!(
+                        "the file states its sample rate ({fs} Hz from {what}); --fs is for files without one"
+                    ),
                 ));
             }
+            return Ok((*fs, Some(format!("{fs} Hz from {what}"))));
         }
-        (Timing::Rate { fs, what }, _, None) => (*fs, Some(format!("{fs} Hz from {what}"))),
-        (Timing::Stamps { name, t }, _, None) => {
-            let fs = fit_rate(t, None, &|_| None, source, name)?;
-            (
-                fs,
-                Some(format!("{fs} Hz fitted to the time stamps of {name}")),
-            )
+        (Timing::Stamps { name, t }, _) => {
+            Some((t.clone(), None, format!("the time stamps of {name}")))
         }
-        (Timing::InColumns, Some(t), None) => {
-            let fs = rate_of_time_column(&t, source, line_of)?;
-            (
-                fs,
-                Some(format!("{fs} Hz fitted to the time column `{}`", t.name)),
-            )
+        (Timing::InColumns, Some(t)) => {
+            let (stamps, res) = time_column_stamps(t, source, line_of)?;
+            Some((stamps, res, format!("the time column `{}`", t.name)))
         }
-        (Timing::InColumns, Some(t), Some(fs)) => (
+        (Timing::InColumns, None) => None,
+    };
+    let name = |what: &str| match (timing, &time) {
+        (Timing::Stamps { name, .. }, _) => name.clone(),
+        (_, Some(t)) => t.name.clone(),
+        _ => what.to_string(),
+    };
+    Ok(match (stamps, opts.fs) {
+        (Some((_, _, what)), Some(fs)) if opts.ignore_time => (
             fs,
             Some(format!(
-                "time column `{}` ignored: --fs {fs} Hz given",
-                t.name
+                "{what} ignored: --fs {fs} Hz and --ignore-time given"
             )),
         ),
-        (Timing::InColumns, None, Some(fs)) => (fs, None),
-        (Timing::InColumns, None, None) => {
+        (Some((t, res, what)), given) => {
+            let fitted = fit_rate(&t, res.as_deref(), line_of, source, &name(&what))?;
+            match given {
+                None => (fitted, Some(format!("{fitted} Hz fitted to {what}"))),
+                Some(fs) if on_grid(&t, res.as_deref(), fs) => (
+                    fs,
+                    Some(format!(
+                        "--fs {fs} Hz agrees with {what} ({fitted} Hz fitted)"
+                    )),
+                ),
+                Some(fs) => {
+                    return Err(refuse(
+                        "--fs",
+                        &format!(
+                            "{fs} Hz, but {what} of {source} gives {fitted} Hz; drop --fs to use \
+                             {fitted} Hz, or add --ignore-time to take {fs} Hz over the time stamps"
+                        ),
+                    ));
+                }
+            }
+        }
+        (None, Some(fs)) => (
+            fs,
+            Some(format!(
+                "{fs} Hz from --fs (the file has no time column): {samples} samples last {:.3} s",
+                samples as f64 / fs
+            )),
+        ),
+        (None, None) => {
             return Err(Error::data(
                 source,
                 None,
@@ -291,13 +355,13 @@ fn sample_rate(
     })
 }
 
-/// The sample rate (Hz) fitted to time column `t`, in s (its unit s, ms or µs; none: s), with
-/// the printed resolution of its values.
-fn rate_of_time_column(
+/// The time column's stamps in s (its unit s, ms or µs; none: s) with the printed resolution of
+/// its values.
+fn time_column_stamps(
     t: &Column,
     source: &str,
     line_of: &dyn Fn(usize) -> Option<usize>,
-) -> Result<f64> {
+) -> Result<(Vec<f64>, Option<Vec<f64>>)> {
     let scale = match &t.unit {
         Some(u) => scale_of(u)
             .filter(|_| ["s", "ms", "us", "µs", "μs"].contains(&u.trim()))
@@ -315,7 +379,7 @@ fn rate_of_time_column(
         .resolution
         .as_ref()
         .map(|r| r.iter().map(|v| v * scale).collect());
-    fit_rate(&stamps, res.as_deref(), line_of, source, &t.name)
+    Ok((stamps, res))
 }
 
 /// The unit of channel `ch` (column `c`): `--units` for it or for all, which must agree with a

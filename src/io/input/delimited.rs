@@ -2,10 +2,13 @@
 //!
 //! - Encoding: UTF-8 with or without a byte-order mark; other bytes are read as Latin-1 (Windows
 //!   loggers write `m/s²` so), said in a note. UTF-16 is refused with what to do.
-//! - Delimiter: the first line's tab, else `;`, else `,` (outside quotes). With tab or `;`, a
-//!   decimal comma (`0,125`) is read as a decimal point.
+//! - Delimiter: the first line's tab, else `;`, else `,` (outside quotes). A decimal comma
+//!   (`0,125`) is read as a decimal point: with tab or `;` as written, with `,` inside quotes
+//!   (`"0,125"`, a spreadsheet's export in a decimal-comma locale), where a comma cannot be a
+//!   delimiter. A number with both a comma and a point, or two commas, is not read.
 //! - Header: the first line; a unit in brackets or parentheses at its end (`Acc Z [m/s^2]`) is the
-//!   column's unit. A second line without any number is a units row.
+//!   column's unit. A second line none of whose cells looks like a number ([`looks_numeric`]) is
+//!   a units row; a line of numbers is always data.
 //! - Lines starting with `#` are comments.
 
 use super::{Column, Options, Raw, TIME_NAMES, Timing};
@@ -68,7 +71,7 @@ pub(crate) fn split_unit(header: &str) -> (String, Option<String>) {
     (h.to_string(), None)
 }
 
-/// Parses a number cell; with `decimal_comma` a single `,` is the decimal point.
+/// Parses a number cell; with `decimal_comma` a single `,` (and no `.`) is the decimal point.
 pub(crate) fn parse_number(cell: &str, decimal_comma: bool) -> Option<f64> {
     let c = cell.trim();
     if decimal_comma && c.contains(',') {
@@ -78,6 +81,17 @@ pub(crate) fn parse_number(cell: &str, decimal_comma: bool) -> Option<f64> {
         return c.replace(',', ".").parse().ok();
     }
     c.parse().ok()
+}
+
+/// Whether a cell looks like a number, read or not (`1.5`, `0,125`, `-3e-2`, `1.2.3`): digits
+/// with only signs, points, commas, exponents and spaces around them. Such a row is data, never a
+/// units row (`m/s^2` and `1/s` have letters or a slash).
+pub(crate) fn looks_numeric(cell: &str) -> bool {
+    let c = cell.trim();
+    c.bytes().any(|b| b.is_ascii_digit())
+        && c.bytes().all(|b| {
+            b.is_ascii_digit() || matches!(b, b'+' | b'-' | b'.' | b',' | b'e' | b'E' | b' ')
+        })
 }
 
 /// The printed resolution of a number: 1e-3 for `0.125`, 1e-4 for `1.5e-3`, 1 for `12`.
@@ -153,7 +167,6 @@ pub(crate) fn read(bytes: &[u8], source: &str, opts: &Options) -> Result<Raw> {
         .find(|l| !l.trim().is_empty() && !l.starts_with('#'))
         .ok_or_else(|| Error::data(source, Some(1), "empty file; expected a header line"))?;
     let delim = sniff_delimiter(first);
-    let decimal_comma = delim != b',';
     let (header, records) = csv_records(
         &text,
         source,
@@ -171,6 +184,7 @@ pub(crate) fn read(bytes: &[u8], source: &str, opts: &Options) -> Result<Raw> {
         .collect();
     let mut lines = Vec::new();
     let mut first_data = true;
+    let mut decimal_commas = false;
     for rec in records {
         let rec = rec?;
         let line = line_of(&rec);
@@ -184,12 +198,7 @@ pub(crate) fn read(bytes: &[u8], source: &str, opts: &Options) -> Result<Raw> {
                 format!("{n} fields, expected {ncol} as in the header"),
             ));
         }
-        if first_data
-            && rec
-                .iter()
-                .take(n)
-                .all(|c| parse_number(c, decimal_comma).is_none())
-        {
+        if first_data && rec.iter().take(n).all(|c| !looks_numeric(c)) {
             // A units row.
             first_data = false;
             units_row(&mut columns, &rec, source, line)?;
@@ -197,7 +206,7 @@ pub(crate) fn read(bytes: &[u8], source: &str, opts: &Options) -> Result<Raw> {
         }
         first_data = false;
         let cells = rec.iter().take(n);
-        push_samples(&mut columns, &mut res, cells, decimal_comma, source, line);
+        decimal_commas |= push_samples(&mut columns, &mut res, cells, source, line);
         lines.push(line);
     }
     for (c, r) in columns.iter_mut().zip(res) {
@@ -205,7 +214,7 @@ pub(crate) fn read(bytes: &[u8], source: &str, opts: &Options) -> Result<Raw> {
     }
     let mut notes = Vec::new();
     notes.extend(enc_note);
-    notes.extend(layout_note(source, delim, &text));
+    notes.extend(layout_note(source, delim, decimal_commas));
     Ok(Raw {
         columns,
         timing: Timing::InColumns,
@@ -289,7 +298,7 @@ fn field_count(rec: &csv::StringRecord, ncol: usize, trailing_empty: bool) -> Op
     }
 }
 
-/// Takes the units of a units row (the first data line, without any number) at `line`: a cell's
+/// Takes the units of a units row (the first data line, no cell like a number) at `line`: a cell's
 /// unit, brackets or parentheses stripped, must agree with one the header gives.
 fn units_row(
     columns: &mut [Column],
@@ -323,22 +332,26 @@ fn units_row(
 
 /// Appends the data line's cells to their columns, with their printed resolution to the time
 /// column's (`res`). A cell that is not a number marks its column bad (an error only if the
-/// column is used), which then takes no more samples.
+/// column is used), which then takes no more samples. Returns whether a number was read with a
+/// decimal comma.
 fn push_samples<'r>(
     columns: &mut [Column],
     res: &mut [Option<Vec<f64>>],
     cells: impl Iterator<Item = &'r str>,
-    decimal_comma: bool,
     source: &str,
     line: usize,
-) {
+) -> bool {
+    let mut comma = false;
     for (k, cell) in cells.enumerate() {
         let c = &mut columns[k];
         if c.bad.is_some() {
             continue;
         }
-        match parse_number(cell, decimal_comma) {
+        // With `,` between fields a cell holds a comma only inside quotes: a decimal comma there
+        // as with tab or `;`.
+        match parse_number(cell, true) {
             Some(v) => {
+                comma |= cell.contains(',');
                 c.data.push(v);
                 if let Some(r) = res[k].as_mut() {
                     r.push(printed_resolution(cell));
@@ -349,35 +362,35 @@ fn push_samples<'r>(
                     source,
                     Some(line),
                     format!(
-                        "column `{}`: `{cell}` is not a number{}",
-                        c.name,
-                        if decimal_comma {
-                            " (decimal point or comma)"
-                        } else {
-                            ""
-                        }
+                        "column `{}`: `{cell}` is not a number (expected a decimal point or a \
+                         decimal comma, not both)",
+                        c.name
                     ),
                 ));
                 c.data = Vec::new();
             }
         }
     }
+    comma
 }
 
-/// The note on a tab- or semicolon-separated file, and on its decimal commas read as points
-/// when the text has commas; None for comma-separated text.
-fn layout_note(source: &str, delim: u8, text: &str) -> Option<String> {
-    (delim != b',').then(|| {
-        format!(
-            "{source}: {}-separated{}",
-            if delim == b'\t' { "tab" } else { "semicolon" },
-            if text.contains(',') {
-                ", decimal commas read as points"
-            } else {
-                ""
-            }
-        )
-    })
+/// The note on a tab- or semicolon-separated file, and on decimal commas read as points (quoted
+/// ones in a comma-separated file); None for comma-separated text with decimal points.
+fn layout_note(source: &str, delim: u8, decimal_commas: bool) -> Option<String> {
+    let layout = match delim {
+        b'\t' => "tab-separated",
+        b';' => "semicolon-separated",
+        _ if decimal_commas => "comma-separated",
+        _ => return None,
+    };
+    Some(format!(
+        "{source}: {layout}{}",
+        match (decimal_commas, delim) {
+            (true, b',') => ", quoted decimal commas (\"0,125\") read as points",
+            (true, _) => ", decimal commas read as points",
+            _ => "",
+        }
+    ))
 }
 
 #[cfg(test)]

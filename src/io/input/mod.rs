@@ -9,7 +9,8 @@
 //!   `a_<place>_<axis>` / `f_<place>_<axis>` (measured-run convention, `docs/measured-runs.md`);
 //! - converts units (`--units g`, or what the file declares: `[g]` in a header, a units row);
 //! - finds the sample rate: stated by the file (WAV, UFF58), fitted to a time column whose stamps are
-//!   uniform up to their printed precision, or `--fs` when there is none.
+//!   uniform up to their printed precision, or `--fs` when there is none; `--fs` given with time
+//!   stamps must agree with them, unless `--ignore-time` takes it over them.
 //!
 //! Nothing is guessed silently: an option that cannot act on a file is refused, and every choice the
 //! reader made (ignored columns, units taken from the file, a fitted rate) is returned as a note.
@@ -31,7 +32,7 @@ mod rate;
 pub use args::InputArgs;
 use assemble::TIME_NAMES;
 pub(crate) use assemble::assemble;
-pub(crate) use rate::fit_rate;
+pub(crate) use rate::{fit_rate, on_grid};
 
 pub use crate::analysis::units::STANDARD_GRAVITY;
 
@@ -77,8 +78,11 @@ pub struct Options {
     pub columns: Vec<(String, String)>,
     /// (channel or `None` for all, unit) of the samples, e.g. `g`, `m/s2`, `N`.
     pub units: Vec<(Option<String>, String)>,
-    /// Sample rate in Hz for files without time stamps or stated rate.
+    /// Sample rate in Hz for files without time stamps or stated rate; with them it must agree
+    /// with the stamps unless [`Options::ignore_time`].
     pub fs: Option<f64>,
+    /// Take `fs` over the file's time column or time stamps (which are then not read).
+    pub ignore_time: bool,
     /// (channel, value per full scale) for WAV channels, in the channel's unit.
     pub sensitivity: Vec<(String, f64)>,
     /// MCAP topic of another logger's file.
@@ -95,18 +99,6 @@ pub struct Input {
     /// Channels whose unit neither the file nor `--units` declared, read as m/s² (or N): the
     /// ISO report doubts those whose samples look like another unit (`crate::analysis::units`).
     pub undeclared: Vec<String>,
-}
-
-impl Input {
-    /// The channels whose unit the file or `--units` declared (every channel of a wbv run).
-    pub fn declared(&self) -> Vec<String> {
-        self.signals
-            .names
-            .iter()
-            .filter(|n| !self.undeclared.contains(n))
-            .cloned()
-            .collect()
-    }
 }
 
 /// One column of a file as a format module reads it, before mapping and units.
@@ -159,7 +151,7 @@ pub(crate) struct Raw {
 /// The declared unit of samples relative to full scale (WAV); they need `--sensitivity`.
 pub(crate) const FULL_SCALE: &str = "full scale";
 
-const UNITS: &str = "m/s2 (m/s^2, m/s²), g, mg, N, kN";
+const UNITS: &str = "m/s2 (m/s^2, m/s²), g, mg, mm/s2, N, kN";
 
 /// Factor to SI of a unit name (acceleration → m/s², force → N, time → s), `None` when unknown.
 pub fn scale_of(unit: &str) -> Option<f64> {
@@ -250,6 +242,7 @@ pub fn check_wbv_run_options(opts: &Options) -> Result<()> {
         (!opts.columns.is_empty(), "--column"),
         (!opts.units.is_empty(), "--units"),
         (opts.fs.is_some(), "--fs"),
+        (opts.ignore_time, "--ignore-time"),
     ] {
         if given {
             return Err(refuse(
@@ -386,7 +379,7 @@ mod tests {
         let input = from_columns(vec![("a_seat_z".into(), g)], "arrays", &plain).unwrap();
         assert_eq!(input.undeclared, ["a_seat_z"]);
         assert!(
-            input.notes[0].contains("no declared unit"),
+            input.notes.iter().any(|n| n.contains("no declared unit")),
             "{:?}",
             input.notes
         );

@@ -43,7 +43,7 @@ pub(crate) fn fit_rate(
             source,
             line_of(i),
             format!(
-                "`{name}`: the time stamps jump from {} s to {} s, {:.0} steps of {median:.6e} s: a gap in the record (the logger dropped samples); split the file at the gap, or give --fs to ignore the time stamps",
+                "`{name}`: the time stamps jump from {} s to {} s, {:.0} steps of {median:.6e} s: a gap in the record (the logger dropped samples); split the file at the gap, or give --fs HZ --ignore-time to ignore the time stamps",
                 t[i - 1],
                 t[i],
                 jump / median
@@ -61,16 +61,9 @@ pub(crate) fn fit_rate(
         sxx += di * di;
     }
     let dt_ls = sxy / sxx;
-    let half_res = |i: usize| res.map_or(0.0, |r| 0.5 * r[i]);
-    let check = |dt: f64| -> std::result::Result<(), (usize, f64, f64)> {
-        let a = tm - dt * im;
-        for (i, &ti) in t.iter().enumerate() {
-            let off = ti - (a + dt * i as f64);
-            if off.abs() > half_res(i) + MAX_JITTER * dt + 1e-12 * ti.abs() {
-                return Err((i, ti, off));
-            }
-        }
-        Ok(())
+    let check = |dt: f64| match off_grid(t, res, dt) {
+        Some(off) => Err(off),
+        None => Ok(()),
     };
     // An integer rate first, when the stamps' typical resolution allows it over the whole run.
     let mut typical = res.map_or(0.0, |r| {
@@ -91,11 +84,33 @@ pub(crate) fn fit_rate(
             format!(
                 "`{name}`: time {ti} s is {off:.3e} s off the uniform {:.6} Hz grid (more than \
                  its printed resolution and 1 % of the {dt_ls:.6e} s step): the sampling has \
-                 jitter or a gap; resample the file, or give --fs to ignore the time stamps",
+                 jitter or a gap; resample the file, or give --fs HZ --ignore-time to ignore the time stamps",
                 1.0 / dt_ls
             ),
         )),
     }
+}
+
+/// The first stamp of `t` (s) off the uniform grid of step `dt` (s) through the stamps' mean, as
+/// `(index, stamp, offset)`: off by more than half its printed resolution `res` plus
+/// [`MAX_JITTER`] of a step; None when every stamp lies on the grid.
+fn off_grid(t: &[f64], res: Option<&[f64]>, dt: f64) -> Option<(usize, f64, f64)> {
+    let nf = t.len() as f64;
+    let im = (nf - 1.0) / 2.0;
+    let tm = t.iter().sum::<f64>() / nf;
+    let a = tm - dt * im;
+    let half_res = |i: usize| res.map_or(0.0, |r| 0.5 * r[i]);
+    t.iter().enumerate().find_map(|(i, &ti)| {
+        let off = ti - (a + dt * i as f64);
+        (off.abs() > half_res(i) + MAX_JITTER * dt + 1e-12 * ti.abs()).then_some((i, ti, off))
+    })
+}
+
+/// Whether the time stamps `t` (s, printed to `res`) lie on the uniform grid of `fs` Hz: a rate
+/// given by the user agrees with the file's stamps exactly when [`fit_rate`] would accept it as
+/// their grid.
+pub(crate) fn on_grid(t: &[f64], res: Option<&[f64]>, fs: f64) -> bool {
+    t.len() < 2 || off_grid(t, res, 1.0 / fs).is_none()
 }
 
 /// The printed resolution of the stamps on either side of step `i` (a rounded time can make one

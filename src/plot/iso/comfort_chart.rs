@@ -30,9 +30,12 @@ fn comfort_colour(i: usize) -> (u8, u8, u8) {
         (140, 20, 30),
     ][i.min(5)]
 }
-/// The comfort-scale chart: each Annex C range a bar on its own row (they overlap), the run's a_v
-/// a vertical line.
+/// The comfort-scale chart: each Annex C range a bar on its own row (they overlap), its label in
+/// the gap above it (never on or into a bar: the plot places texts off the bars), the run's a_v a
+/// vertical line.
 pub fn comfort_chart(a_v: f64) -> Chart {
+    // Half a bar's height in rows: the gap between bars (0.4 row) holds a label.
+    const BAR_HALF: f64 = 0.28;
     let (x0, x1) = (0.1f64.min(a_v / 1.5), 4f64.max(a_v * 1.5));
     let n = RANGES.len();
     let mut series = vec![];
@@ -42,7 +45,9 @@ pub fn comfort_chart(a_v: f64) -> Chart {
         let (l, h) = (lo.unwrap_or(x0), hi.unwrap_or(x1));
         series.push(
             Series::line("", vec![l, h], vec![row + 0.5; 2])
-                .styled(Style::Ribbon { half_height: 0.3 })
+                .styled(Style::Ribbon {
+                    half_height: BAR_HALF,
+                })
                 .coloured(comfort_colour(i)),
         );
         let range = match (lo, hi) {
@@ -51,11 +56,12 @@ pub fn comfort_chart(a_v: f64) -> Chart {
             (Some(l), Some(h)) => format!("{l} – {h}"),
             (None, None) => String::new(),
         };
+        // At the bar's top edge, the text's top 17 px above it: in the gap between rows.
         notes.push(Note {
             x: x0,
-            y: row + 0.5,
+            y: row + 0.5 + BAR_HALF,
             text: format!("{} ({range} m/s²)", c.text()),
-            dy: -7,
+            dy: -17,
         });
     }
     Chart {
@@ -67,7 +73,8 @@ pub fn comfort_chart(a_v: f64) -> Chart {
         y_label: "Annex C reaction".into(),
         log_x: true,
         x_range: Some((x0, x1)),
-        y_range: Some((0.0, n as f64)),
+        // Room above the top bar for its label.
+        y_range: Some((0.0, n as f64 + 0.2)),
         y_ticks: Some(vec![]),
         series,
         notes,

@@ -279,6 +279,10 @@ pub struct ReportSummary {
     pub total_value: f64,
     pub comfort: crate::analysis::Comfort,
     pub health: Option<crate::analysis::health::Health>,
+    /// Whether the figures and verdicts assume m/s² for a channel without a declared unit
+    /// ([`crate::analysis::Report::unit_assumed`]), and which channels.
+    pub unit_assumed: bool,
+    pub unit_assumed_channels: Vec<String>,
     /// The gap section's verdict and named effects, when the report has one.
     pub gap: Option<crate::report::gap::Summary>,
     /// The run's ISO 2631-5:2018 block, when assessed.
@@ -300,6 +304,8 @@ impl ReportSummary {
             total_value: built.report.total_value,
             comfort: built.report.comfort,
             health: built.health.clone(),
+            unit_assumed: built.report.unit_assumed,
+            unit_assumed_channels: built.report.unit_assumed_channels.clone(),
             gap: built.gap.clone(),
             iso2631_5: built.report.iso2631_5.clone(),
             exposure: built.day.clone().map(super::Exposure::of),

@@ -97,6 +97,11 @@ pub struct Sweep {
     /// How the ISO figures were computed, with an excitation.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub path: Option<StudyPath>,
+    /// Wall time of the sweep's points (responses, peaks and ISO figures), s: the only figure
+    /// of the document that differs between two runs.
+    pub elapsed_s: f64,
+    /// `elapsed_s` over the number of points, s.
+    pub seconds_per_point: f64,
 }
 
 /// How a study computed its ISO figures ([`crate::study::path::Path`]).
@@ -170,22 +175,28 @@ impl Sweep {
             params,
             written: Vec::new(),
             path: None,
+            elapsed_s: 0.0,
+            seconds_per_point: 0.0,
         }
     }
 }
 
 /// The document of `wbv sweep --json`: the peaks table of the sweep `plan` of `model` run into
-/// `points`, with every point's ISO figures and how they were computed, and the files `written`.
+/// `points` in `elapsed_s` seconds (wall), with every point's ISO figures and how they were
+/// computed, and the files `written`.
 pub fn sweep(
     model: &str,
     plan: &crate::study::plan::Plan,
     points: &[crate::study::sweep::Point],
     written: Vec<Written>,
+    elapsed_s: f64,
 ) -> Result<Document> {
     let spec = &plan.spec;
     let mut table = Sweep::of(model, spec, points, &plan.hooks(), spec.response_unit());
     table.written = written;
     table.path = plan.path().map(StudyPath::of);
+    table.elapsed_s = elapsed_s;
+    table.seconds_per_point = elapsed_s / points.len().max(1) as f64;
     Document::new("sweep", &table, Vec::new())
 }
 
