@@ -11,8 +11,9 @@
 
 use super::candidate::Candidate;
 use super::evidence::{delta_bic_refit, fit_each, fitted_stage, sizes, training_closed};
-use super::fitting::{Base, Fitted, estimates, fit_candidate};
+use super::fitting::{Base, Fitted, effect_values, estimates, fit_candidate};
 use super::measure::RunSpectra;
+use super::outcome::Effects;
 use super::outcome::Ranked;
 use super::score;
 use super::select::Ranking;
@@ -56,7 +57,7 @@ impl AllRuns {
         if let Some(r) = ranking
             .cands
             .iter_mut()
-            .find(|r| r.id == self.candidate.id())
+            .find(|r| r.id == Effects::One(self.candidate))
         {
             r.params = estimates(base, &[self.candidate], &fitted.fit);
             r.delta_bic_all = self.delta_bic;
@@ -92,7 +93,7 @@ pub(super) fn judge_if_needed(
         return Ok(None);
     }
     let rival = accepted
-        .and_then(|b| Candidate::from_id(&b.id))
+        .and_then(|b| b.id.candidate())
         .filter(|c| !c.amplitude_dependent());
     judge(base, candidates, rival, train, check, warm)
 }
@@ -133,17 +134,18 @@ fn judge(
             (c, f, d)
         })
         .collect();
-    // A magnitude schedule fitted with alpha_k < 0 says the support stiffens as magnitude rises
-    // (the resonance rises): that is not body softening, so it is left out and the best of the
-    // others — the cushion-stiffening forms among them — is judged (a preloaded cushion stiffens
-    // between runs, which a negative body exponent could otherwise absorb).
-    let nb = base.params.len();
-    let stiffening = |c: Candidate, f: &Fitted| {
-        c == Candidate::BodySofteningMagnitude && f.fit.u.get(nb).is_some_and(|&a| a < 0.0)
+    // A fit whose values contradict its effect is left out and the best of the others judged: a
+    // magnitude schedule fitted with α_k < 0 says the support stiffens as magnitude rises (the
+    // resonance rises), which is not body softening — the cushion-stiffening forms among the
+    // others (a preloaded cushion stiffens between runs, which a negative body exponent could
+    // otherwise absorb).
+    let contradicted = |c: Candidate, f: &Fitted| {
+        c.contradicted_by
+            .is_some_and(|wrong| wrong(&effect_values(base, c, &f.fit.u)))
     };
     let best = scored
         .into_iter()
-        .filter(|(c, f, _)| !stiffening(*c, f))
+        .filter(|(c, f, _)| !contradicted(*c, f))
         .min_by(|a, b| a.2.total_cmp(&b.2));
     if best.as_ref().is_some_and(|b| Some(b.0) == rival) {
         return Ok(None);

@@ -9,7 +9,7 @@ use super::candidate::Candidate;
 use super::fitting::{Base, Fitted, bounds, build, fit_candidate};
 use super::gapmap;
 use super::measure::{Path, RunSpectra};
-use super::outcome::{Estimate, IsoSigma, Ranked, Stage};
+use super::outcome::{Effects, Estimate, IsoSigma, Ranked, Stage};
 use super::predict::{self, Variant};
 use super::score;
 use crate::error::Result;
@@ -217,11 +217,11 @@ pub(super) struct Figures {
     pub fraction_closed: f64,
 }
 
-/// A ranked entry: `id`, its fitted parameters, the training fit (reduced χ² = cost / n_train),
+/// A ranked entry: the effects `id`, their fitted parameters, the training fit (reduced χ² = cost / n_train),
 /// its figures, its stage on the check run and its size against `reference` (the null's stage;
 /// `None` for the null itself, size 0). Weights are set by [`weigh`].
 pub(super) fn ranked(
-    id: String,
+    id: Effects,
     params: Vec<Estimate>,
     train_chi2_red: f64,
     figures: Figures,

@@ -3,8 +3,7 @@
 //! training runs, and the null re-fit started again where the best candidates left the base.
 
 use super::acquisition::OffBase;
-use super::candidate::sensor::DRIFT_PARAM;
-use super::candidate::{BASE_BOUND, Candidate, Param, base_params, prior_sigma, scaled};
+use super::candidate::{BASE_BOUND, Candidate, Param, Prior, base_params, prior_sigma, scaled};
 use super::clock::ClockTrend;
 use super::measure::RunSpectra;
 use super::outcome::Estimate;
@@ -64,6 +63,17 @@ impl<'a> Base<'a> {
 /// floor of 1 ppm.
 fn drift_prior(trend: &ClockTrend, drift_ppm: f64) -> f64 {
     (drift_ppm - trend.drift_ppm) / (2.0 * trend.sigma_ppm).max(1.0)
+}
+
+/// The values of candidate `c`'s parameters in the parameter vector `u` of its fit alone (base
+/// parameters, then its own).
+pub(super) fn effect_values(base: &Base, c: Candidate, u: &[f64]) -> Vec<f64> {
+    let nb = base.params.len();
+    c.params()
+        .iter()
+        .zip(&u[nb..])
+        .map(|(p, u)| p.value(*u))
+        .collect()
 }
 
 /// The variant for parameter vector `u` (base parameters, then each candidate's); `rms_ref` (m/s²)
@@ -128,10 +138,17 @@ pub(super) fn fit_candidate(
         .sum::<f64>()
         / train.len().max(1) as f64)
         .exp();
-    // Where a drift rate sits in `u`, when the runs' halves measured one.
+    // Where a drift rate sits in `u`, when the runs' halves measured one: the first candidate of
+    // the stack whose definition takes the clock trend as its prior.
     let drift_at: Option<(usize, &Param, &ClockTrend)> = base.clock.as_ref().and_then(|t| {
-        let at = eff.iter().position(|p| p.name == DRIFT_PARAM)?;
-        Some((nb + at, &eff[at], t))
+        let mut at = nb;
+        for c in cands {
+            if let Some(Prior::ClockDrift { param }) = c.prior {
+                return Some((at + param, &eff[at - nb + param], t));
+            }
+            at += c.params().len();
+        }
+        None
     });
     let f = |u: &[f64]| -> Result<Vec<f64>> {
         let mut r: Vec<f64> = u[..nb].iter().zip(&sig).map(|(x, s)| x / s).collect();

@@ -95,10 +95,9 @@ pub fn diagnose_with(
     let off_base = loggers.off_base();
     let recorded = loggers.recording(prepared.check_signals().names.iter().map(String::as_str));
     let base = Base::of(model, off_base).with_clock(prepared.clock.as_ref());
-    let applicable: Vec<Candidate> = Candidate::ALL
-        .into_iter()
-        .filter(|c| c.applies_to(system) && (force_measured || !c.reads_force_only()))
-        .filter(|c| off_base.any() || !c.retimes_a_logger())
+    let applicable: Vec<Candidate> = candidate::all()
+        .filter(|c| c.applies_to(system) && (force_measured || !c.reads_force_only))
+        .filter(|c| off_base.any() || c.retiming.is_none())
         .collect();
     let mut ranking = select::rank(&base, &applicable, tr, ck, &nominal, n, null_fit)?;
     // The held-out acceptance is taken before the all-run winner's entry is rewritten with its
@@ -115,91 +114,55 @@ pub fn diagnose_with(
     if let Some((a, fitted)) = &all_runs {
         a.adopt(fitted, &base, ck, &mut ranking)?;
     }
-    let evidence = Evidence {
-        null: &ranking.null,
-        cands: &ranking.cands,
-        accepted: accepted.as_ref(),
-        all_runs: all_runs.as_ref().map(|(a, _)| a),
-        distortion: prepared.distortion.as_ref(),
-        clock: prepared.clock.as_ref(),
+    let mut evidence = Evidence {
+        null: ranking.null,
+        cands: ranking.cands,
+        accepted,
+        all_runs: all_runs.map(|(a, _)| a),
+        distortion: prepared.distortion,
+        clock: prepared.clock,
+        second: None,
+        channel_errors: prepared.channel_errors,
     };
-    let mut decided = verdict::conclude(&evidence);
-    let mut text = text::verdict(&decided, &evidence);
-    let mut named: Vec<String> = decided
-        .effect()
-        .filter(|c| ranking.cands.iter().any(|r| r.id == c.id()))
-        .map(|c| c.id().to_string())
-        .into_iter()
-        .collect();
-    let second = match decided.effect() {
-        Some(bc) => select::second_effect(&base, &ranking, bc, tr, ck, n)?,
-        None => None,
-    };
-    if let (Some((o, pair)), Verdict::Named { effect, second, .. }) = (&second, &mut decided) {
-        *second = Some(*o);
-        named.push(o.id().to_string());
-        text += &text::second(effect.id(), o.id(), pair);
+    // Forward selection: a second effect beside the effect the rules name.
+    if let Some(first) = verdict::nominee(&evidence) {
+        evidence.second =
+            select::second_effect(&base, (&evidence.cands, &ranking.fits), first, tr, ck, n)?;
     }
-    let second = second.map(|(_, pair)| pair);
+    let decision = verdict::decide(&evidence);
+    let partial = match &decision.verdict {
+        Verdict::Partial { best, second, .. } => outcome::partial_effects(
+            &evidence.cands,
+            &std::iter::once(*best).chain(*second).collect::<Vec<_>>(),
+            evidence.second.as_ref().map(|s| &s.pair),
+        ),
+        _ => Vec::new(),
+    };
+    let verdict_text = text::render(&decision, &evidence, &nominal, &partial);
     let mut warnings = prepared.warnings;
-    // How close a_w and SEAT come on the check run once the named effect(s) are added; an effect
-    // that leaves the check run far from the measurement is reported as a partial explanation.
-    let mut partial = Vec::new();
-    if let (
-        Some(st),
-        Verdict::Named {
-            effect, second: s2, ..
-        },
-    ) = (
-        outcome::named_stage(&named, &ranking.cands, second.as_ref()),
-        &decided,
-    ) {
-        let linear = std::iter::once(*effect)
-            .chain(*s2)
-            .all(|c| !c.amplitude_dependent());
-        match verdict::shortfall(&ranking.null.check, st) {
-            Some(shortfall) if shortfall.decides(linear) => {
-                partial = outcome::partial_effects(&ranking.cands, &named, second.as_ref());
-                decided = Verdict::Partial {
-                    best: *effect,
-                    second: *s2,
-                    shortfall,
-                };
-                text = text::partial(&shortfall, &partial, &nominal, &ranking.null.check);
-                named.clear();
-            }
-            away => {
-                text += &text::iso(&nominal, &ranking.null.check, st);
-                warnings.extend(away.map(|a| text::equivalent_linear_iso(&a)));
-            }
-        }
-    }
-    // A channel's calibration error (an inverted sign, a unit slip) is named first when nothing
-    // structural is detected, after the structural effect otherwise.
-    let channel_errors = prepared.channel_errors;
-    if !channel_errors.is_empty() && !named.iter().any(|n| n == Candidate::SensorGain.id()) {
-        named.push(Candidate::SensorGain.id().into());
-    }
+    warnings.extend(decision.caveat.as_ref().map(text::equivalent_linear_iso));
+    let second = evidence.second.map(|s| s.pair);
     Ok(Diagnosis {
-        verdict: verdict::reported_id(&decided, !channel_errors.is_empty()),
-        verdict_text: text::calibration(text, &channel_errors, decided == Verdict::None),
-        separating_measurement: decided.separating().map(str::to_string),
+        verdict: decision.verdict.id(),
+        decided_by: Some(decision.rule),
+        verdict_text,
+        separating_measurement: decision.verdict.separating().map(str::to_string),
+        named: decision.named(),
         partial,
-        channel_errors,
+        channel_errors: evidence.channel_errors,
         data_faults: prepared.data_faults,
         loggers: Some(recorded),
-        clock: prepared.clock,
-        named,
+        clock: evidence.clock,
         bands: located.bands,
         warnings,
         runs: located.runs,
         peak_shift_percent_per_doubling: located.peak_shift,
-        distortion: prepared.distortion,
+        distortion: evidence.distortion,
         gap_map: located.gap_map,
         classification: located.classification,
         nominal,
-        null: ranking.null,
-        candidates: ranking.cands,
+        null: evidence.null,
+        candidates: evidence.cands,
         second,
     })
 }

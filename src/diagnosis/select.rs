@@ -2,16 +2,27 @@
 //! and ranked by ΔBIC on the held-out run (docs/gap.md §6), and the forward selection of a second
 //! effect. The all-run judgement of amplitude-dependent effects is [`super::all_runs`].
 
-use super::candidate::{Candidate, Family};
+use super::candidate::{self, Candidate};
 use super::evidence::{
     Counts, Figures, bic_check, delta_bic_all, fit_each, fitted_stage, ranked, weigh,
 };
 use super::fitting::{Base, Fitted, estimates, fit_candidate, refine_null};
 use super::measure::RunSpectra;
-use super::outcome::{Ranked, Stage};
+use super::outcome::{Effects, Ranked, Stage};
 use super::score;
 use super::thresholds::{ACCEPT_DELTA_BIC, GAP_CHI2, MIN_CLOSED};
 use crate::error::Result;
+
+/// The effect forward selection added beside the effect the rules name ([`second_effect`]).
+#[derive(Debug, Clone)]
+pub(super) struct Second {
+    /// The named effect it was paired with.
+    pub first: Candidate,
+    /// The second effect.
+    pub added: Candidate,
+    /// The pair's entry, scored against the named effect alone.
+    pub pair: Ranked,
+}
 
 /// The null re-fit and the candidates ranked against it.
 pub(super) struct Ranking {
@@ -56,7 +67,7 @@ pub(super) fn rank(
     let null_bic = bic_check(&null_stage, nb, n);
     let nominal_floor = score::gap_floor(nominal.chi2_red);
     let mut null = ranked(
-        "null".into(),
+        Effects::Null,
         estimates(base, &[], &null_fit.fit),
         null_fit.fit.cost / n.train,
         Figures {
@@ -84,7 +95,7 @@ pub(super) fn rank(
         };
         let params = estimates(base, &[c], &ft.fit);
         let r = ranked(
-            c.id().into(),
+            Effects::One(c),
             params,
             ft.fit.cost / n.train,
             figures,
@@ -108,75 +119,74 @@ pub(super) fn rank(
 /// (reduced χ² > [`GAP_CHI2`]), the four best candidates of other families (and, after a missing
 /// mode, a second mode) are fitted jointly with it (from its optimum) and the pair with the lowest BIC is kept if it is detected against
 /// `bc` alone (ΔBIC ≤ [`ACCEPT_DELTA_BIC`]) and closes ≥ [`MIN_CLOSED`] of what `bc` leaves — the
-/// held-out rule, with `bc` as the reference. Returns the second effect and the pair's entry.
+/// held-out rule, with `bc` as the reference; `cands` and `fits` are the ranked candidates and
+/// their fitted parameter vectors (the warm start). Returns the second effect and the pair's entry.
 pub(super) fn second_effect(
     base: &Base,
-    ranking: &Ranking,
+    (cands, fits): (&[Ranked], &[(Candidate, Vec<f64>)]),
     bc: Candidate,
     tr: &[RunSpectra],
     ck: &RunSpectra,
     n: Counts,
-) -> Result<Option<(Candidate, Ranked)>> {
-    let cands = &ranking.cands;
-    let Some(best) = cands.iter().find(|b| b.id == bc.id()) else {
+) -> Result<Option<Second>> {
+    let Some(best) = cands.iter().find(|b| b.id == Effects::One(bc)) else {
         return Ok(None);
     };
     if best.check.chi2_red <= GAP_CHI2 {
         return Ok(None);
     }
-    let warm = &ranking
-        .fits
-        .iter()
-        .find(|(c, _)| *c == bc)
-        .expect("fitted")
-        .1;
+    let Some((_, warm)) = fits.iter().find(|(c, _)| *c == bc) else {
+        return Ok(None);
+    };
     let best_bic = bic_check(&best.check, warm.len(), n);
     let mut others: Vec<Candidate> = cands
         .iter()
         .filter(|r| r.id != best.id)
-        .filter_map(|r| Candidate::from_id(&r.id))
-        .filter(|c| c.family() != bc.family())
+        .filter_map(|r| r.id.candidate())
+        .filter(|c| c.family != bc.family)
         .take(4)
         .collect();
-    // A structure can lack more than one mode: after a frame or body mode, a frame mode under it
-    // (a riser: the frame's second mode) and, after a frame, a body mode are tried too.
-    if bc.family() == Family::MissingDof {
-        others.extend(
-            [Candidate::MissingDof, Candidate::BodyMode]
-                .into_iter()
-                .filter(|&c| {
-                    (c != bc || c == Candidate::MissingDof) && cands.iter().any(|r| r.id == c.id())
-                }),
-        );
+    // A structure can lack more than one part of a family: after a frame or body mode, the
+    // family's other forms (a body mode after a frame, a frame after a body mode) and the named
+    // one again where it repeats (a riser: the frame's second mode under the first).
+    if bc.family.adds_parts() {
+        others.extend(candidate::all().filter(|&c| {
+            c.family == bc.family
+                && (c != bc || c.repeats)
+                && cands.iter().any(|r| r.id == Effects::One(c))
+        }));
     }
     let stacks: Vec<Vec<Candidate>> = others.iter().map(|&o| vec![bc, o]).collect();
     let pairs = fit_each(base, &stacks, tr, warm, Some(ck))?;
     let floor = score::gap_floor(best.check.chi2_red);
-    let mut second: Option<(Candidate, Ranked)> = None;
+    let mut second: Option<Second> = None;
     for (pair, (ft, st)) in stacks.iter().zip(pairs) {
         let st = st.expect("evaluated on the check run");
         let d = bic_check(&st, warm.len() + pair[1].params().len(), n) - best_bic;
         let closed = score::fraction_closed(best.check.chi2_red, st.chi2_red, floor);
         if d <= ACCEPT_DELTA_BIC
             && closed >= MIN_CLOSED
-            && second.as_ref().is_none_or(|(_, s)| d < s.delta_bic)
+            && second.as_ref().is_none_or(|s| d < s.pair.delta_bic)
         {
             let figures = Figures {
                 delta_bic: d,
                 delta_bic_all: d,
                 fraction_closed: closed,
             };
-            let id = format!("{}+{}", bc.id(), pair[1].id());
             let params = estimates(base, pair, &ft.fit);
             let r = ranked(
-                id,
+                Effects::Pair(bc, pair[1]),
                 params,
                 ft.fit.cost / n.train,
                 figures,
                 st,
                 Some(&best.check),
             );
-            second = Some((pair[1], r));
+            second = Some(Second {
+                first: bc,
+                added: pair[1],
+                pair: r,
+            });
         }
     }
     Ok(second)
