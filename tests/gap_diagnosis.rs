@@ -75,6 +75,11 @@ fn no_structural_gap_is_reported_as_none_despite_a_different_occupant() {
         d.null.params.iter().any(|p| p.name.starts_with("mass.")),
         "the null re-fit moves the masses"
     );
+    // The decision's JSON names the rule that decided it: no named effect and a null re-fit
+    // within reach of the noise is docs/gap.md §7's `no-structural-gap`.
+    let json = wbv::diagnosis::report::json(&d);
+    assert_eq!(json["verdict"], "none");
+    assert_eq!(json["decided_by"], "no-structural-gap", "{json:#}");
 }
 
 fn with_channels(s: &Signals, keep: impl Fn(&str) -> bool, len: Option<usize>) -> Signals {

@@ -10,8 +10,8 @@
 //! closes part of the all-run structural gap.
 
 use super::candidate::Candidate;
-use super::evidence::{delta_bic_refit, fit_each, fitted_stage, sizes, training_closed};
-use super::fitting::{Base, Fitted, effect_values, estimates, fit_candidate};
+use super::evidence::{delta_bic_refit, sizes, training_closed};
+use super::fitting::{self, Base, Fitted, effect_values, fit_candidate};
 use super::measure::RunSpectra;
 use super::outcome::Effects;
 use super::outcome::Ranked;
@@ -52,14 +52,14 @@ impl AllRuns {
         check: &RunSpectra,
         ranking: &mut Ranking,
     ) -> Result<()> {
-        let st = fitted_stage(base, &[self.candidate], fitted, check)?;
+        let st = fitting::fitted_stage(base, &[self.candidate], fitted, check)?;
         let (aw, seat, db) = sizes(&st, &ranking.null.check);
         if let Some(r) = ranking
             .cands
             .iter_mut()
             .find(|r| r.id == Effects::One(self.candidate))
         {
-            r.params = estimates(base, &[self.candidate], &fitted.fit);
+            r.params = fitted.params.clone();
             r.delta_bic_all = self.delta_bic;
             r.fraction_closed = self.fraction_closed();
             r.aw_change_percent = aw;
@@ -125,12 +125,12 @@ fn judge(
         .chain(rival)
         .collect();
     let stacks: Vec<Vec<Candidate>> = amplitude.iter().map(|&c| vec![c]).collect();
-    let fitted = fit_each(base, &stacks, &all, &null.fit.u, None)?;
+    let fitted = fitting::fit_each(base, &stacks, &all, &null.fit.u, None)?;
     let scored: Vec<(Candidate, Fitted, f64)> = amplitude
         .into_iter()
         .zip(fitted)
-        .map(|(c, (f, _))| {
-            let d = delta_bic_refit(&f, &null, c.params().len(), n);
+        .map(|(c, f)| {
+            let d = delta_bic_refit(f.fit.cost, null.fit.cost, c.params().len(), n);
             (c, f, d)
         })
         .collect();

@@ -51,6 +51,6 @@ pub(super) fn infer(
     if !(detected && ahead && explains) {
         return Ok(assumed.clone());
     }
-    let lag_s = early.variant.seat.delay_s;
+    let lag_s = early.variant.chain.seat.delay_s;
     Ok(Loggers::force_on_base(lag_s))
 }

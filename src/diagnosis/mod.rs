@@ -2,12 +2,13 @@
 //! unmodelled effect explains it, and how far that effect shrinks the gap on a held-out run.
 //!
 //! The method is docs/gap.md. [`diagnose`] runs its stages in order, data flowing one way:
-//! [`prepare`](prepare::prepare) the measured runs (spectra, calibration, quality, coverage) →
-//! [`locate`](locate::locate) the gap (replay, gap map, magnitude trend; the distortion trend is
-//! taken in prepare, on the raw estimates) → fit and [`rank`](select::rank) the candidate effects
-//! ([`candidate`], [`fitting`], [`evidence`]) → judge amplitude-dependent effects on all runs
-//! ([`all_runs`]) → the [`Verdict`] by an ordered list of named rules ([`verdict`]) → a second
-//! effect by forward selection ([`select::second_effect`]) → the text ([`text`]).
+//! [`prepare`](prepare::prepare) the measured runs (spectra, calibration, quality, coverage; the
+//! distortion and clock trends on the raw estimates) → [`locate`](locate::locate) the gap (replay,
+//! gap map, magnitude trend) → fit and [`rank`](select::rank) the candidates ([`candidate`], fitted
+//! by [`fitting`] through the prediction layer [`predict`], scored by [`evidence`]) → judge
+//! amplitude-dependent effects on all runs ([`all_runs`]) → one evidence record, with forward
+//! selection's second effect ([`select::second_effect`]) → the one decision ([`verdict::decide`]:
+//! the [`Verdict`] and the rule that decided it) → the text ([`text`]).
 
 pub mod acquisition;
 mod all_runs;
@@ -45,7 +46,6 @@ pub use outcome::{
     RunSummary, Stage, VerdictId,
 };
 
-pub use evidence::stage;
 pub use thresholds::*;
 pub use verdict::{Basis, Shortfall, Verdict};
 
@@ -86,7 +86,7 @@ pub fn diagnose_with(
         .train_signals()
         .chain(std::iter::once(prepared.check_signals()));
     let located = locate::locate(system, signals.zip(tr.iter().chain(std::iter::once(ck))))?;
-    let nominal = stage(&Variant::plain(system.clone()), ck)?;
+    let nominal = fitting::stage(&Variant::plain(system.clone()), ck)?;
     let force_measured = ck.paths.iter().any(|p| p.path == Path::ApparentMass);
     // The null re-fit does not depend on the loggers (it retimes nothing); the timing
     // candidates do, so the force plate's logger is inferred before they are fitted.

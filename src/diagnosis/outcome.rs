@@ -40,7 +40,7 @@ pub struct Stage {
     /// Weighted r.m.s. and SEAT gap.
     pub weighted: Weighted,
     /// Standard errors of the seat a_w gap and of SEAT that the fitted parameters' uncertainty
-    /// gives ([`super::evidence::iso_sigma`]), for a fitted model whose reduced χ² is within
+    /// gives ([`super::fitting::iso_sigma`]), for a fitted model whose reduced χ² is within
     /// [`super::thresholds::EXPLAINED_CHI2`] (only then does the covariance describe its
     /// scatter); `None` otherwise and for the nominal model, which is not fitted.
     #[serde(default, skip_serializing_if = "Option::is_none")]

@@ -30,10 +30,10 @@ pub(super) fn render(
             let mut text = sentence(d, e);
             let pair = e.second.as_ref().filter(|_| added.is_some());
             if let Some(s) = pair {
-                text += &second(*effect, s.added, &s.pair);
+                text += &second(effect, s.added, &s.pair);
             }
             let with = pair.map_or_else(
-                || e.entry(*effect).map(|r| &r.check),
+                || e.entry(effect).map(|r| &r.check),
                 |s| Some(&s.pair.check),
             );
             if let Some(with) = with {
@@ -56,16 +56,16 @@ pub(super) fn sentence(d: &Decision, e: &Evidence) -> String {
     let set_aside = d.set_aside.and_then(|c| e.entry(c));
     match &d.verdict {
         Verdict::Named { effect, basis, .. } => match basis {
-            Basis::AllRuns { refitted: true } => refitted(e, e.entry(*effect).expect("ranked")),
-            Basis::AllRuns { refitted: false } => on_all_runs(e, e.entry(*effect).expect("ranked")),
-            Basis::HeldOut { tie, alternative } => held_out(e, *effect, *tie, *alternative),
-            Basis::Distortion { responses } => distortion(e, e.entry(*effect).expect("ranked"), responses),
-            Basis::Clock { responses } => clock(e, e.entry(*effect).expect("ranked"), responses),
+            Basis::AllRuns { refitted: true } => refitted(e, e.entry(effect).expect("ranked")),
+            Basis::AllRuns { refitted: false } => on_all_runs(e, e.entry(effect).expect("ranked")),
+            Basis::HeldOut { tie, alternative } => held_out(e, effect, *tie, *alternative),
+            Basis::Distortion { responses } => distortion(e, e.entry(effect).expect("ranked"), responses),
+            Basis::Clock { responses } => clock(e, e.entry(effect).expect("ranked"), responses),
         },
         Verdict::NotIdentifiable { a, b, separating } => {
             let (a, b) = (
-                e.held_out_entry(*a).expect("ranked"),
-                e.held_out_entry(*b).expect("ranked"),
+                e.held_out_entry(a).expect("ranked"),
+                e.held_out_entry(b).expect("ranked"),
             );
             format!(
                 "{} and {} explain the held-out run equally well (ΔBIC {:.1} vs {:.1}); to separate them, measure {separating}",

@@ -85,8 +85,8 @@ pub static DELAY: Definition = sensor(
     },
     always,
     |v, p| {
-        v.seat.delay_s += p[0];
-        v.head.delay_s += p[1];
+        v.chain.seat.delay_s += p[0];
+        v.chain.head.delay_s += p[1];
         Ok(())
     },
 );
@@ -95,11 +95,11 @@ pub static DELAY: Definition = sensor(
 /// accelerometer's logger ([`crate::diagnosis::acquisition`]): the seat pad, head and force plate
 /// retimed together, not one channel at a time.
 fn retime_off_base(v: &mut Variant, offset_s: f64, drift: f64) {
-    let off = v.off_base;
+    let off = v.chain.off_base;
     for (on, ch) in [
-        (off.seat, &mut v.seat),
-        (off.head, &mut v.head),
-        (off.force, &mut v.force),
+        (off.seat, &mut v.chain.seat),
+        (off.head, &mut v.chain.head),
+        (off.force, &mut v.chain.force),
     ] {
         if on {
             ch.delay_s += offset_s;
@@ -166,8 +166,8 @@ pub static LOWPASS: Definition = sensor(
     },
     always,
     |v, p| {
-        v.seat.lowpass_hz = p[0];
-        v.head.lowpass_hz = p[1];
+        v.chain.seat.lowpass_hz = p[0];
+        v.chain.head.lowpass_hz = p[1];
         Ok(())
     },
 );
@@ -185,9 +185,9 @@ pub static HIGHPASS: Definition = sensor(
     },
     always,
     |v, p| {
-        v.base.highpass_hz = p[0];
-        v.seat.highpass_hz = p[1];
-        v.head.highpass_hz = p[2];
+        v.chain.base.highpass_hz = p[0];
+        v.chain.seat.highpass_hz = p[1];
+        v.chain.head.highpass_hz = p[2];
         Ok(())
     },
 );
@@ -207,9 +207,9 @@ pub static GAIN: Definition = Definition {
         },
         always,
         |v, p| {
-            v.base.gain *= p[0];
-            v.seat.gain *= p[1];
-            v.head.gain *= p[2];
+            v.chain.base.gain *= p[0];
+            v.chain.seat.gain *= p[1];
+            v.chain.head.gain *= p[2];
             Ok(())
         },
     )
@@ -221,7 +221,7 @@ pub static MOUNT_SEAT: Definition = sensor(
     || mount_params(0.7, &[0.08]),
     always,
     |v, p| {
-        v.seat.mount = Some((p[0], p[1]));
+        v.chain.seat.mount = Some((p[0], p[1]));
         Ok(())
     },
 );
@@ -232,7 +232,7 @@ pub static MOUNT_HEAD: Definition = sensor(
     || mount_params(0.7, &[0.08]),
     has_head,
     |v, p| {
-        v.head.mount = Some((p[0], p[1]));
+        v.chain.head.mount = Some((p[0], p[1]));
         Ok(())
     },
 );
@@ -246,7 +246,7 @@ pub static MOUNT_BASE: Definition = sensor(
     || mount_params(1.0, &[0.08, 0.6]),
     always,
     |v, p| {
-        v.base.mount = Some((p[0], p[1]));
+        v.chain.base.mount = Some((p[0], p[1]));
         Ok(())
     },
 );
@@ -269,7 +269,7 @@ pub static LOWPASS_BASE: Definition = sensor(
     },
     always,
     |v, p| {
-        v.base.sections = [Some((p[0], p[1])), Some((p[0] * p[2], p[3]))];
+        v.chain.base.sections = [Some((p[0], p[1])), Some((p[0] * p[2], p[3]))];
         Ok(())
     },
 );
@@ -288,9 +288,9 @@ pub static FORCE: Definition = force_sensor(
         ]
     },
     |v, p| {
-        v.force.delay_s += p[0];
-        v.force.lowpass_hz = p[1];
-        v.force_mass_kg += p[2];
+        v.chain.force.delay_s += p[0];
+        v.chain.force.lowpass_hz = p[1];
+        v.chain.force_mass_kg += p[2];
         Ok(())
     },
 );
@@ -300,7 +300,7 @@ pub static MOUNT_FORCE: Definition = force_sensor(
     "sensor-mount-force",
     || mount_params(0.7, &[0.08]),
     |v, p| {
-        v.force.mount = Some((p[0], p[1]));
+        v.chain.force.mount = Some((p[0], p[1]));
         Ok(())
     },
 );

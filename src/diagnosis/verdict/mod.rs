@@ -315,7 +315,7 @@ pub(super) fn decide(e: &Evidence) -> Decision {
         let pair = e.second.as_ref().filter(|s| s.first == *effect);
         *second = pair.map(|s| s.added);
         let named = pair.map_or_else(
-            || e.entry(*effect).map(|r| &r.check),
+            || e.entry(effect).map(|r| &r.check),
             |s| Some(&s.pair.check),
         );
         let linear = std::iter::once(*effect)
@@ -324,7 +324,7 @@ pub(super) fn decide(e: &Evidence) -> Decision {
         match named.and_then(|st| shortfall(&e.null.check, st)) {
             Some(s) if s.decides(linear) => {
                 verdict = Verdict::Partial {
-                    best: *effect,
+                    best: effect,
                     second: *second,
                     shortfall: s,
                 };
