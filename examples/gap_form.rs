@@ -54,7 +54,7 @@ fn main() -> wbv::Result<()> {
             Ok(format!(
                 "case {i}: {} [{}] χ² {with:.1} | {} | detect {:.1} | null χ² {:.1} | {} | {}",
                 d.verdict,
-                d.named.join(" + "),
+                d.named.iter().map(|c| c.id).collect::<Vec<_>>().join(" + "),
                 case.label
                     .effects
                     .first()

@@ -507,3 +507,119 @@ fn a_stage_calling_back_into_its_orchestrator_is_a_cycle() {
     );
     assert_eq!(cycles(&edges(&back)).len(), 1, "{:?}", edges(&back));
 }
+
+/// The `.rs` files under `dir`, path → text.
+fn files_under(dir: &str) -> BTreeMap<String, String> {
+    fn walk(dir: &Path, out: &mut BTreeMap<String, String>) {
+        for e in std::fs::read_dir(dir).unwrap() {
+            let p = e.unwrap().path();
+            if p.is_dir() {
+                walk(&p, out);
+            } else if p.extension().is_some_and(|e| e == "rs") {
+                let text = std::fs::read_to_string(&p).unwrap();
+                out.insert(p.to_string_lossy().replace('\\', "/"), text);
+            }
+        }
+    }
+    let mut out = BTreeMap::new();
+    walk(Path::new(dir), &mut out);
+    out
+}
+
+/// The gap diagnosis's candidates, (static name, id, family file), read from the definitions
+/// `pub static NAME: Definition = …` in `src/diagnosis/candidate/`: the id is the first string
+/// literal of the definition.
+fn candidates(files: &BTreeMap<String, String>) -> Vec<(String, String, String)> {
+    let mut out = Vec::new();
+    for (path, text) in files {
+        if !path.starts_with("src/diagnosis/candidate/") {
+            continue;
+        }
+        let code = code(text);
+        let mut rest = code.as_str();
+        while let Some(i) = rest.find("pub static ") {
+            rest = &rest[i + "pub static ".len()..];
+            let name: String = rest
+                .chars()
+                .take_while(|c| c.is_alphanumeric() || *c == '_')
+                .collect();
+            if !rest[name.len()..].trim_start().starts_with(": Definition") {
+                continue;
+            }
+            let id = rest.split('"').nth(1).unwrap_or_default().to_string();
+            out.push((name, id, path.clone()));
+        }
+    }
+    out
+}
+
+/// Whether `word` occurs in `code` as a whole identifier.
+fn has_word(code: &str, word: &str) -> bool {
+    let ident = |c: char| c.is_alphanumeric() || c == '_';
+    code.match_indices(word).any(|(i, _)| {
+        !code[..i].chars().last().is_some_and(ident)
+            && !code[i + word.len()..].chars().next().is_some_and(ident)
+    })
+}
+
+/// Where a candidate is named outside its family's file: by its definition's name anywhere in
+/// `files` but the truth-form bench (`gap_bench/`, an independent scorer that joins on the JSON's
+/// ids by design), or by its id as a string literal in the diagnosis and the code that shows it
+/// (`diagnosis/`, `report/`, `cli/`; elsewhere `"backrest"` is a link role). Comments and test code
+/// are not read.
+fn candidates_named_outside(files: &BTreeMap<String, String>) -> Vec<String> {
+    let cands = candidates(files);
+    let mut out = Vec::new();
+    for (path, text) in files {
+        if path.starts_with("src/gap_bench/") || path.ends_with("/tests.rs") {
+            continue;
+        }
+        let code = code(text);
+        let shows = ["src/diagnosis/", "src/report/", "src/cli/"]
+            .iter()
+            .any(|d| path.starts_with(d));
+        for (name, id, home) in &cands {
+            if path == home {
+                continue;
+            }
+            if has_word(&code, name) {
+                out.push(format!("{path} names {name} (defined in {home})"));
+            }
+            if shows && code.contains(&format!("\"{id}\"")) {
+                out.push(format!("{path} names \"{id}\" (defined in {home})"));
+            }
+        }
+    }
+    out
+}
+
+#[test]
+fn a_candidate_is_named_only_in_its_family_s_file() {
+    let files = files_under("src");
+    let cands = candidates(&files);
+    assert!(
+        cands.len() >= 20 && cands.iter().all(|(_, id, _)| !id.is_empty()),
+        "too few candidates found ({cands:?}): parser broken?"
+    );
+    let named = candidates_named_outside(&files);
+    assert!(
+        named.is_empty(),
+        "a candidate named outside its family's file (a stage asks the registry for a \
+         behaviour, a field of the definition, instead): {named:#?}"
+    );
+    // A name or an id planted in a stage is found; in a comment or a test it is not.
+    let (name, id, _) = &cands[0];
+    for (planted, found) in [
+        (format!("if c == &{name} {{}}"), true),
+        (format!("let x = from_id(\"{id}\");"), true),
+        (format!("// {name} \"{id}\""), false),
+        (
+            format!("#[cfg(test)]\nmod tests {{ fn f() {{ {name}; }} }}"),
+            false,
+        ),
+    ] {
+        let mut f = files.clone();
+        f.insert("src/diagnosis/planted.rs".into(), planted.clone());
+        assert_eq!(!candidates_named_outside(&f).is_empty(), found, "{planted}");
+    }
+}

@@ -75,6 +75,11 @@ fn no_structural_gap_is_reported_as_none_despite_a_different_occupant() {
         d.null.params.iter().any(|p| p.name.starts_with("mass.")),
         "the null re-fit moves the masses"
     );
+    // The decision's JSON names the rule that decided it: no named effect and a null re-fit
+    // within reach of the noise is docs/gap.md §7's `no-structural-gap`.
+    let json = wbv::diagnosis::report::json(&d);
+    assert_eq!(json["verdict"], "none");
+    assert_eq!(json["decided_by"], "no-structural-gap", "{json:#}");
 }
 
 fn with_channels(s: &Signals, keep: impl Fn(&str) -> bool, len: Option<usize>) -> Signals {
@@ -457,7 +462,7 @@ fn a_preloaded_foam_is_named_by_its_distortion_and_a_linear_foam_is_not() {
                 // The fixed floor lowers the ratio at high magnitude (it falls, −3 dB here).
                 assert!(seat.rise_db < 1.0 && !seat.distorts(), "{dist:?}");
                 assert_eq!(
-                    d.verdict.effect(),
+                    d.verdict.effect().map(|c| c.id),
                     Some("cushion-viscoelastic"),
                     "{}",
                     d.verdict_text
@@ -484,7 +489,7 @@ fn an_upside_down_seat_accelerometer_is_named_and_the_seat_still_judged() {
     let d = diagnose(&model, &train, &check).unwrap();
     let upright = diagnose(&model, &case.train, &case.check).unwrap();
     assert_eq!(
-        d.verdict.effect(),
+        d.verdict.effect().map(|c| c.id),
         Some("sensor-gain"),
         "{}",
         d.verdict_text
@@ -509,7 +514,7 @@ fn an_upside_down_seat_accelerometer_is_named_and_the_seat_still_judged() {
     let slipped: Vec<Signals> = case.train.iter().map(slip).collect();
     let d = diagnose(&model, &slipped, &slip(&case.check)).unwrap();
     assert_eq!(
-        d.verdict.effect(),
+        d.verdict.effect().map(|c| c.id),
         Some("sensor-gain"),
         "{}",
         d.verdict_text
@@ -561,7 +566,7 @@ fn an_ac_coupled_seat_accelerometer_is_named_a_sensor_high_pass() {
     let train: Vec<Signals> = case.train.iter().map(ac).collect();
     let d = diagnose(&model, &train, &ac(&case.check)).unwrap();
     assert_eq!(
-        d.verdict.effect(),
+        d.verdict.effect().map(|c| c.id),
         Some("sensor-highpass"),
         "{}",
         d.verdict_text
@@ -569,7 +574,7 @@ fn an_ac_coupled_seat_accelerometer_is_named_a_sensor_high_pass() {
     let hp = d
         .candidates
         .iter()
-        .find(|c| c.id == "sensor-highpass")
+        .find(|c| c.id.to_string() == "sensor-highpass")
         .unwrap();
     let seat = hp
         .params

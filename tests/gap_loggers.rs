@@ -35,7 +35,11 @@ fn case(form: Form, u: f64, force: bool, force_late: bool, index: usize) -> Case
 }
 
 fn param(d: &Diagnosis, id: &str, name: &str) -> f64 {
-    let c = d.candidates.iter().find(|c| c.id == id).expect(id);
+    let c = d
+        .candidates
+        .iter()
+        .find(|c| c.id.to_string() == id)
+        .expect(id);
     c.params.iter().find(|p| p.name == name).expect(name).value
 }
 
@@ -73,7 +77,11 @@ fn a_trigger_offset_with_the_force_plate_on_the_late_logger_is_a_logger_offset()
     // Stated as one logger for every channel, no timing between loggers is fitted at all.
     let one = Loggers::parse(&["all:a_base_z,a_seat_z,a_head_z,f_seat_z".to_string()]).unwrap();
     let d = diagnose_with(&model, &c.train, &c.check, &one).unwrap();
-    assert!(d.candidates.iter().all(|r| !r.id.starts_with("logger-")));
+    assert!(
+        d.candidates
+            .iter()
+            .all(|r| !r.id.to_string().starts_with("logger-"))
+    );
     assert!(!d.verdict.as_str().starts_with("logger-"));
 }
 

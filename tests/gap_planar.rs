@@ -187,7 +187,7 @@ fn planar_cushion_relaxation_is_named_with_fore_and_aft_paths_judged() {
     let foam = |id: &str| matches!(id, "cushion-viscoelastic" | "cushion-fractional");
     match d.named_stage() {
         Some(with) => {
-            assert!(foam(&d.named[0]), "{}", d.verdict_text);
+            assert!(foam(d.named[0].id), "{}", d.verdict_text);
             let (n, w) = (&d.null.check.weighted, &with.weighted);
             assert!(
                 w.aw_gap_percent.abs() < n.aw_gap_percent.abs() + 1.0,
@@ -202,7 +202,7 @@ fn planar_cushion_relaxation_is_named_with_fore_and_aft_paths_judged() {
         }
         None => {
             assert_eq!(d.verdict, VerdictId::Unexplained, "{}", d.verdict_text);
-            assert!(foam(&d.partial[0].id), "{:?}", d.partial);
+            assert!(foam(&d.partial[0].id.to_string()), "{:?}", d.partial);
             assert!(
                 d.verdict_text.contains("Partial candidates"),
                 "{}",
@@ -233,7 +233,7 @@ fn planar_broad_relaxation_foam_is_named_viscoelastic() {
     let d = diagnose(&model, &train, &check).unwrap();
     eprintln!("{}", wbv::diagnosis::report::text(&d));
     assert_eq!(
-        d.named.first().map(String::as_str),
+        d.named.first().map(|c| c.id),
         Some("cushion-viscoelastic"),
         "{}",
         d.verdict_text

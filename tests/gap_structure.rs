@@ -27,12 +27,16 @@ fn a_two_mode_seat_frame_is_named_as_a_frame_mode_and_a_second_one_under_it() {
     let d = diagnose(&model, &case.train, &case.check).unwrap();
     assert_eq!(d.verdict.as_str(), "missing-dof", "{}", d.verdict_text);
     assert_eq!(
-        d.named,
+        d.named.iter().map(|c| c.id).collect::<Vec<_>>(),
         ["missing-dof", "missing-dof"],
         "{}",
         d.verdict_text
     );
-    let one = d.candidates.iter().find(|c| c.id == "missing-dof").unwrap();
+    let one = d
+        .candidates
+        .iter()
+        .find(|c| c.id.to_string() == "missing-dof")
+        .unwrap();
     let both = d.named_stage().unwrap();
     // One frame mode leaves a structural residual; the pair brings the check run near the noise.
     assert!(one.check.chi2_red > 5.0, "one mode: {}", one.check.chi2_red);

@@ -36,7 +36,7 @@ fn hands_on_a_wheel_are_named_an_upper_body_path_and_legs_still_a_lower_one() {
         )
         .unwrap();
         let d = diagnose(&model, &case.train, &case.check).unwrap();
-        let named = d.verdict.effect().unwrap_or_default();
+        let named = d.verdict.effect().map_or("", |c| c.id);
         assert!(
             expect.contains(&named),
             "{form:?} ({}): {} — {}",

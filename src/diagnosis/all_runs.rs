@@ -10,9 +10,10 @@
 //! closes part of the all-run structural gap.
 
 use super::candidate::Candidate;
-use super::evidence::{delta_bic_refit, fit_each, fitted_stage, sizes, training_closed};
-use super::fitting::{Base, Fitted, estimates, fit_candidate};
+use super::evidence::{delta_bic_refit, sizes, training_closed};
+use super::fitting::{self, Base, Fitted, effect_values, fit_candidate};
 use super::measure::RunSpectra;
+use super::outcome::Effects;
 use super::outcome::Ranked;
 use super::score;
 use super::select::Ranking;
@@ -51,14 +52,14 @@ impl AllRuns {
         check: &RunSpectra,
         ranking: &mut Ranking,
     ) -> Result<()> {
-        let st = fitted_stage(base, &[self.candidate], fitted, check)?;
+        let st = fitting::fitted_stage(base, &[self.candidate], fitted, check)?;
         let (aw, seat, db) = sizes(&st, &ranking.null.check);
         if let Some(r) = ranking
             .cands
             .iter_mut()
-            .find(|r| r.id == self.candidate.id())
+            .find(|r| r.id == Effects::One(self.candidate))
         {
-            r.params = estimates(base, &[self.candidate], &fitted.fit);
+            r.params = fitted.params.clone();
             r.delta_bic_all = self.delta_bic;
             r.fraction_closed = self.fraction_closed();
             r.aw_change_percent = aw;
@@ -92,7 +93,7 @@ pub(super) fn judge_if_needed(
         return Ok(None);
     }
     let rival = accepted
-        .and_then(|b| Candidate::from_id(&b.id))
+        .and_then(|b| b.id.candidate())
         .filter(|c| !c.amplitude_dependent());
     judge(base, candidates, rival, train, check, warm)
 }
@@ -124,26 +125,27 @@ fn judge(
         .chain(rival)
         .collect();
     let stacks: Vec<Vec<Candidate>> = amplitude.iter().map(|&c| vec![c]).collect();
-    let fitted = fit_each(base, &stacks, &all, &null.fit.u, None)?;
+    let fitted = fitting::fit_each(base, &stacks, &all, &null.fit.u, None)?;
     let scored: Vec<(Candidate, Fitted, f64)> = amplitude
         .into_iter()
         .zip(fitted)
-        .map(|(c, (f, _))| {
-            let d = delta_bic_refit(&f, &null, c.params().len(), n);
+        .map(|(c, f)| {
+            let d = delta_bic_refit(f.fit.cost, null.fit.cost, c.params().len(), n);
             (c, f, d)
         })
         .collect();
-    // A magnitude schedule fitted with alpha_k < 0 says the support stiffens as magnitude rises
-    // (the resonance rises): that is not body softening, so it is left out and the best of the
-    // others — the cushion-stiffening forms among them — is judged (a preloaded cushion stiffens
-    // between runs, which a negative body exponent could otherwise absorb).
-    let nb = base.params.len();
-    let stiffening = |c: Candidate, f: &Fitted| {
-        c == Candidate::BodySofteningMagnitude && f.fit.u.get(nb).is_some_and(|&a| a < 0.0)
+    // A fit whose values contradict its effect is left out and the best of the others judged: a
+    // magnitude schedule fitted with α_k < 0 says the support stiffens as magnitude rises (the
+    // resonance rises), which is not body softening — the cushion-stiffening forms among the
+    // others (a preloaded cushion stiffens between runs, which a negative body exponent could
+    // otherwise absorb).
+    let contradicted = |c: Candidate, f: &Fitted| {
+        c.contradicted_by
+            .is_some_and(|wrong| wrong(&effect_values(base, c, &f.fit.u)))
     };
     let best = scored
         .into_iter()
-        .filter(|(c, f, _)| !stiffening(*c, f))
+        .filter(|(c, f, _)| !contradicted(*c, f))
         .min_by(|a, b| a.2.total_cmp(&b.2));
     if best.as_ref().is_some_and(|b| Some(b.0) == rival) {
         return Ok(None);

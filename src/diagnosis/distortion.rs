@@ -388,8 +388,9 @@ mod tests {
         assert!((bs.exponent - 1.0).abs() < 0.01 && bs.monotone);
         assert!(!d.paths[1].distorts());
         assert_eq!(d.site, Some(Site::Support));
-        assert!(Site::Support.admits(Candidate::CushionBottoming));
-        assert!(!Site::Support.admits(Candidate::CushionViscoelastic));
+        use crate::diagnosis::candidate::{stiffening, viscoelastic};
+        assert!(Site::Support.admits(&stiffening::CUSHION_BOTTOMING));
+        assert!(!Site::Support.admits(&viscoelastic::CUSHION_VISCOELASTIC));
     }
 
     #[test]

@@ -1,36 +1,29 @@
-//! The evidence stage: a model variant's figures on the held-out run, every BIC form the
-//! diagnosis uses, the BIC weights and the one constructor of a ranked entry (docs/gap.md §6).
+//! The evidence stage: scores, never fits or predicts (docs/gap.md §6). A prediction's figures on
+//! the held-out run ([`stage`]), every BIC form the diagnosis uses, the fraction of the gap
+//! closed, the BIC weights and the one constructor of a ranked entry; the fits and predictions
+//! they score come from [`super::fitting`].
 //!
 //! n is the number of independent residuals: two per trusted fitted cell ([`score::residual_count`]),
 //! the real and imaginary part of ln(H_model/H_meas) over σ. The reduced χ² times n is the χ², so
 //! −2 ln L = χ² up to a constant and BIC = χ² + k ln n (Schwarz, Ann. Stat. 6 (1978) 461–464).
 
-use super::candidate::Candidate;
-use super::fitting::{Base, Fitted, bounds, build, fit_candidate};
-use super::gapmap;
+use super::gapmap::{self, Weighted};
 use super::measure::{Path, RunSpectra};
-use super::outcome::{Estimate, IsoSigma, Ranked, Stage};
-use super::predict::{self, Variant};
+use super::outcome::{Effects, Estimate, Ranked, Stage};
 use super::score;
-use crate::error::Result;
-use rayon::prelude::*;
+use num_complex::Complex64;
 
-/// A model variant's evaluation on the held-out run: reduced χ², band-gap and phase-gap RMS, the
-/// Wk-weighted seat a_w and SEAT (ISO 2631-1 §6.4.2) and the band gap map.
-pub fn stage(v: &Variant, check: &RunSpectra) -> Result<Stage> {
-    let predicted = predict::predict(v, check)?;
-    let pred = &predicted.as_estimated;
+/// A prediction's figures on the held-out run `check`: reduced χ², band-gap and phase-gap RMS,
+/// the Wk-weighted seat a_w and SEAT (ISO 2631-1 §6.4.2) and the band gap map. `as_estimated` is
+/// the prediction of every path as the run's H1 estimates it, `seat` the base→seat response the
+/// seat's a_w is predicted from ([`super::predict::seat_response`]).
+pub fn stage(check: &RunSpectra, as_estimated: &[Vec<Complex64>], seat: &[Complex64]) -> Stage {
     let n = score::residual_count(std::slice::from_ref(check)).max(1);
     let mut r = Vec::new();
-    score::run_residuals(check, pred, &mut r);
+    score::run_residuals(check, as_estimated, &mut r);
     let chi2: f64 = r.iter().map(|x| x * x).sum();
-    let cells = gapmap::band_cells(check, pred);
-    let bs = check
-        .paths
-        .iter()
-        .position(|p| p.path == Path::BaseSeat)
-        .expect("checked in check_inputs");
-    Ok(Stage {
+    let cells = gapmap::band_cells(check, as_estimated);
+    Stage {
         chi2_red: chi2 / n as f64,
         residuals: n,
         gap_db_rms: gapmap::rms_gap_db(&cells, None).unwrap_or(0.0),
@@ -38,92 +31,10 @@ pub fn stage(v: &Variant, check: &RunSpectra) -> Result<Stage> {
             .iter()
             .filter_map(|&p| gapmap::rms_phase_deg(&cells, p))
             .fold(0.0, f64::max),
-        weighted: if v.drifts() {
-            weighted(v, check)?
-        } else {
-            gapmap::weighted(check, &predicted.at_bins[bs])
-        },
+        weighted: Weighted::of(check, seat),
         iso_sigma: None,
         cells,
-    })
-}
-
-/// The seat a_w and SEAT of `v` on `check` (ISO 2631-1 §6.4.2). A lag changes no power spectrum:
-/// the seat's PSD follows |H|² without the magnitude a drifting lag's average costs H1, so a
-/// drift is left out.
-fn weighted(v: &Variant, check: &RunSpectra) -> Result<gapmap::Weighted> {
-    let bs = (check.paths.iter())
-        .position(|p| p.path == Path::BaseSeat)
-        .expect("checked in check_inputs");
-    let steady = v.without_drift();
-    Ok(gapmap::weighted(
-        check,
-        &predict::predict(steady.as_ref().unwrap_or(v), check)?.at_bins[bs],
-    ))
-}
-
-/// Standard errors of the seat a_w gap and SEAT of the fit `ft` of `cands` on `check`: the
-/// gradients by forward differences of a tenth of each parameter's standard error, propagated
-/// through the full covariance (the marginal errors alone miss that masses trade against
-/// stiffnesses). `None` when the covariance is singular.
-pub(super) fn iso_sigma(
-    base: &Base,
-    cands: &[Candidate],
-    ft: &Fitted,
-    check: &RunSpectra,
-    at: &gapmap::Weighted,
-) -> Result<Option<IsoSigma>> {
-    let Some(cov) = &ft.fit.covariance else {
-        return Ok(None);
-    };
-    let u = &ft.fit.u;
-    let (lo, hi) = bounds(base, cands);
-    let mut g_aw = vec![0.0; u.len()];
-    let mut g_seat = vec![0.0; u.len()];
-    for i in 0..u.len() {
-        let s = ft.fit.sigma_u[i];
-        if !(s.is_finite() && s > 0.0) {
-            continue;
-        }
-        // A step inside the parameter's range, toward its interior: a parameter the data barely
-        // pin (σ wider than its range, as a second filter section far above the band) stepped by
-        // a tenth of σ would leave the range, where the model is another model and the
-        // difference quotient no gradient.
-        let mut h = (0.1 * s).min(0.1 * (hi[i] - lo[i]));
-        if u[i] + h > hi[i] {
-            h = -h;
-        }
-        let mut v = u.clone();
-        v[i] += h;
-        let w = weighted(&build(base, cands, &v, ft.variant.rms_ref)?, check)?;
-        g_aw[i] = (w.aw_gap_percent - at.aw_gap_percent) / h;
-        g_seat[i] = (w.seat_model - at.seat_model) / h;
     }
-    let quad = |g: &[f64]| {
-        let g = nalgebra::DVector::from_column_slice(g);
-        (g.transpose() * cov * &g)[(0, 0)].max(0.0).sqrt()
-    };
-    Ok(Some(IsoSigma {
-        aw_percent: quad(&g_aw),
-        seat_points: quad(&g_seat),
-    }))
-}
-
-/// The stage on `check` of the fit `ft` of `cands`, with the standard errors of its ISO figures
-/// when its residual is within reach of the noise: beyond [`super::thresholds::EXPLAINED_CHI2`]
-/// the covariance s²(JᵀJ)⁻¹ no longer describes the parameters' scatter, the figures being off by
-/// the form, not the fit.
-pub(super) fn fitted_stage(
-    base: &Base,
-    cands: &[Candidate],
-    ft: &Fitted,
-    check: &RunSpectra,
-) -> Result<Stage> {
-    let mut st = stage(&ft.variant, check)?;
-    if st.chi2_red <= super::thresholds::EXPLAINED_CHI2 {
-        st.iso_sigma = iso_sigma(base, cands, ft, check, &st.weighted)?;
-    }
-    Ok(st)
 }
 
 /// Fraction of the training runs' structural gap that `c` closes against the null re-fit,
@@ -171,24 +82,25 @@ pub(super) fn bic_check(st: &Stage, k: usize, n: Counts) -> f64 {
 }
 
 /// ΔBIC over the training and check runs together of an effect with `extra` parameters, fitted on
-/// the training runs, against the reference fit `null`: the training χ² difference (in sample)
-/// plus the check run's, plus extra·ln(n_train + n_check). The evidence for an
-/// amplitude-dependent effect, which a held-out run between the training magnitudes barely shows.
+/// the training runs (training χ² `effect.0`, stage on the check run `effect.1`), against the
+/// reference fit `null`: the training χ² difference (in sample) plus the check run's, plus
+/// extra·ln(n_train + n_check). The evidence for an amplitude-dependent effect, which a held-out
+/// run between the training magnitudes barely shows.
 pub(super) fn delta_bic_all(
-    effect: (&Fitted, &Stage),
-    null: (&Fitted, &Stage),
+    effect: (f64, &Stage),
+    null: (f64, &Stage),
     extra: usize,
     n: Counts,
 ) -> f64 {
-    (effect.0.fit.cost - null.0.fit.cost)
+    (effect.0 - null.0)
         + (effect.1.chi2_red - null.1.chi2_red) * n.check
         + extra as f64 * (n.train + n.check).ln()
 }
 
 /// ΔBIC of an effect with `extra` parameters and the null, both fitted on the same runs with `n`
-/// residuals: χ²_effect − χ²_null + extra·ln n (in sample).
-pub(super) fn delta_bic_refit(effect: &Fitted, null: &Fitted, extra: usize, n: f64) -> f64 {
-    effect.fit.cost - null.fit.cost + extra as f64 * n.ln()
+/// residuals (χ² `effect` and `null`): χ²_effect − χ²_null + extra·ln n (in sample).
+pub(super) fn delta_bic_refit(effect: f64, null: f64, extra: usize, n: f64) -> f64 {
+    effect - null + extra as f64 * n.ln()
 }
 
 /// BIC weights over the null (ΔBIC 0) and the candidates: wᵢ = exp(−(Δᵢ − Δ_min)/2) / Σⱼ
@@ -206,6 +118,90 @@ pub(super) fn weigh(null: &mut Ranked, cands: &mut [Ranked]) {
     }
 }
 
+/// A fitted model as the evidence stage scores it: the effects it adds, how many parameters they
+/// have, its training χ², its fitted parameters and its stage on the check run.
+pub(super) struct Trial {
+    /// The effects fitted.
+    pub effects: Effects,
+    /// Number of effect parameters (beyond the reference's).
+    pub extra: usize,
+    /// χ² on the training runs (the fit's cost).
+    pub cost: f64,
+    /// The fitted parameters.
+    pub params: Vec<Estimate>,
+    /// Its stage on the check run.
+    pub stage: Stage,
+}
+
+/// The null re-fit and the candidates ranked against it (docs/gap.md §6.3): each candidate's
+/// held-out ΔBIC against the null (`nb` base parameters), its all-run ΔBIC and the fraction of
+/// the structural gap it closes; the null's fraction is measured from the `nominal` model's
+/// stage. Candidates best held-out ΔBIC first, then the BIC weights ([`weigh`]).
+pub(super) fn rank(
+    null: Trial,
+    trials: impl IntoIterator<Item = Trial>,
+    nominal: &Stage,
+    nb: usize,
+    n: Counts,
+) -> (Ranked, Vec<Ranked>) {
+    let null_bic = bic_check(&null.stage, nb, n);
+    let nominal_floor = score::gap_floor(nominal.chi2_red);
+    let closed = score::fraction_closed(nominal.chi2_red, null.stage.chi2_red, nominal_floor);
+    let null_cost = null.cost;
+    let mut reference = ranked(
+        null,
+        Figures {
+            delta_bic: 0.0,
+            delta_bic_all: 0.0,
+            fraction_closed: closed,
+        },
+        n,
+        None,
+    );
+    let floor = score::gap_floor(reference.check.chi2_red);
+    let mut cands: Vec<Ranked> = trials
+        .into_iter()
+        .map(|t| {
+            let figures = Figures {
+                delta_bic: bic_check(&t.stage, nb + t.extra, n) - null_bic,
+                delta_bic_all: delta_bic_all(
+                    (t.cost, &t.stage),
+                    (null_cost, &reference.check),
+                    t.extra,
+                    n,
+                ),
+                fraction_closed: score::fraction_closed(
+                    reference.check.chi2_red,
+                    t.stage.chi2_red,
+                    floor,
+                ),
+            };
+            ranked(t, figures, n, Some(&reference.check))
+        })
+        .collect();
+    cands.sort_by(|a, b| a.delta_bic.total_cmp(&b.delta_bic));
+    weigh(&mut reference, &mut cands);
+    (reference, cands)
+}
+
+/// A model with an effect added to the `reference` entry's (`k` parameters), scored against it
+/// by the held-out rule: its held-out ΔBIC against the reference (also its all-run figure) and
+/// the fraction of what the reference leaves that it closes (docs/gap.md §6.5).
+pub(super) fn against(reference: &Ranked, k: usize, trial: Trial, n: Counts) -> Ranked {
+    let d = bic_check(&trial.stage, k + trial.extra, n) - bic_check(&reference.check, k, n);
+    let floor = score::gap_floor(reference.check.chi2_red);
+    let figures = Figures {
+        delta_bic: d,
+        delta_bic_all: d,
+        fraction_closed: score::fraction_closed(
+            reference.check.chi2_red,
+            trial.stage.chi2_red,
+            floor,
+        ),
+    };
+    ranked(trial, figures, n, Some(&reference.check))
+}
+
 /// The figures an entry is ranked and judged by.
 #[derive(Debug, Clone, Copy)]
 pub(super) struct Figures {
@@ -217,22 +213,16 @@ pub(super) struct Figures {
     pub fraction_closed: f64,
 }
 
-/// A ranked entry: `id`, its fitted parameters, the training fit (reduced χ² = cost / n_train),
-/// its figures, its stage on the check run and its size against `reference` (the null's stage;
-/// `None` for the null itself, size 0). Weights are set by [`weigh`].
-pub(super) fn ranked(
-    id: String,
-    params: Vec<Estimate>,
-    train_chi2_red: f64,
-    figures: Figures,
-    check: Stage,
-    reference: Option<&Stage>,
-) -> Ranked {
+/// A ranked entry: the trial's effects, fitted parameters, training fit (reduced χ² = cost /
+/// n_train) and stage on the check run, with its figures and its size against `reference` (the
+/// null's stage; `None` for the null itself, size 0). Weights are set by [`weigh`].
+fn ranked(t: Trial, figures: Figures, n: Counts, reference: Option<&Stage>) -> Ranked {
+    let check = t.stage;
     let (aw, seat, db) = reference.map_or((0.0, 0.0, 0.0), |r| sizes(&check, r));
     Ranked {
-        id,
-        params,
-        train_chi2_red,
+        id: t.effects,
+        params: t.params,
+        train_chi2_red: t.cost / n.train,
         delta_bic: figures.delta_bic,
         delta_bic_all: figures.delta_bic_all,
         probability: 0.0,
@@ -242,24 +232,4 @@ pub(super) fn ranked(
         band_gap_change_db: db,
         check,
     }
-}
-
-/// Fits every stack of `stacks` jointly with the base parameters on `runs` from `warm`, in
-/// parallel (the fits are independent), and evaluates each on `check` when given; results in the
-/// order of `stacks`.
-pub(super) fn fit_each(
-    base: &Base,
-    stacks: &[Vec<Candidate>],
-    runs: &[RunSpectra],
-    warm: &[f64],
-    check: Option<&RunSpectra>,
-) -> Result<Vec<(Fitted, Option<Stage>)>> {
-    stacks
-        .par_iter()
-        .map(|s| {
-            let ft = fit_candidate(base, s, runs, warm)?;
-            let st = check.map(|c| fitted_stage(base, s, &ft, c)).transpose()?;
-            Ok((ft, st))
-        })
-        .collect()
 }

@@ -1,23 +1,35 @@
 //! Fitting a stack of candidates with the base model's parameters (bounded Levenberg–Marquardt
 //! with an active set and Gaussian priors on the base parameters, multistart scouts) on the
-//! training runs, and the null re-fit started again where the best candidates left the base.
+//! training runs, the null re-fit started again where the best candidates left the base, and each
+//! fit's stage on the check run with the standard errors its parameters give the ISO figures.
+//!
+//! Fitting calls the prediction layer ([`super::predict`]) and hands what it predicts to the
+//! evidence stage to score ([`super::score::run_residuals`], [`super::evidence::stage`]).
 
 use super::acquisition::OffBase;
-use super::candidate::sensor::DRIFT_PARAM;
-use super::candidate::{BASE_BOUND, Candidate, Param, base_params, prior_sigma, scaled};
+use super::candidate::{BASE_BOUND, Candidate, Param, Prior, base_params, prior_sigma, scaled};
 use super::clock::ClockTrend;
+use super::evidence;
+use super::gapmap::Weighted;
 use super::measure::RunSpectra;
-use super::outcome::Estimate;
-use super::predict::Variant;
+use super::outcome::{Estimate, IsoSigma, Stage};
+use super::predict::{self, Variant};
 use super::score;
 use crate::error::Result;
 use crate::model::{Model, Quantity};
 use crate::numeric::lm as fit;
 use rayon::prelude::*;
 
+/// A stack of candidates fitted with the base parameters.
 pub(super) struct Fitted {
+    /// The fitted model.
     pub(super) variant: Variant,
+    /// The fit: parameters in `u` space, training cost (χ²), covariance.
     pub(super) fit: fit::Fit,
+    /// The fitted parameters as reported: the effects' (the base parameters' for the null).
+    pub(super) params: Vec<Estimate>,
+    /// Its stage on the check run, when it was judged there ([`fit_each`] with a check run).
+    pub(super) stage: Option<Stage>,
 }
 
 /// Effect parameters of a stack of candidates, in order.
@@ -32,7 +44,7 @@ pub(super) struct Base<'a> {
     /// The transducers off the base accelerometer's logger ([`super::acquisition`]).
     off_base: OffBase,
     /// The drift of the lag measured on the runs' halves, when significant: a Gaussian prior on
-    /// `logger-drift`'s rate ([`drift_prior`]).
+    /// the drift rate of a candidate whose definition takes it ([`drift_prior`]).
     clock: Option<ClockTrend>,
 }
 
@@ -66,13 +78,24 @@ fn drift_prior(trend: &ClockTrend, drift_ppm: f64) -> f64 {
     (drift_ppm - trend.drift_ppm) / (2.0 * trend.sigma_ppm).max(1.0)
 }
 
+/// The values of candidate `c`'s parameters in the parameter vector `u` of its fit alone (base
+/// parameters, then its own).
+pub(super) fn effect_values(base: &Base, c: Candidate, u: &[f64]) -> Vec<f64> {
+    let nb = base.params.len();
+    c.params()
+        .iter()
+        .zip(&u[nb..])
+        .map(|(p, u)| p.value(*u))
+        .collect()
+}
+
 /// The variant for parameter vector `u` (base parameters, then each candidate's); `rms_ref` (m/s²)
 /// is the reference magnitude of a magnitude schedule.
 pub(super) fn build(base: &Base, cands: &[Candidate], u: &[f64], rms_ref: f64) -> Result<Variant> {
     let nb = base.params.len();
     let mut v = Variant::plain(scaled(base.model, &base.params, &u[..nb])?);
     v.rms_ref = rms_ref;
-    v.off_base = base.off_base;
+    v.chain.off_base = base.off_base;
     let mut at = nb;
     for (c, ps) in cands.iter().zip(effect_params(cands)) {
         let p: Vec<f64> = ps
@@ -128,20 +151,30 @@ pub(super) fn fit_candidate(
         .sum::<f64>()
         / train.len().max(1) as f64)
         .exp();
-    // Where a drift rate sits in `u`, when the runs' halves measured one.
+    // Where a drift rate sits in `u`, when the runs' halves measured one: the first candidate of
+    // the stack whose definition takes the clock trend as its prior.
     let drift_at: Option<(usize, &Param, &ClockTrend)> = base.clock.as_ref().and_then(|t| {
-        let at = eff.iter().position(|p| p.name == DRIFT_PARAM)?;
-        Some((nb + at, &eff[at], t))
+        let mut at = nb;
+        for c in cands {
+            if let Some(Prior::ClockDrift { param }) = c.prior {
+                return Some((at + param, &eff[at - nb + param], t));
+            }
+            at += c.params().len();
+        }
+        None
     });
+    let (lo, hi) = bounds(base, cands);
     let f = |u: &[f64]| -> Result<Vec<f64>> {
         let mut r: Vec<f64> = u[..nb].iter().zip(&sig).map(|(x, s)| x / s).collect();
         if let Some((i, p, t)) = drift_at {
             r.push(drift_prior(t, p.value(u[i])));
         }
-        score::residuals(&build(base, cands, u, rms_ref)?, train, &mut r)?;
+        let v = build(base, cands, u, rms_ref)?;
+        for run in train {
+            score::run_residuals(run, &predict::predict(&v, run)?.as_estimated, &mut r);
+        }
         Ok(r)
     };
-    let (lo, hi) = bounds(base, cands);
     // Multistart over the effect parameters not warm-started (their Cartesian product).
     let mut starts: Vec<Vec<f64>> = vec![warm.to_vec()];
     for p in &eff[warm.len() - nb..] {
@@ -175,7 +208,9 @@ pub(super) fn fit_candidate(
     };
     Ok(Fitted {
         variant: build(base, cands, &fit.u, rms_ref)?,
+        params: estimates(base, cands, &fit),
         fit,
+        stage: None,
     })
 }
 
@@ -185,19 +220,20 @@ pub(super) const NULL_RESTARTS: usize = 3;
 
 /// The null re-fit started again from the base parameters `u[..nb]` of the [`NULL_RESTARTS`]
 /// candidates that fit the training runs best below the null, the lowest-cost of these and `null`
-/// kept. A candidate nests the null and starts at its optimum, so a lower candidate cost bought by
-/// base parameters alone is a better null optimum the first fit did not reach, not evidence of the
-/// effect (the nested comparison of a likelihood-ratio or BIC test assumes both optima are found).
-pub(super) fn refine_null<S>(
+/// kept, and staged on `check` when given. A candidate nests the null and starts at its optimum,
+/// so a lower candidate cost bought by base parameters alone is a better null optimum the first
+/// fit did not reach, not evidence of the effect (the nested comparison of a likelihood-ratio or
+/// BIC test assumes both optima are found).
+pub(super) fn refine_null(
     base: &Base,
     train: &[RunSpectra],
     null: Fitted,
-    fitted: &[(Fitted, S)],
+    fitted: &[Fitted],
+    check: Option<&RunSpectra>,
 ) -> Result<Fitted> {
     let nb = base.params.len();
     let mut order: Vec<&Fitted> = fitted
         .iter()
-        .map(|(f, _)| f)
         .filter(|f| f.fit.cost < null.fit.cost)
         .collect();
     order.sort_by(|a, b| a.fit.cost.total_cmp(&b.fit.cost));
@@ -207,14 +243,36 @@ pub(super) fn refine_null<S>(
         .map(|f| fit_candidate(base, &[], train, &f.fit.u[..nb]))
         .collect::<Result<_>>()?;
     // Ties keep the earlier (first fit, then the better candidate's start): deterministic.
-    Ok(refits.into_iter().fold(
+    let mut best = refits.into_iter().fold(
         null,
         |best, f| {
             if f.fit.cost < best.fit.cost { f } else { best }
         },
-    ))
+    );
+    if let Some(check) = check {
+        best.stage = Some(fitted_stage(base, &[], &best, check)?);
+    }
+    Ok(best)
 }
 
+/// Every stack of `stacks` fitted and staged on `check` ([`fit_each`], from the null's optimum),
+/// then the null re-fitted from the best of them ([`refine_null`]) and staged: the fits a ranking
+/// compares. Returns the refined null and the stacks' fits in their order.
+pub(super) fn fit_ranked(
+    base: &Base,
+    stacks: &[Vec<Candidate>],
+    train: &[RunSpectra],
+    check: &RunSpectra,
+    null: Fitted,
+) -> Result<(Fitted, Vec<Fitted>)> {
+    let fitted = fit_each(base, stacks, train, &null.fit.u, Some(check))?;
+    let null = refine_null(base, train, null, &fitted, Some(check))?;
+    Ok((null, fitted))
+}
+
+/// The fitted parameters of `ft` as reported: the effect parameters of `cands` with their standard
+/// errors (the base parameters' with their change from nominal for the null), each flagged when
+/// it ended on a bound.
 pub(super) fn estimates(base: &Base, cands: &[Candidate], ft: &fit::Fit) -> Vec<Estimate> {
     let (lo, hi) = bounds(base, cands);
     let nb = base.params.len();
@@ -261,6 +319,7 @@ pub(super) fn estimates(base: &Base, cands: &[Candidate], ft: &fit::Fit) -> Vec<
         .collect()
 }
 
+/// The bounds in `u` space of the base parameters (±[`BASE_BOUND`]) and of `cands`' parameters.
 pub(super) fn bounds(base: &Base, cands: &[Candidate]) -> (Vec<f64>, Vec<f64>) {
     let nb = base.params.len();
     let b = BASE_BOUND.ln();
@@ -270,4 +329,104 @@ pub(super) fn bounds(base: &Base, cands: &[Candidate]) -> (Vec<f64>, Vec<f64>) {
         hi.push(p.u(p.bounds.1));
     }
     (lo, hi)
+}
+
+/// The stage of variant `v` on the check run: its prediction ([`predict::predict`], and the seat
+/// response its a_w comes from, [`predict::seat_response`]) scored by [`evidence::stage`].
+pub(super) fn stage(v: &Variant, check: &RunSpectra) -> Result<Stage> {
+    let predicted = predict::predict(v, check)?;
+    let seat = predict::seat_response(v, check, Some(&predicted))?;
+    Ok(evidence::stage(check, &predicted.as_estimated, &seat))
+}
+
+/// The seat a_w and SEAT of `v` on `check` (ISO 2631-1 §6.4.2).
+fn weighted(v: &Variant, check: &RunSpectra) -> Result<Weighted> {
+    Ok(Weighted::of(
+        check,
+        &predict::seat_response(v, check, None)?,
+    ))
+}
+
+/// Standard errors of the seat a_w gap and SEAT of the fit `ft` of `cands` on `check`: the
+/// gradients by forward differences of a tenth of each parameter's standard error, propagated
+/// through the full covariance (the marginal errors alone miss that masses trade against
+/// stiffnesses). `None` when the covariance is singular.
+fn iso_sigma(
+    base: &Base,
+    cands: &[Candidate],
+    ft: &Fitted,
+    check: &RunSpectra,
+    at: &Weighted,
+) -> Result<Option<IsoSigma>> {
+    let Some(cov) = &ft.fit.covariance else {
+        return Ok(None);
+    };
+    let u = &ft.fit.u;
+    let (lo, hi) = bounds(base, cands);
+    let mut g_aw = vec![0.0; u.len()];
+    let mut g_seat = vec![0.0; u.len()];
+    for i in 0..u.len() {
+        let s = ft.fit.sigma_u[i];
+        if !(s.is_finite() && s > 0.0) {
+            continue;
+        }
+        // A step inside the parameter's range, toward its interior: a parameter the data barely
+        // pin (σ wider than its range, as a second filter section far above the band) stepped by
+        // a tenth of σ would leave the range, where the model is another model and the
+        // difference quotient no gradient.
+        let mut h = (0.1 * s).min(0.1 * (hi[i] - lo[i]));
+        if u[i] + h > hi[i] {
+            h = -h;
+        }
+        let mut v = u.clone();
+        v[i] += h;
+        let w = weighted(&build(base, cands, &v, ft.variant.rms_ref)?, check)?;
+        g_aw[i] = (w.aw_gap_percent - at.aw_gap_percent) / h;
+        g_seat[i] = (w.seat_model - at.seat_model) / h;
+    }
+    let quad = |g: &[f64]| {
+        let g = nalgebra::DVector::from_column_slice(g);
+        (g.transpose() * cov * &g)[(0, 0)].max(0.0).sqrt()
+    };
+    Ok(Some(IsoSigma {
+        aw_percent: quad(&g_aw),
+        seat_points: quad(&g_seat),
+    }))
+}
+
+/// The stage on `check` of the fit `ft` of `cands`, with the standard errors of its ISO figures
+/// when its residual is within reach of the noise: beyond [`super::thresholds::EXPLAINED_CHI2`]
+/// the covariance s²(JᵀJ)⁻¹ no longer describes the parameters' scatter, the figures being off by
+/// the form, not the fit.
+pub(super) fn fitted_stage(
+    base: &Base,
+    cands: &[Candidate],
+    ft: &Fitted,
+    check: &RunSpectra,
+) -> Result<Stage> {
+    let mut st = stage(&ft.variant, check)?;
+    if st.chi2_red <= super::thresholds::EXPLAINED_CHI2 {
+        st.iso_sigma = iso_sigma(base, cands, ft, check, &st.weighted)?;
+    }
+    Ok(st)
+}
+
+/// Fits every stack of `stacks` jointly with the base parameters on `runs` from `warm`, in
+/// parallel (the fits are independent), and evaluates each on `check` when given; results in the
+/// order of `stacks`.
+pub(super) fn fit_each(
+    base: &Base,
+    stacks: &[Vec<Candidate>],
+    runs: &[RunSpectra],
+    warm: &[f64],
+    check: Option<&RunSpectra>,
+) -> Result<Vec<Fitted>> {
+    stacks
+        .par_iter()
+        .map(|s| {
+            let mut ft = fit_candidate(base, s, runs, warm)?;
+            ft.stage = check.map(|c| fitted_stage(base, s, &ft, c)).transpose()?;
+            Ok(ft)
+        })
+        .collect()
 }

@@ -7,7 +7,7 @@
 //! different phases on the force paths, so a constant offset fitted under each tells them apart.
 
 use super::acquisition::Loggers;
-use super::candidate::Candidate;
+use super::candidate::{self, Retiming};
 use super::evidence::Counts;
 use super::fitting::{Base, Fitted, fit_candidate};
 use super::measure::RunSpectra;
@@ -33,7 +33,10 @@ pub(super) fn infer(
     if assumed.stated() || !force_measured {
         return Ok(assumed.clone());
     }
-    let offset = [Candidate::LoggerOffset];
+    let Some(offset) = candidate::with(|c| c.retiming == Some(Retiming::Offset)) else {
+        return Ok(assumed.clone());
+    };
+    let offset = [offset];
     let on_base = Loggers::force_on_base(0.0);
     let fit =
         |l: &Loggers| fit_candidate(&Base::of(model, l.off_base()), &offset, train, &null.fit.u);
@@ -48,6 +51,6 @@ pub(super) fn infer(
     if !(detected && ahead && explains) {
         return Ok(assumed.clone());
     }
-    let lag_s = early.variant.seat.delay_s;
+    let lag_s = early.variant.chain.seat.delay_s;
     Ok(Loggers::force_on_base(lag_s))
 }

@@ -5,6 +5,7 @@
 use super::measure::{BAND_N, Path, RunSpectra, h1_sigma};
 use super::score::trusted;
 use crate::analysis::octave::{centre, nominal};
+use crate::analysis::seat::{Stationary, seat_percent, weighted_rms};
 use crate::analysis::weighting::Weighting;
 use num_complex::Complex64;
 use serde::{Deserialize, Serialize};
@@ -143,48 +144,47 @@ impl Weighted {
     pub fn seat_gap_points(&self) -> f64 {
         self.seat_model - self.seat_meas
     }
-}
 
-/// Wk weighted summary of `run` with the base→seat prediction `bs` on the run's bins.
-pub fn weighted(run: &RunSpectra, bs: &[Complex64]) -> Weighted {
-    let wk = |f: f64| Weighting::Wk.magnitude(f).powi(2);
-    let df = run.df_hz;
-    let gb = run.base_psd_on_bins();
-    let mut meas = 0.0;
-    let mut model = 0.0;
-    let mut base = 0.0;
-    let mut bands = vec![0.0; (BAND_N.1 - BAND_N.0 + 1) as usize];
-    for (b, &f) in run.freq_hz.iter().enumerate() {
-        let w = wk(f) * df;
-        let dm = w * run.seat_psd[b];
-        // The prediction carries the base floor's bias b of H1 (`input_noise`); the seat moves
-        // with the base's motion alone, |H|²·G_uu = |H·b|²·G_xx / b.
-        let motion = run.base_motion.get(b).copied().unwrap_or(1.0);
-        let dp = w * bs[b].norm_sqr() * gb[b] / motion;
-        meas += dm;
-        model += dp;
-        base += w * gb[b];
-        let n = (10.0 * f.log10()).round() as i32;
-        if let Some(slot) = bands.get_mut((n - BAND_N.0).max(0) as usize) {
-            *slot += dp - dm;
+    /// The Wk-weighted seat r.m.s. and SEAT of `run`, measured and predicted from the base→seat
+    /// response `bs` on the run's bins ([`crate::diagnosis::predict::seat_response`]), by the
+    /// stationary figures of [`crate::analysis::seat`] (ISO 2631-1 eq. 1 by Parseval on the
+    /// Welch bins, SEAT by ISO 10326-1 10.2.2), and the bands that drive the a_w gap. The
+    /// prediction carries the base floor's bias b of H1 ([`super::input_noise`]); the seat moves
+    /// with the base's motion alone, |H|²·G_uu = |H·b|²·G_xx / b.
+    pub fn of(run: &RunSpectra, bs: &[Complex64]) -> Weighted {
+        let gb = run.base_psd_on_bins();
+        let wk = Stationary::new(Weighting::Wk, run.freq_hz.iter().map(|&f| (f, run.df_hz)));
+        let measured = wk.psd_terms(run.seat_psd.iter().copied());
+        let predicted = wk.response_terms(bs.iter().copied(), gb.iter().copied(), &run.base_motion);
+        let mut bands = vec![0.0; (BAND_N.1 - BAND_N.0 + 1) as usize];
+        let (mut meas, mut model) = (Vec::new(), Vec::new());
+        for ((dm, dp), &f) in measured.zip(predicted).zip(&run.freq_hz) {
+            let n = (10.0 * f.log10()).round() as i32;
+            if let Some(slot) = bands.get_mut((n - BAND_N.0).max(0) as usize) {
+                *slot += dp - dm;
+            }
+            meas.push(dm);
+            model.push(dp);
         }
-    }
-    let total: f64 = bands.iter().map(|x: &f64| x.abs()).sum::<f64>().max(1e-300);
-    let mut drive: Vec<(f64, f64)> = bands
-        .iter()
-        .enumerate()
-        .map(|(i, d)| (nominal(BAND_N.0 + i as i32), 100.0 * d.abs() / total))
-        .collect();
-    drive.sort_by(|a, b| b.1.total_cmp(&a.1));
-    drive.truncate(3);
-    let (am, ap, ab) = (meas.sqrt(), model.sqrt(), base.sqrt());
-    Weighted {
-        aw_seat_meas: am,
-        aw_seat_model: ap,
-        aw_gap_percent: 100.0 * (ap / am - 1.0),
-        seat_meas: 100.0 * am / ab,
-        seat_model: 100.0 * ap / ab,
-        driving_bands: drive,
+        let total: f64 = bands.iter().map(|x: &f64| x.abs()).sum::<f64>().max(1e-300);
+        let mut drive: Vec<(f64, f64)> = bands
+            .iter()
+            .enumerate()
+            .map(|(i, d)| (nominal(BAND_N.0 + i as i32), 100.0 * d.abs() / total))
+            .collect();
+        drive.sort_by(|a, b| b.1.total_cmp(&a.1));
+        drive.truncate(3);
+        let am = weighted_rms(meas);
+        let ap = weighted_rms(model);
+        let ab = weighted_rms(wk.psd_terms(gb.iter().copied()));
+        Weighted {
+            aw_seat_meas: am,
+            aw_seat_model: ap,
+            aw_gap_percent: 100.0 * (ap / am - 1.0),
+            seat_meas: seat_percent(am, ab).unwrap_or(f64::NAN),
+            seat_model: seat_percent(ap, ab).unwrap_or(f64::NAN),
+            driving_bands: drive,
+        }
     }
 }
 

@@ -2,12 +2,13 @@
 //! unmodelled effect explains it, and how far that effect shrinks the gap on a held-out run.
 //!
 //! The method is docs/gap.md. [`diagnose`] runs its stages in order, data flowing one way:
-//! [`prepare`](prepare::prepare) the measured runs (spectra, calibration, quality, coverage) →
-//! [`locate`](locate::locate) the gap (replay, gap map, magnitude trend; the distortion trend is
-//! taken in prepare, on the raw estimates) → fit and [`rank`](select::rank) the candidate effects
-//! ([`candidate`], [`fitting`], [`evidence`]) → judge amplitude-dependent effects on all runs
-//! ([`all_runs`]) → the [`Verdict`] by an ordered list of named rules ([`verdict`]) → a second
-//! effect by forward selection ([`select::second_effect`]) → the text ([`text`]).
+//! [`prepare`](prepare::prepare) the measured runs (spectra, calibration, quality, coverage; the
+//! distortion and clock trends on the raw estimates) → [`locate`](locate::locate) the gap (replay,
+//! gap map, magnitude trend) → fit and [`rank`](select::rank) the candidates ([`candidate`], fitted
+//! by [`fitting`] through the prediction layer [`predict`], scored by [`evidence`]) → judge
+//! amplitude-dependent effects on all runs ([`all_runs`]) → one evidence record, with forward
+//! selection's second effect ([`select::second_effect`]) → the one decision ([`verdict::decide`]:
+//! the [`Verdict`] and the rule that decided it) → the text ([`text`]).
 
 pub mod acquisition;
 mod all_runs;
@@ -45,7 +46,6 @@ pub use outcome::{
     RunSummary, Stage, VerdictId,
 };
 
-pub use evidence::stage;
 pub use thresholds::*;
 pub use verdict::{Basis, Shortfall, Verdict};
 
@@ -105,7 +105,7 @@ pub fn diagnose_with(
         .train_signals()
         .chain(std::iter::once(prepared.check_signals()));
     let located = locate::locate(system, signals.zip(tr.iter().chain(std::iter::once(ck))))?;
-    let nominal = stage(&Variant::plain(system.clone()), ck)?;
+    let nominal = fitting::stage(&Variant::plain(system.clone()), ck)?;
     let force_measured = ck.paths.iter().any(|p| p.path == Path::ApparentMass);
     // The null re-fit does not depend on the loggers (it retimes nothing); the timing
     // candidates do, so the force plate's logger is inferred before they are fitted.
@@ -114,10 +114,9 @@ pub fn diagnose_with(
     let off_base = loggers.off_base();
     let recorded = loggers.recording(prepared.check_signals().names.iter().map(String::as_str));
     let base = Base::of(model, off_base).with_clock(prepared.clock.as_ref());
-    let applicable: Vec<Candidate> = Candidate::ALL
-        .into_iter()
-        .filter(|c| c.applies_to(system) && (force_measured || !c.reads_force_only()))
-        .filter(|c| off_base.any() || !c.retimes_a_logger())
+    let applicable: Vec<Candidate> = candidate::all()
+        .filter(|c| c.applies_to(system) && (force_measured || !c.reads_force_only))
+        .filter(|c| off_base.any() || c.retiming.is_none())
         .collect();
     let mut ranking = select::rank(&base, &applicable, tr, ck, &nominal, n, null_fit)?;
     // The held-out acceptance is taken before the all-run winner's entry is rewritten with its
@@ -134,91 +133,55 @@ pub fn diagnose_with(
     if let Some((a, fitted)) = &all_runs {
         a.adopt(fitted, &base, ck, &mut ranking)?;
     }
-    let evidence = Evidence {
-        null: &ranking.null,
-        cands: &ranking.cands,
-        accepted: accepted.as_ref(),
-        all_runs: all_runs.as_ref().map(|(a, _)| a),
-        distortion: prepared.distortion.as_ref(),
-        clock: prepared.clock.as_ref(),
+    let mut evidence = Evidence {
+        null: ranking.null,
+        cands: ranking.cands,
+        accepted,
+        all_runs: all_runs.map(|(a, _)| a),
+        distortion: prepared.distortion,
+        clock: prepared.clock,
+        second: None,
+        channel_errors: prepared.channel_errors,
     };
-    let mut decided = verdict::conclude(&evidence);
-    let mut text = text::verdict(&decided, &evidence);
-    let mut named: Vec<String> = decided
-        .effect()
-        .filter(|c| ranking.cands.iter().any(|r| r.id == c.id()))
-        .map(|c| c.id().to_string())
-        .into_iter()
-        .collect();
-    let second = match decided.effect() {
-        Some(bc) => select::second_effect(&base, &ranking, bc, tr, ck, n)?,
-        None => None,
-    };
-    if let (Some((o, pair)), Verdict::Named { effect, second, .. }) = (&second, &mut decided) {
-        *second = Some(*o);
-        named.push(o.id().to_string());
-        text += &text::second(effect.id(), o.id(), pair);
+    // Forward selection: a second effect beside the effect the rules name.
+    if let Some(first) = verdict::nominee(&evidence) {
+        evidence.second =
+            select::second_effect(&base, (&evidence.cands, &ranking.fits), first, tr, ck, n)?;
     }
-    let second = second.map(|(_, pair)| pair);
+    let decision = verdict::decide(&evidence);
+    let partial = match &decision.verdict {
+        Verdict::Partial { best, second, .. } => outcome::partial_effects(
+            &evidence.cands,
+            &std::iter::once(*best).chain(*second).collect::<Vec<_>>(),
+            evidence.second.as_ref().map(|s| &s.pair),
+        ),
+        _ => Vec::new(),
+    };
+    let verdict_text = text::render(&decision, &evidence, &nominal, &partial);
     let mut warnings = prepared.warnings;
-    // How close a_w and SEAT come on the check run once the named effect(s) are added; an effect
-    // that leaves the check run far from the measurement is reported as a partial explanation.
-    let mut partial = Vec::new();
-    if let (
-        Some(st),
-        Verdict::Named {
-            effect, second: s2, ..
-        },
-    ) = (
-        outcome::named_stage(&named, &ranking.cands, second.as_ref()),
-        &decided,
-    ) {
-        let linear = std::iter::once(*effect)
-            .chain(*s2)
-            .all(|c| !c.amplitude_dependent());
-        match verdict::shortfall(&ranking.null.check, st) {
-            Some(shortfall) if shortfall.decides(linear) => {
-                partial = outcome::partial_effects(&ranking.cands, &named, second.as_ref());
-                decided = Verdict::Partial {
-                    best: *effect,
-                    second: *s2,
-                    shortfall,
-                };
-                text = text::partial(&shortfall, &partial, &nominal, &ranking.null.check);
-                named.clear();
-            }
-            away => {
-                text += &text::iso(&nominal, &ranking.null.check, st);
-                warnings.extend(away.map(|a| text::equivalent_linear_iso(&a)));
-            }
-        }
-    }
-    // A channel's calibration error (an inverted sign, a unit slip) is named first when nothing
-    // structural is detected, after the structural effect otherwise.
-    let channel_errors = prepared.channel_errors;
-    if !channel_errors.is_empty() && !named.iter().any(|n| n == Candidate::SensorGain.id()) {
-        named.push(Candidate::SensorGain.id().into());
-    }
+    warnings.extend(decision.caveat.as_ref().map(text::equivalent_linear_iso));
+    let second = evidence.second.map(|s| s.pair);
     Ok(Diagnosis {
-        verdict: verdict::reported_id(&decided, !channel_errors.is_empty()),
-        verdict_text: text::calibration(text, &channel_errors, decided == Verdict::None),
-        separating_measurement: decided.separating().map(str::to_string),
+        verdict: decision.verdict.id(),
+        decided_by: Some(decision.rule),
+        verdict_text,
+        separating_measurement: decision.verdict.separating().map(str::to_string),
+        named: decision.named(),
         partial,
-        channel_errors,
+        channel_errors: evidence.channel_errors,
         data_faults: prepared.data_faults,
         loggers: Some(recorded),
-        clock: prepared.clock,
-        named,
+        clock: evidence.clock,
         bands: located.bands,
         warnings,
         runs: located.runs,
         peak_shift_percent_per_doubling: located.peak_shift,
-        distortion: prepared.distortion,
+        distortion: evidence.distortion,
         gap_map: located.gap_map,
         classification: located.classification,
         nominal,
-        null: ranking.null,
-        candidates: ranking.cands,
+        null: evidence.null,
+        candidates: evidence.cands,
         second,
     })
 }

@@ -1,6 +1,7 @@
 //! What a diagnosis returns: fitted estimates, each model variant's stage on the held-out run,
 //! the ranked candidates, per-run summaries and the band coverage.
 
+use super::candidate::{Candidate, from_id};
 use super::gapmap::{BandCell, Weighted};
 use serde::{Deserialize, Serialize};
 
@@ -39,7 +40,7 @@ pub struct Stage {
     /// Weighted r.m.s. and SEAT gap.
     pub weighted: Weighted,
     /// Standard errors of the seat a_w gap and of SEAT that the fitted parameters' uncertainty
-    /// gives ([`super::evidence::iso_sigma`]), for a fitted model whose reduced χ² is within
+    /// gives ([`super::fitting::iso_sigma`]), for a fitted model whose reduced χ² is within
     /// [`super::thresholds::EXPLAINED_CHI2`] (only then does the covariance describe its
     /// scatter); `None` otherwise and for the nominal model, which is not fitted.
     #[serde(default, skip_serializing_if = "Option::is_none")]
@@ -59,11 +60,84 @@ pub struct IsoSigma {
     pub seat_points: f64,
 }
 
+/// The effects a fitted model adds to the base model: none (the null re-fit), one candidate, or a
+/// candidate and the second effect forward selection paired with it. Written in the JSON as
+/// `null`, the candidate's id, or the two ids joined by `+`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Effects {
+    /// The base model's own parameters re-fitted, no effect.
+    Null,
+    /// One candidate.
+    One(Candidate),
+    /// A candidate and a second effect.
+    Pair(Candidate, Candidate),
+}
+
+impl Effects {
+    /// The candidate of a one-effect model.
+    pub fn candidate(self) -> Option<Candidate> {
+        match self {
+            Effects::One(c) => Some(c),
+            _ => None,
+        }
+    }
+
+    /// The candidates, in order.
+    pub fn candidates(self) -> Vec<Candidate> {
+        match self {
+            Effects::Null => Vec::new(),
+            Effects::One(c) => vec![c],
+            Effects::Pair(a, b) => vec![a, b],
+        }
+    }
+
+    /// The effects as written with ids joined by `sep`.
+    pub(super) fn written(self, sep: &str) -> String {
+        match self {
+            Effects::Null => "null".into(),
+            Effects::One(c) => c.id.into(),
+            Effects::Pair(a, b) => format!("{}{sep}{}", a.id, b.id),
+        }
+    }
+
+    /// The effects written as `written` writes them with `sep`.
+    pub(super) fn read(s: &str, sep: &str) -> Result<Self, String> {
+        let known = |id: &str| {
+            from_id(id.trim()).ok_or_else(|| {
+                format!("unknown candidate `{id}`: not one of this wbv's `wbv gap` candidates")
+            })
+        };
+        Ok(match s.split_once(sep.trim()) {
+            _ if s == "null" => Effects::Null,
+            Some((a, b)) => Effects::Pair(known(a)?, known(b)?),
+            None => Effects::One(known(s)?),
+        })
+    }
+}
+
+impl std::fmt::Display for Effects {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(&self.written("+"))
+    }
+}
+
+impl Serialize for Effects {
+    fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        s.serialize_str(&self.written("+"))
+    }
+}
+
+impl<'de> Deserialize<'de> for Effects {
+    fn deserialize<D: serde::Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        Effects::read(&String::deserialize(d)?, "+").map_err(serde::de::Error::custom)
+    }
+}
+
 /// One fitted candidate.
 #[derive(Debug, Clone, Serialize, Deserialize)]
 pub struct Ranked {
-    /// Candidate id (`null` for the re-fit base model).
-    pub id: String,
+    /// The effects fitted (`null` for the re-fit base model).
+    pub id: Effects,
     /// Effect parameters (for `null`: the base parameters).
     pub params: Vec<Estimate>,
     /// Reduced χ² on the training runs.
@@ -121,7 +195,7 @@ pub struct RunSummary {
 
 /// The verdict's identifier as the JSON carries it: a named effect's candidate id, or one of
 /// `none`, `unexplained`, `not-identifiable`. The rich verdict is [`super::Verdict`].
-#[derive(Debug, Clone, PartialEq, Eq)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum VerdictId {
     /// Nothing significant.
     None,
@@ -129,35 +203,36 @@ pub enum VerdictId {
     Unexplained,
     /// Two look-alike candidates.
     NotIdentifiable,
-    /// The named effect (a candidate id, `sensor-gain` for a calibration finding).
-    Effect(String),
+    /// The named effect (the calibration candidate for a calibration finding).
+    Effect(Candidate),
 }
 
 impl VerdictId {
     /// The JSON string.
-    pub fn as_str(&self) -> &str {
+    pub fn as_str(&self) -> &'static str {
         match self {
             VerdictId::None => "none",
             VerdictId::Unexplained => "unexplained",
             VerdictId::NotIdentifiable => "not-identifiable",
-            VerdictId::Effect(id) => id,
+            VerdictId::Effect(c) => c.id,
         }
     }
 
-    /// The identifier the JSON string `s` stands for.
-    pub fn parse(s: &str) -> Self {
-        match s {
+    /// The identifier the JSON string `s` stands for; `None` for a string that is neither a
+    /// verdict word nor a candidate id.
+    pub fn parse(s: &str) -> Option<Self> {
+        Some(match s {
             "none" => VerdictId::None,
             "unexplained" => VerdictId::Unexplained,
             "not-identifiable" => VerdictId::NotIdentifiable,
-            id => VerdictId::Effect(id.to_string()),
-        }
+            id => VerdictId::Effect(from_id(id)?),
+        })
     }
 
-    /// The named effect's id, if an effect is named.
-    pub fn effect(&self) -> Option<&str> {
+    /// The named effect, if an effect is named.
+    pub fn effect(&self) -> Option<Candidate> {
         match self {
-            VerdictId::Effect(id) => Some(id),
+            VerdictId::Effect(c) => Some(c),
             _ => None,
         }
     }
@@ -177,7 +252,92 @@ impl Serialize for VerdictId {
 
 impl<'de> Deserialize<'de> for VerdictId {
     fn deserialize<D: serde::Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
-        Ok(VerdictId::parse(&String::deserialize(d)?))
+        let s = String::deserialize(d)?;
+        VerdictId::parse(&s).ok_or_else(|| {
+            serde::de::Error::custom(format!(
+                "verdict `{s}`: expected none, unexplained, not-identifiable or a candidate id"
+            ))
+        })
+    }
+}
+
+/// A rule of the decision, in the order [`super::verdict::decide`] applies them ([`Rule::ORDER`]): the
+/// frequency-response rules (`verdict::rules::RULES`, the first that applies), the second opinions that
+/// may replace their verdict, the shortfall that turns a named effect into a partial
+/// explanation, and the calibration finding that stands for `none`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Rule {
+    /// An amplitude-dependent effect re-fitted with the null on all runs (docs/gap.md §6.4).
+    RefittedOnAllRuns,
+    /// An amplitude-dependent effect detected by the all-run BIC, nothing accepted on the check run.
+    AmplitudeEffectOnAllRuns,
+    /// Two families the runs do not separate: not identifiable.
+    LookAlikes,
+    /// The held-out run's accepted best.
+    AcceptedOnHeldOut,
+    /// A structural gap that the detected best closes too little of: unexplained.
+    DetectedButClosesLittle,
+    /// No structural gap: none.
+    NoStructuralGap,
+    /// A structural gap no candidate closes: unexplained.
+    NoCandidateClosesTheGap,
+    /// The distortion's second opinion: the site's nonlinearity over the responses' verdict.
+    DistortionSite,
+    /// The clock's second opinion: a drifting logger clock over another timing or filter effect.
+    ClockDrift,
+    /// The named effect(s) leave the check run far from the measurement: unexplained, partial.
+    ExplainsOnlyInPart,
+    /// Nothing structural and a channel's calibration error: the calibration finding.
+    CalibrationFinding,
+}
+
+impl Rule {
+    /// Every rule in the order [`super::verdict::decide`] applies them.
+    pub const ORDER: [Rule; 11] = [
+        Rule::RefittedOnAllRuns,
+        Rule::AmplitudeEffectOnAllRuns,
+        Rule::LookAlikes,
+        Rule::AcceptedOnHeldOut,
+        Rule::DetectedButClosesLittle,
+        Rule::NoStructuralGap,
+        Rule::NoCandidateClosesTheGap,
+        Rule::DistortionSite,
+        Rule::ClockDrift,
+        Rule::ExplainsOnlyInPart,
+        Rule::CalibrationFinding,
+    ];
+
+    /// The rule's name, as docs/gap.md §7 and the JSON's `decided_by` spell it.
+    pub fn name(self) -> &'static str {
+        match self {
+            Rule::RefittedOnAllRuns => "refitted-on-all-runs",
+            Rule::AmplitudeEffectOnAllRuns => "amplitude-effect-on-all-runs",
+            Rule::LookAlikes => "look-alikes",
+            Rule::AcceptedOnHeldOut => "accepted-on-held-out",
+            Rule::DetectedButClosesLittle => "detected-but-closes-little",
+            Rule::NoStructuralGap => "no-structural-gap",
+            Rule::NoCandidateClosesTheGap => "no-candidate-closes-the-gap",
+            Rule::DistortionSite => "distortion-site",
+            Rule::ClockDrift => "clock-drift",
+            Rule::ExplainsOnlyInPart => "explains-only-in-part",
+            Rule::CalibrationFinding => "calibration-finding",
+        }
+    }
+}
+
+impl serde::Serialize for Rule {
+    fn serialize<S: serde::Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        s.serialize_str(self.name())
+    }
+}
+
+impl<'de> serde::Deserialize<'de> for Rule {
+    fn deserialize<D: serde::Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        let s = <String as serde::Deserialize>::deserialize(d)?;
+        Rule::ORDER
+            .into_iter()
+            .find(|r| r.name() == s)
+            .ok_or_else(|| serde::de::Error::custom(format!("unknown verdict rule `{s}`")))
     }
 }
 
@@ -186,9 +346,13 @@ impl<'de> Deserialize<'de> for VerdictId {
 pub struct Diagnosis {
     /// Winning candidate id, `none`, `unexplained` or `not-identifiable`.
     pub verdict: VerdictId,
+    /// The rule that decided the verdict (docs/gap.md §7). `None` in files from before wbv wrote
+    /// it.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub decided_by: Option<Rule>,
     /// The effects named (detected and closing part of the gap), best first; empty for `none`,
     /// `unexplained` and `not-identifiable`.
-    pub named: Vec<String>,
+    pub named: Vec<Candidate>,
     /// Channels found inverted or in the wrong unit and corrected before the fit; see
     /// `inputs::calibration`.
     #[serde(default)]
@@ -249,8 +413,12 @@ pub struct Diagnosis {
 /// A candidate that closes part of a gap it does not explain.
 #[derive(Debug, Clone, Serialize, Deserialize)]
 pub struct PartialEffect {
-    /// Candidate id (`A + B` for a forward-selected pair).
-    pub id: String,
+    /// The candidate, or the pair a forward selection added (written `A + B`).
+    #[serde(
+        serialize_with = "spaced_effects",
+        deserialize_with = "read_spaced_effects"
+    )]
+    pub id: Effects,
     /// Fraction of the structural gap it closes on the check run.
     #[serde(deserialize_with = "super::json::f64")]
     pub fraction_closed: f64,
@@ -265,12 +433,22 @@ pub struct PartialEffect {
     pub seat_gap_points: f64,
 }
 
+/// The effects of a partial candidate as its line writes them, a pair as `A + B`.
+fn spaced_effects<S: serde::Serializer>(e: &Effects, s: S) -> Result<S::Ok, S::Error> {
+    s.serialize_str(&e.written(" + "))
+}
+
+/// Effects written by [`spaced_effects`].
+fn read_spaced_effects<'de, D: serde::Deserializer<'de>>(d: D) -> Result<Effects, D::Error> {
+    Effects::read(&String::deserialize(d)?, " + ").map_err(serde::de::Error::custom)
+}
+
 impl PartialEffect {
-    /// The entry of candidate (or pair) `id` evaluated on the check run as `r`.
-    pub(super) fn of(id: String, r: &Ranked) -> Self {
+    /// The entry `r` as a partial candidate.
+    pub(super) fn of(r: &Ranked) -> Self {
         let w = &r.check.weighted;
         PartialEffect {
-            id,
+            id: r.id,
             fraction_closed: r.fraction_closed,
             chi2_red: r.check.chi2_red,
             aw_gap_percent: w.aw_gap_percent,
@@ -289,41 +467,39 @@ impl Diagnosis {
 
 /// See [`Diagnosis::named_stage`].
 pub(super) fn named_stage<'a>(
-    named: &[String],
+    named: &[Candidate],
     candidates: &'a [Ranked],
     second: Option<&'a Ranked>,
 ) -> Option<&'a Stage> {
-    let first = named.first()?;
-    second
-        .map(|s| &s.check)
-        .or_else(|| candidates.iter().find(|b| &b.id == first).map(|b| &b.check))
+    let first = *named.first()?;
+    second.map(|s| &s.check).or_else(|| {
+        candidates
+            .iter()
+            .find(|b| b.id == Effects::One(first))
+            .map(|b| &b.check)
+    })
 }
 
 /// The partial candidates of an `unexplained` verdict: the named effect(s) first (the pair when
 /// forward selection added a second), then the other detected candidates, up to four in all.
 pub(super) fn partial_effects(
     candidates: &[Ranked],
-    named: &[String],
+    named: &[Candidate],
     second: Option<&Ranked>,
 ) -> Vec<PartialEffect> {
     let detected = candidates
         .iter()
         .filter(|r| r.delta_bic <= super::thresholds::ACCEPT_DELTA_BIC);
-    let pair = second
-        .zip(named.get(1))
-        .map(|(r, _)| PartialEffect::of(named.join(" + "), r));
+    let pair = second.filter(|_| named.len() > 1).map(PartialEffect::of);
+    let is_named = |r: &Ranked| r.id.candidate().is_some_and(|c| named.contains(&c));
     pair.into_iter()
-        .chain(named.first().and_then(|n| {
+        .chain(named.first().and_then(|&n| {
             candidates
                 .iter()
-                .find(|r| &r.id == n)
-                .map(|r| PartialEffect::of(r.id.clone(), r))
+                .find(|r| r.id == Effects::One(n))
+                .map(PartialEffect::of)
         }))
-        .chain(
-            detected
-                .filter(|r| !named.contains(&r.id))
-                .map(|r| PartialEffect::of(r.id.clone(), r)),
-        )
+        .chain(detected.filter(|r| !is_named(r)).map(PartialEffect::of))
         .take(4)
         .collect()
 }

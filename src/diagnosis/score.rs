@@ -10,8 +10,6 @@
 //! instead, equal to the log-ratio to first order near a right model and −1 (a 100 % gap) at zero.
 
 use super::measure::{MIN_COHERENCE, Path, RunSpectra, h1_sigma};
-use super::predict::{Variant, predict};
-use crate::error::Result;
 use num_complex::Complex64;
 
 /// Chain-form floor of the relative FRF error (0.6 % ≈ 0.05 dB, 0.34°): what discrete-time
@@ -46,16 +44,8 @@ pub fn cell(
     }
 }
 
-/// Appends the data residuals of `v` against `runs` (fitted paths only) to `out`.
-pub fn residuals(v: &Variant, runs: &[RunSpectra], out: &mut Vec<f64>) -> Result<()> {
-    for run in runs {
-        run_residuals(run, &predict(v, run)?.as_estimated, out);
-    }
-    Ok(())
-}
-
 /// The residuals of one run against the predictions `preds` of its paths (`[path][bin]`, as
-/// [`predict`] gives them), appended to `out`.
+/// [`super::predict::predict`] gives them), appended to `out`.
 pub fn run_residuals(run: &RunSpectra, preds: &[Vec<Complex64>], out: &mut Vec<f64>) {
     for (pe, pred) in run.paths.iter().zip(preds) {
         if !pe.path.fitted() {

@@ -2,16 +2,24 @@
 //! and ranked by ΔBIC on the held-out run (docs/gap.md §6), and the forward selection of a second
 //! effect. The all-run judgement of amplitude-dependent effects is [`super::all_runs`].
 
-use super::candidate::{Candidate, Family};
-use super::evidence::{
-    Counts, Figures, bic_check, delta_bic_all, fit_each, fitted_stage, ranked, weigh,
-};
-use super::fitting::{Base, Fitted, estimates, fit_candidate, refine_null};
+use super::candidate::{self, Candidate};
+use super::evidence::{self, Counts, Trial};
+use super::fitting::{self, Base, Fitted, fit_candidate};
 use super::measure::RunSpectra;
-use super::outcome::{Ranked, Stage};
-use super::score;
+use super::outcome::{Effects, Ranked, Stage};
 use super::thresholds::{ACCEPT_DELTA_BIC, GAP_CHI2, MIN_CLOSED};
 use crate::error::Result;
+
+/// The effect forward selection added beside the effect the rules name ([`second_effect`]).
+#[derive(Debug, Clone)]
+pub(super) struct Second {
+    /// The named effect it was paired with.
+    pub first: Candidate,
+    /// The second effect.
+    pub added: Candidate,
+    /// The pair's entry, scored against the named effect alone.
+    pub pair: Ranked,
+}
 
 /// The null re-fit and the candidates ranked against it.
 pub(super) struct Ranking {
@@ -32,9 +40,9 @@ pub(super) fn fit_null(base: &Base, tr: &[RunSpectra]) -> Result<Fitted> {
 
 /// Fits each of `applicable` on the training runs `tr` (the candidates start at the null's
 /// optimum `null_fit`, [`fit_null`]; the null is then re-fitted from the best candidates' base
-/// parameters, [`refine_null`]), evaluates each on the check run `ck` and ranks them by ΔBIC
-/// against the null. `nominal` is the nominal model's stage: the null's fraction closed is
-/// measured from it.
+/// parameters, [`fitting::fit_ranked`]), evaluates each on the check run `ck` and ranks them by
+/// ΔBIC against the null ([`evidence::rank`]). `nominal` is the nominal model's stage: the null's
+/// fraction closed is measured from it.
 pub(super) fn rank(
     base: &Base,
     applicable: &[Candidate],
@@ -44,58 +52,32 @@ pub(super) fn rank(
     n: Counts,
     null_fit: Fitted,
 ) -> Result<Ranking> {
-    let nb = base.params.len();
     let stacks: Vec<Vec<Candidate>> = applicable.iter().map(|&c| vec![c]).collect();
-    let fitted = fit_each(base, &stacks, tr, &null_fit.fit.u, Some(ck))?;
     // The null re-fit from the base parameters the best candidates settled at: their fits start
     // at the null's optimum and carry the base parameters further, so a null stuck in a shallow
     // valley would hand every candidate a gain that is only the optimiser's (masses trade against
     // stiffnesses, so the base has several valleys).
-    let null_fit = refine_null(base, tr, null_fit, &fitted)?;
-    let null_stage = fitted_stage(base, &[], &null_fit, ck)?;
-    let null_bic = bic_check(&null_stage, nb, n);
-    let nominal_floor = score::gap_floor(nominal.chi2_red);
-    let mut null = ranked(
-        "null".into(),
-        estimates(base, &[], &null_fit.fit),
-        null_fit.fit.cost / n.train,
-        Figures {
-            delta_bic: 0.0,
-            delta_bic_all: 0.0,
-            fraction_closed: score::fraction_closed(
-                nominal.chi2_red,
-                null_stage.chi2_red,
-                nominal_floor,
-            ),
-        },
-        null_stage,
-        None,
-    );
-    let floor = score::gap_floor(null.check.chi2_red);
-    let mut cands = Vec::new();
+    let (mut null_fit, fitted) = fitting::fit_ranked(base, &stacks, tr, ck, null_fit)?;
     let mut fits = Vec::new();
-    for (&c, (ft, st)) in applicable.iter().zip(fitted) {
-        let st = st.expect("evaluated on the check run");
-        let k = c.params().len();
-        let figures = Figures {
-            delta_bic: bic_check(&st, nb + k, n) - null_bic,
-            delta_bic_all: delta_bic_all((&ft, &st), (&null_fit, &null.check), k, n),
-            fraction_closed: score::fraction_closed(null.check.chi2_red, st.chi2_red, floor),
-        };
-        let params = estimates(base, &[c], &ft.fit);
-        let r = ranked(
-            c.id().into(),
-            params,
-            ft.fit.cost / n.train,
-            figures,
-            st,
-            Some(&null.check),
-        );
-        cands.push(r);
-        fits.push((c, ft.fit.u));
+    let mut trials = Vec::new();
+    for (&c, f) in applicable.iter().zip(fitted) {
+        fits.push((c, f.fit.u));
+        trials.push(Trial {
+            effects: Effects::One(c),
+            extra: c.params().len(),
+            cost: f.fit.cost,
+            params: f.params,
+            stage: f.stage.expect("evaluated on the check run"),
+        });
     }
-    cands.sort_by(|a, b| a.delta_bic.total_cmp(&b.delta_bic));
-    weigh(&mut null, &mut cands);
+    let null = Trial {
+        effects: Effects::Null,
+        extra: 0,
+        cost: null_fit.fit.cost,
+        params: std::mem::take(&mut null_fit.params),
+        stage: null_fit.stage.take().expect("evaluated on the check run"),
+    };
+    let (null, cands) = evidence::rank(null, trials, nominal, base.params.len(), n);
     Ok(Ranking {
         null_fit,
         null,
@@ -108,75 +90,65 @@ pub(super) fn rank(
 /// (reduced χ² > [`GAP_CHI2`]), the four best candidates of other families (and, after a missing
 /// mode, a second mode) are fitted jointly with it (from its optimum) and the pair with the lowest BIC is kept if it is detected against
 /// `bc` alone (ΔBIC ≤ [`ACCEPT_DELTA_BIC`]) and closes ≥ [`MIN_CLOSED`] of what `bc` leaves — the
-/// held-out rule, with `bc` as the reference. Returns the second effect and the pair's entry.
+/// held-out rule, with `bc` as the reference; `cands` and `fits` are the ranked candidates and
+/// their fitted parameter vectors (the warm start). Returns the second effect and the pair's entry.
 pub(super) fn second_effect(
     base: &Base,
-    ranking: &Ranking,
+    (cands, fits): (&[Ranked], &[(Candidate, Vec<f64>)]),
     bc: Candidate,
     tr: &[RunSpectra],
     ck: &RunSpectra,
     n: Counts,
-) -> Result<Option<(Candidate, Ranked)>> {
-    let cands = &ranking.cands;
-    let Some(best) = cands.iter().find(|b| b.id == bc.id()) else {
+) -> Result<Option<Second>> {
+    let Some(best) = cands.iter().find(|b| b.id == Effects::One(bc)) else {
         return Ok(None);
     };
     if best.check.chi2_red <= GAP_CHI2 {
         return Ok(None);
     }
-    let warm = &ranking
-        .fits
-        .iter()
-        .find(|(c, _)| *c == bc)
-        .expect("fitted")
-        .1;
-    let best_bic = bic_check(&best.check, warm.len(), n);
+    let Some((_, warm)) = fits.iter().find(|(c, _)| *c == bc) else {
+        return Ok(None);
+    };
     let mut others: Vec<Candidate> = cands
         .iter()
         .filter(|r| r.id != best.id)
-        .filter_map(|r| Candidate::from_id(&r.id))
-        .filter(|c| c.family() != bc.family())
+        .filter_map(|r| r.id.candidate())
+        .filter(|c| c.family != bc.family)
         .take(4)
         .collect();
-    // A structure can lack more than one mode: after a frame or body mode, a frame mode under it
-    // (a riser: the frame's second mode) and, after a frame, a body mode are tried too.
-    if bc.family() == Family::MissingDof {
-        others.extend(
-            [Candidate::MissingDof, Candidate::BodyMode]
-                .into_iter()
-                .filter(|&c| {
-                    (c != bc || c == Candidate::MissingDof) && cands.iter().any(|r| r.id == c.id())
-                }),
-        );
+    // A structure can lack more than one part of a family: after a frame or body mode, the
+    // family's other forms (a body mode after a frame, a frame after a body mode) and the named
+    // one again where it repeats (a riser: the frame's second mode under the first).
+    if bc.family.adds_parts() {
+        others.extend(candidate::all().filter(|&c| {
+            c.family == bc.family
+                && (c != bc || c.repeats)
+                && cands.iter().any(|r| r.id == Effects::One(c))
+        }));
     }
     let stacks: Vec<Vec<Candidate>> = others.iter().map(|&o| vec![bc, o]).collect();
-    let pairs = fit_each(base, &stacks, tr, warm, Some(ck))?;
-    let floor = score::gap_floor(best.check.chi2_red);
-    let mut second: Option<(Candidate, Ranked)> = None;
-    for (pair, (ft, st)) in stacks.iter().zip(pairs) {
-        let st = st.expect("evaluated on the check run");
-        let d = bic_check(&st, warm.len() + pair[1].params().len(), n) - best_bic;
-        let closed = score::fraction_closed(best.check.chi2_red, st.chi2_red, floor);
-        if d <= ACCEPT_DELTA_BIC
-            && closed >= MIN_CLOSED
-            && second.as_ref().is_none_or(|(_, s)| d < s.delta_bic)
+    let pairs = fitting::fit_each(base, &stacks, tr, warm, Some(ck))?;
+    let mut second: Option<Second> = None;
+    for (pair, ft) in stacks.iter().zip(pairs) {
+        let trial = Trial {
+            effects: Effects::Pair(bc, pair[1]),
+            extra: pair[1].params().len(),
+            cost: ft.fit.cost,
+            params: ft.params,
+            stage: ft.stage.expect("evaluated on the check run"),
+        };
+        let r = evidence::against(best, warm.len(), trial, n);
+        if r.delta_bic <= ACCEPT_DELTA_BIC
+            && r.fraction_closed >= MIN_CLOSED
+            && second
+                .as_ref()
+                .is_none_or(|s| r.delta_bic < s.pair.delta_bic)
         {
-            let figures = Figures {
-                delta_bic: d,
-                delta_bic_all: d,
-                fraction_closed: closed,
-            };
-            let id = format!("{}+{}", bc.id(), pair[1].id());
-            let params = estimates(base, pair, &ft.fit);
-            let r = ranked(
-                id,
-                params,
-                ft.fit.cost / n.train,
-                figures,
-                st,
-                Some(&best.check),
-            );
-            second = Some((pair[1], r));
+            second = Some(Second {
+                first: bc,
+                added: pair[1],
+                pair: r,
+            });
         }
     }
     Ok(second)

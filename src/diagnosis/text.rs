@@ -1,27 +1,71 @@
-//! The text stage: the verdict's sentence, rendered in one place from the [`Verdict`] value and
-//! the evidence it was chosen on, followed by the second effect, the check run's ISO figures and
-//! any calibration finding.
+//! The text stage: the verdict's sentence, rendered in one place from the [`Decision`] and the
+//! evidence it was made on, followed by the second effect, the check run's ISO figures and any
+//! calibration finding. Nothing here changes the decision or re-tests a threshold to word it.
 
 use super::outcome::{ChannelError, PartialEffect, Ranked, Stage};
 use super::score;
-use super::thresholds::{ACCEPT_DELTA_BIC, EXPLAINED_CHI2, MIN_CLOSED};
-use super::verdict::{Basis, Evidence, Shortfall, Verdict, practically_small, training_closed};
+use super::thresholds::{EXPLAINED_CHI2, MIN_CLOSED};
+use super::verdict::{
+    Basis, Decision, Evidence, Shortfall, Verdict, practically_small, training_closed,
+};
+
+/// The diagnosis's text for decision `d` on evidence `e`: the verdict's sentence, the second
+/// effect's clause and the check run's ISO figures (nominal → re-fitted → with the effect(s)), or
+/// the partial explanation with its `partial` candidates; then the calibration finding.
+pub(super) fn render(
+    d: &Decision,
+    e: &Evidence,
+    nominal: &Stage,
+    partial: &[PartialEffect],
+) -> String {
+    let text = match &d.verdict {
+        Verdict::Partial { shortfall, .. } => {
+            self::partial(shortfall, partial, nominal, &e.null.check)
+        }
+        Verdict::Named {
+            effect,
+            second: added,
+            ..
+        } => {
+            let mut text = sentence(d, e);
+            let pair = e.second.as_ref().filter(|_| added.is_some());
+            if let Some(s) = pair {
+                text += &second(effect, s.added, &s.pair);
+            }
+            let with = pair.map_or_else(
+                || e.entry(effect).map(|r| &r.check),
+                |s| Some(&s.pair.check),
+            );
+            if let Some(with) = with {
+                text += &iso(nominal, &e.null.check, with);
+            }
+            text
+        }
+        _ => sentence(d, e),
+    };
+    calibration(
+        text,
+        &e.channel_errors,
+        matches!(d.verdict, Verdict::Calibration(_)),
+    )
+}
 
 /// The verdict's sentence (before the second effect, the ISO figures and calibration).
-pub(super) fn verdict(v: &Verdict, e: &Evidence) -> String {
+pub(super) fn sentence(d: &Decision, e: &Evidence) -> String {
     let d0 = e.null.check.chi2_red;
-    match v {
+    let set_aside = d.set_aside.and_then(|c| e.entry(c));
+    match &d.verdict {
         Verdict::Named { effect, basis, .. } => match basis {
-            Basis::AllRuns { refitted: true } => refitted(e, e.entry(*effect).expect("ranked")),
-            Basis::AllRuns { refitted: false } => on_all_runs(e, e.entry(*effect).expect("ranked")),
-            Basis::HeldOut { tie, alternative } => held_out(e, *effect, *tie, *alternative),
-            Basis::Distortion { responses } => distortion(e, e.entry(*effect).expect("ranked"), responses),
-            Basis::Clock { responses } => clock(e, e.entry(*effect).expect("ranked"), responses),
+            Basis::AllRuns { refitted: true } => refitted(e, e.entry(effect).expect("ranked")),
+            Basis::AllRuns { refitted: false } => on_all_runs(e, e.entry(effect).expect("ranked")),
+            Basis::HeldOut { tie, alternative } => held_out(e, effect, *tie, *alternative),
+            Basis::Distortion { responses } => distortion(e, e.entry(effect).expect("ranked"), responses),
+            Basis::Clock { responses } => clock(e, e.entry(effect).expect("ranked"), responses),
         },
         Verdict::NotIdentifiable { a, b, separating } => {
             let (a, b) = (
-                e.held_out_entry(*a).expect("ranked"),
-                e.held_out_entry(*b).expect("ranked"),
+                e.held_out_entry(a).expect("ranked"),
+                e.held_out_entry(b).expect("ranked"),
             );
             format!(
                 "{} and {} explain the held-out run equally well (ΔBIC {:.1} vs {:.1}); to separate them, measure {separating}",
@@ -31,9 +75,9 @@ pub(super) fn verdict(v: &Verdict, e: &Evidence) -> String {
         // Rendered in full by [`partial`] once the ISO figures are known.
         Verdict::Partial { best, .. } => format!(
             "a structural gap remains that {} explains only in part",
-            best.id()
+            best.id
         ),
-        Verdict::Unexplained => match e.best().filter(|b| b.delta_bic <= ACCEPT_DELTA_BIC) {
+        Verdict::Unexplained => match set_aside {
             Some(b) => format!(
                 "a structural gap remains (reduced χ² {d0:.2} after the re-fit); {} is detected (ΔBIC {:.1}) but closes only {:.0} % of it",
                 b.id,
@@ -49,18 +93,16 @@ pub(super) fn verdict(v: &Verdict, e: &Evidence) -> String {
                 ))
             ),
         },
-        Verdict::None => format!(
+        Verdict::None | Verdict::Calibration(_) => format!(
             "no effect is detected: the re-fitted base parameters explain the held-out run (reduced χ² {d0:.2}, band gap {:.2} dB RMS, phase {:.2}° RMS){}",
             e.null.check.gap_db_rms,
             e.null.check.phase_deg_rms,
-            e.best()
-                .filter(|b| b.delta_bic <= ACCEPT_DELTA_BIC)
-                .map_or(String::new(), |b| format!(
-                    "; {} is statistically detected (ΔBIC {:.1}) but closes only {:.0} % of a residue below the structural threshold",
-                    b.id,
-                    b.delta_bic,
-                    100.0 * b.fraction_closed
-                ))
+            set_aside.map_or(String::new(), |b| format!(
+                "; {} is statistically detected (ΔBIC {:.1}) but closes only {:.0} % of a residue below the structural threshold",
+                b.id,
+                b.delta_bic,
+                100.0 * b.fraction_closed
+            ))
         ),
     }
 }
@@ -75,7 +117,7 @@ fn size(b: &Ranked) -> String {
 
 /// Named on the all-run re-fit ([`Basis::AllRuns`] `refitted`).
 fn refitted(e: &Evidence, b: &Ranked) -> String {
-    let a = e.all_runs.expect("the all-run judgement named it");
+    let a = e.all_runs.as_ref().expect("the all-run judgement named it");
     format!(
         "{} is detected on all runs together: re-fitted on the training and check runs it lowers the BIC by {:.1} against the base model re-fitted on the same runs and closes {:.0} % of their structural gap (reduced χ² {:.2} → {:.2}). An effect that changes with magnitude, whose form two training magnitudes cannot fix, so the check run is not held out for it; its size on the check run: {}",
         b.id,
@@ -84,12 +126,12 @@ fn refitted(e: &Evidence, b: &Ranked) -> String {
         a.null_chi2_red,
         a.chi2_red,
         size(b)
-    ) + &e.accepted.filter(|h| h.id != b.id).map_or(String::new(), |h| {
+    ) + &e.accepted.as_ref().filter(|h| h.id != b.id).map_or(String::new(), |h| {
         format!(
             "; the held-out run's best, {} (ΔBIC {:.1}), closes only {:.0} % of the training runs' gap",
             h.id,
             h.delta_bic,
-            100.0 * training_closed(e.null, h)
+            100.0 * training_closed(&e.null, h)
         )
     })
 }
@@ -101,7 +143,7 @@ fn on_all_runs(e: &Evidence, b: &Ranked) -> String {
         b.id,
         b.delta_bic_all,
         b.delta_bic,
-        100.0 * training_closed(e.null, b),
+        100.0 * training_closed(&e.null, b),
         size(b)
     )
 }
@@ -114,16 +156,16 @@ fn alternative_note(
     alternative: super::candidate::Candidate,
 ) -> String {
     use super::candidate::{Family, separating_measurement};
-    if alternative.family() == Family::SupportPath {
+    if alternative.family == Family::SupportPath {
         format!(
             " ({} fits almost as well: where the path enters the body is uncertain; to tell, {})",
-            alternative.id(),
+            alternative.id,
             separating_measurement(effect, alternative)
         )
     } else {
         format!(
             " ({} fits almost as well: the form is uncertain)",
-            alternative.id()
+            alternative.id
         )
     }
 }
@@ -153,7 +195,7 @@ fn held_out(
     let alt = alternative.map_or(String::new(), |s| alternative_note(effect, s));
     let tie_note = tie.map_or(String::new(), |l| {
         let lose = e.held_out_entry(l).expect("ranked");
-        let fits = if e.accepted.is_some_and(|a| a.id == lose.id) {
+        let fits = if e.accepted.as_ref().is_some_and(|a| a.id == lose.id) {
             "as well"
         } else {
             "almost as well"
@@ -179,7 +221,7 @@ fn held_out(
 
 /// Named on the distortion's evidence.
 fn distortion(e: &Evidence, b: &Ranked, responses: &super::outcome::VerdictId) -> String {
-    let dist = e.distortion.expect("located by the distortion");
+    let dist = e.distortion.as_ref().expect("located by the distortion");
     let site = dist.site.expect("a located site");
     let paths = dist
         .paths
@@ -224,7 +266,12 @@ fn distortion(e: &Evidence, b: &Ranked, responses: &super::outcome::VerdictId) -
 }
 
 /// The second effect's clause: what the forward-selected pair closes beyond the named effect.
-pub(super) fn second(first: &str, second: &str, pair: &Ranked) -> String {
+pub(super) fn second(
+    first: super::candidate::Candidate,
+    second: super::candidate::Candidate,
+    pair: &Ranked,
+) -> String {
+    let (first, second) = (first.id, second.id);
     let what = if first == second {
         // A frame on legs of unequal stiffness under an off-centre load has its bounce and pitch
         // coupled: both modes move the pan vertically, so vertical channels see two frame modes
@@ -290,7 +337,7 @@ pub(super) fn calibration(text: String, errors: &[ChannelError], nothing_else: b
 
 /// Named on the lag's movement between the runs' halves ([`Basis::Clock`]).
 fn clock(e: &Evidence, b: &Ranked, responses: &super::VerdictId) -> String {
-    let c = e.clock.expect("the clock named it");
+    let c = e.clock.as_ref().expect("the clock named it");
     format!(
         "{} (ΔBIC {:.1}): the lag of the seat and head behind the base grows by {:+.0} ± {:.0} ppm of the elapsed time between the runs' halves, which a drifting logger clock makes and a filter or a constant offset does not; the whole-run responses alone named {responses}. Its size on the check run: {}",
         b.id,
@@ -309,7 +356,9 @@ pub(super) fn partial(
     nominal: &Stage,
     null: &Stage,
 ) -> String {
-    let best = partial.first().map_or("the best effect", |p| p.id.as_str());
+    let best = partial
+        .first()
+        .map_or("the best effect".to_string(), |p| p.id.written(" + "));
     let why = match *shortfall {
         Shortfall::FarAboveNoise { chi2_red } => format!(
             "leaves the check run's reduced χ² at {chi2_red:.1}, more than {EXPLAINED_CHI2} times the noise: the model lacks more than this effect adds"
@@ -331,7 +380,7 @@ pub(super) fn partial(
         .map(|p| {
             format!(
                 "{} closes {:.0} % (reduced χ² {:.1}, a_w gap {:+.1} %, SEAT gap {:+.1} points)",
-                p.id,
+                p.id.written(" + "),
                 100.0 * p.fraction_closed,
                 p.chi2_red,
                 p.aw_gap_percent,

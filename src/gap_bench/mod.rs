@@ -84,9 +84,7 @@ impl IsoGaps {
             aw_percent: stages.map(|s| s.weighted.aw_gap_percent),
             seat_points: stages.map(|s| s.weighted.seat_gap_points()),
             sigma: stages[2].iso_sigma.map(|s| [s.aw_percent, s.seat_points]),
-            equivalent_linear: (d.named.iter())
-                .filter_map(|n| crate::diagnosis::candidate::Candidate::from_id(n))
-                .any(|c| c.amplitude_dependent()),
+            equivalent_linear: d.named.iter().any(|c| c.amplitude_dependent()),
         }
     }
 }
@@ -128,8 +126,11 @@ pub fn run_case(index: usize, seed: u64) -> Result<CaseScore> {
             diagnosis_s: secs,
         },
         Ok(d) => {
-            let top2: Vec<String> = d.candidates.iter().take(2).map(|c| c.id.clone()).collect();
-            let named = d.named.clone();
+            // The scorer joins on the JSON's spelling of an effect (`Family::of_verdict`).
+            let top2: Vec<String> = (d.candidates.iter().take(2))
+                .map(|c| c.id.to_string())
+                .collect();
+            let named: Vec<String> = d.named.iter().map(|c| c.id.to_string()).collect();
             let (top1, top2_hit) = if fams.is_empty() {
                 (d.verdict == VerdictId::None, d.verdict == VerdictId::None)
             } else {
@@ -141,7 +142,7 @@ pub fn run_case(index: usize, seed: u64) -> Result<CaseScore> {
             let fraction_closed = d
                 .candidates
                 .iter()
-                .find(|c| hit(&c.id))
+                .find(|c| hit(&c.id.to_string()))
                 .map(|c| c.fraction_closed);
             CaseScore {
                 index,

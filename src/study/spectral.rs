@@ -13,8 +13,10 @@
 //! The integral is composite Simpson over the excitation's band in `u = ln f` (so resonances at
 //! low and high frequencies get the same relative resolution), [`NODES`] nodes; G comes from the
 //! excitation's own definition ([`ExcitationSpec::psd`], [`ExcitationSpec::tones`]). The weights
-//! `Δu/3·{1,4,2,…,4,1}·f·G(f)·|W_c(f)|²` do not depend on the model, so they are computed once and
-//! a design point costs one FRF solve per node. a_v is the total value over the comfort surface
+//! `Δu/3·{1,4,2,…,4,1}·f·G(f)·|W_c(f)|²` do not depend on the model, so they are computed once
+//! ([`Stationary`], the input's mean square at each node as its measure) and a design point costs
+//! one FRF solve per node; the sum and SEAT are the stationary figures of [`crate::analysis::seat`],
+//! the same the gap diagnosis predicts a_w with. a_v is the total value over the comfort surface
 //! (eq. 10), SEAT = 100·a_w(seat)/a_w(base) (ISO 10326-1 10.2.2) and the comfort class Annex C's.
 //!
 //! These are the figures of the stationary response (an infinitely long run); a simulated run of
@@ -26,7 +28,7 @@ use super::iso::Figures;
 use super::iso::IsoRun;
 use crate::analysis::comfort::Comfort;
 use crate::analysis::report::{comfort_place, in_total_value, total_value};
-use crate::analysis::seat;
+use crate::analysis::seat::{self, Stationary, weighted_rms};
 use crate::analysis::spectrum::{Spectrum, Welch, WelchOptions};
 use crate::analysis::stream::{parse_name, weighting_for};
 use crate::error::{Error, Result};
@@ -46,14 +48,14 @@ pub const NODES: usize = 161;
 /// as f² below 0.1 Hz, so the part below it is negligible.
 const LOWEST_HZ: f64 = 0.01;
 
-/// One analysed channel: its index in the system, comfort factor k and the weights
-/// `w_j·|W(f_j)|²` of every node.
+/// One analysed channel: its index in the system, comfort factor k and its weighting on the nodes,
+/// whose measure is the input's mean square at each node: factors `w_j·|W(f_j)|²`.
 #[derive(Debug, Clone)]
 struct Channel {
     index: usize,
     k: f64,
     in_total: bool,
-    weights: Vec<f64>,
+    weighting: Stationary,
 }
 
 /// The spectral ISO 2631-1 figures of models with the structure of one model, under one excitation.
@@ -197,11 +199,10 @@ impl SpectralIso {
                 index,
                 k,
                 in_total,
-                weights: freq_hz
-                    .iter()
-                    .zip(&w)
-                    .map(|(f, w)| w * weighting.magnitude(*f).powi(2))
-                    .collect(),
+                weighting: Stationary::new(
+                    weighting,
+                    freq_hz.iter().copied().zip(w.iter().copied()),
+                ),
             });
         }
         let (Some(seat), Some(base)) = (seat, base) else {
@@ -234,15 +235,17 @@ impl SpectralIso {
         let mut h = vec![Complex64::default(); self.freq_hz.len()];
         let index = [self.channels[self.seat].index];
         ev.eval_channels(model.system(), &index, &mut h)?;
-        let w = &self.channels[self.seat].weights;
-        let ms: f64 = h.iter().zip(w).map(|(h, w)| h.norm_sqr() * w).sum();
-        // ∫ G_w² df = Σ q_j·(G_w(f_j))², G_w(f_j) = w_j·|H_j|²/q_j.
+        let terms: Vec<f64> = (self.channels[self.seat].weighting)
+            .gain_terms(h.iter().copied())
+            .collect();
+        let ms: f64 = terms.iter().sum();
+        // ∫ G_w² df = Σ q_j·(G_w(f_j))², G_w(f_j) = w_j·|H_j|²/q_j (a node's term over q_j).
         let g2: f64 = self
             .band
             .iter()
-            .zip(h.iter().zip(w))
+            .zip(&terms)
             .filter(|(q, _)| **q > 0.0)
-            .map(|(q, (h, w))| (h.norm_sqr() * w).powi(2) / q)
+            .map(|(q, t)| t.powi(2) / q)
             .sum();
         Ok((g2.abs() / duration_s).sqrt() / (2.0 * ms))
     }
@@ -281,15 +284,8 @@ impl SpectralIso {
         scratch.resize(self.freq_hz.len() * nc, Complex64::default());
         ev.eval_channels(model.system(), &self.indices, scratch)?;
         let a_w = |c: usize| -> f64 {
-            let ch = &self.channels[c];
-            scratch
-                .iter()
-                .skip(c)
-                .step_by(nc)
-                .zip(&ch.weights)
-                .map(|(h, w)| h.norm_sqr() * w)
-                .sum::<f64>()
-                .sqrt()
+            let h = scratch.iter().skip(c).step_by(nc);
+            weighted_rms(self.channels[c].weighting.gain_terms(h.copied()))
         };
         let values: Vec<f64> = (0..nc).map(a_w).collect();
         let total = total_value(

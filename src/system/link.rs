@@ -214,11 +214,50 @@ impl Law {
         }
     }
 
+    /// Gaussian-equivalent stiffness and damping `(k_eq, c_eq)` of this law on a Kelvin–Voigt link
+    /// of spring `k` and dashpot `c`, for independent zero-mean Gaussian deflection of r.m.s.
+    /// `sigma_d` (m) and rate of r.m.s. `sigma_v` (m/s): `k_eq = E[∂f/∂d]`, `c_eq = E[∂f/∂v]`, the
+    /// mean-square-optimal linear link under stationary Gaussian response (Atalik & Utku, Earthquake
+    /// Eng. Struct. Dyn. 4 (1976) 411–420; Roberts & Spanos, *Random Vibration and Statistical
+    /// Linearization*, 1990, §5.3). The stops' stiffness is the closed form of
+    /// [`Law::gaussian_stiffness`], so a fitted gap moves it smoothly; the rest by quadrature.
+    pub fn equivalent(&self, k: f64, c: f64, sigma_d: f64, sigma_v: f64) -> (f64, f64) {
+        let k_eq = self
+            .gaussian_stiffness(k, sigma_d)
+            .unwrap_or_else(|| gauss_mean(sigma_d, |d| self.force(k, c, d, 0.0).1));
+        let c_eq = gauss_mean(sigma_v, |v| self.force(k, c, 0.0, v).2);
+        (k_eq, c_eq)
+    }
+
     /// Small-amplitude tangent `(∂f/∂d, ∂f/∂v)` at rest, used by the frequency-domain responses.
     pub fn tangent_at_rest(&self, k: f64, c: f64) -> (f64, f64) {
         let (_, kd, cv) = self.force(k, c, 0.0, 0.0);
         (kd, cv)
     }
+}
+
+/// Expectation of `g(σ·z)` for z ~ N(0, 1), trapezoid rule on |z| ≤ 6 with step 0.01 (error
+/// < 1e-8 for smooth integrands, ≤ 0.01·φ for a step such as an end-stop's).
+fn gauss_mean(sigma: f64, g: impl Fn(f64) -> f64) -> f64 {
+    const N: usize = 1201;
+    const H: f64 = 12.0 / (N - 1) as f64;
+    // Weights normalised to sum to one, so constants are reproduced exactly; computed once (the
+    // gap diagnosis's fits call this per link, per run and per iteration).
+    static WEIGHTS: std::sync::OnceLock<Vec<f64>> = std::sync::OnceLock::new();
+    let w = WEIGHTS.get_or_init(|| {
+        let raw: Vec<f64> = (0..N)
+            .map(|i| {
+                let z = -6.0 + i as f64 * H;
+                (if i == 0 || i == N - 1 { 0.5 } else { 1.0 }) * (-0.5 * z * z).exp()
+            })
+            .collect();
+        let den: f64 = raw.iter().sum();
+        raw.iter().map(|x| x / den).collect()
+    });
+    w.iter()
+        .enumerate()
+        .map(|(i, wi)| wi * g(sigma * (-6.0 + i as f64 * H)))
+        .sum()
 }
 
 #[cfg(test)]
@@ -348,5 +387,27 @@ mod tests {
                 );
             }
         }
+    }
+
+    #[test]
+    fn cubic_equivalent_stiffness_is_k_plus_3k3_sigma2() {
+        // E[k + 3 k3 d²] = k + 3 k3 σ² exactly for Gaussian d.
+        let (k, k3, s) = (8e4, 2e9, 0.003);
+        let (ke, ce) = Law::Cubic { k3 }.equivalent(k, 500.0, s, 0.1);
+        assert!((ke - (k + 3.0 * k3 * s * s)).abs() < 1e-6 * ke, "{ke}");
+        assert!((ce - 500.0).abs() < 1e-9, "{ce}");
+    }
+
+    #[test]
+    fn end_stop_equivalent_stiffness_is_k_plus_k_stop_times_exceedance() {
+        // ∂F/∂d = k + k_stop·1{|d|>gap}; E = k + k_stop·P(|d| > gap) = k + k_stop·erfc(gap/(σ√2)).
+        // With gap = σ: P(|z| > 1) = 0.317310507862914.
+        let stop = Law::EndStop {
+            gap: 0.002,
+            k_stop: 1e6,
+        };
+        let (ke, _) = stop.equivalent(1e4, 0.0, 0.002, 0.1);
+        let expect = 1e4 + 1e6 * 0.317310507862914;
+        assert!((ke - expect).abs() < 1e-2 * expect, "{ke} vs {expect}");
     }
 }

@@ -4,11 +4,14 @@
 use super::*;
 use structure::heaviest_body_mass;
 
+/// The family's candidates, in report order.
+pub static DEFINITIONS: &[Candidate] = &[&FRAME, &BODY_MODE];
+
 /// Starting mass of the seat frame added by `missing-dof`, in kg (a typical seat pan and frame).
 pub const FRAME_MASS_KG: f64 = 5.0;
 
 /// A seat-frame mass–spring–damper between the base and the cushion ([`add_frame`]).
-pub const FRAME: Definition = Definition {
+pub static FRAME: Definition = Definition {
     id: "missing-dof",
     family: Family::MissingDof,
     params: || {
@@ -20,13 +23,15 @@ pub const FRAME: Definition = Definition {
     },
     applies_to: |s| cushion_links(s).iter().any(|&i| on_base(&s.links[i])),
     apply: |v, p| add_frame(&mut v.system, p[0], p[1], p[2]),
-    magnitude: Magnitude::Linear,
-    reads_force_only: false,
+    looks: &[Look::FrameMode],
+    // A frame can have a second mode under the first (a riser, or its bounce and pitch).
+    repeats: true,
+    ..Definition::COMMON
 };
 
 /// A second body mode: a fraction of the heaviest body mass (viscera) on its own spring–damper to
 /// it, tuned to `f_mode_hz` with damping ratio `zeta_mode`.
-pub const BODY_MODE: Definition = Definition {
+pub static BODY_MODE: Definition = Definition {
     id: "body-mode",
     family: Family::MissingDof,
     params: || {
@@ -53,8 +58,8 @@ pub const BODY_MODE: Definition = Definition {
         });
         Ok(())
     },
-    magnitude: Magnitude::Linear,
-    reads_force_only: false,
+    looks: &[Look::BodyMode],
+    ..Definition::COMMON
 };
 
 /// Inserts a seat-frame mass of `mass_kg` under the cushion, tuned to `f_hz` (on a rigid base,
@@ -116,10 +121,8 @@ mod tests {
     #[test]
     fn a_second_frame_goes_under_the_first_as_a_two_mode_frame() {
         let s = catalog::resolve("reference").unwrap().system().clone();
-        let mut v = Candidate::MissingDof.apply(&s, &[30.0, 0.1, 5.0]).unwrap();
-        Candidate::MissingDof
-            .apply_to(&mut v, &[20.0, 0.1, 8.0])
-            .unwrap();
+        let mut v = FRAME.apply(&s, &[30.0, 0.1, 5.0]).unwrap();
+        FRAME.apply_to(&mut v, &[20.0, 0.1, 8.0]).unwrap();
         let t = &v.system;
         assert_eq!(t.dof(), s.dof() + 2);
         // Pan m1 on k1 over riser m2 on k2 to the base: the first frame's spring now deflects by

@@ -93,6 +93,15 @@ pub enum Family {
     SupportPath,
 }
 
+impl Family {
+    /// Whether a structure can lack more than one part of this family (a frame mode and a body
+    /// mode, or a frame's second mode under the first), so that forward selection also pairs a
+    /// named member with its own family's forms ([`Definition::repeats`]).
+    pub fn adds_parts(self) -> bool {
+        self == Family::MissingDof
+    }
+}
+
 /// Where a magnitude-dependent effect sits, as the distortion trend can place it
 /// ([`crate::diagnosis::distortion::Site`]).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -116,175 +125,154 @@ pub enum Magnitude {
     Dependent { at: Place, distortion_grows: bool },
 }
 
-/// Everything the diagnosis knows of one candidate.
+/// How a timing candidate retimes the transducers off the base accelerometer's logger
+/// ([`crate::diagnosis::acquisition`]): such a candidate applies only when some are.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Retiming {
+    /// A constant trigger offset between the loggers (the one the force plate's logger is
+    /// inferred with, [`crate::diagnosis::force_logger`]).
+    Offset,
+    /// A lag that drifts through the run with the late logger's clock.
+    Drift,
+}
+
+/// A Gaussian prior on one effect parameter from a measurement apart from the fit.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Prior {
+    /// Parameter `param` (ppm) is the clock drift the runs' halves measure
+    /// ([`crate::diagnosis::clock`]); when that drift is significant it enters every fit of the
+    /// candidate as a prior ([`crate::diagnosis::fitting`]), and the clock's second opinion names
+    /// this candidate (docs/gap.md §7).
+    ClockDrift {
+        /// Index of the drift rate among the candidate's parameters.
+        param: usize,
+    },
+}
+
+/// What a candidate looks like to the measurements that separate look-alikes of two families
+/// ([`separation`], docs/gap.md §8). A candidate carries the marks of the pair rules written for
+/// it; one without a mark falls to the rules that read the family (a sensor) or to the general
+/// advice (a repeat run at a third magnitude).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Look {
+    /// A foam whose stiffness grows with its deflection, so with the run's magnitude.
+    GrowsWithMagnitude,
+    /// A foam whose stiffness and loss depend on frequency alone: the same at every magnitude.
+    SameAtEveryMagnitude,
+    /// A softening body: it moves the apparent mass and seat→head.
+    BodyPaths,
+    /// A cushion effect: it moves base→seat alone.
+    SeatPathOnly,
+    /// A cushion effect spread over frequency, unlike a frame mode's narrow peak.
+    Broadband,
+    /// A seat-frame mode under the cushion: a narrow peak on base→seat.
+    FrameMode,
+    /// A mode inside the body.
+    BodyMode,
+    /// A load path onto the upper torso from the seat frame.
+    UpperTorso,
+    /// A load path through the arms onto the shoulders.
+    Shoulders,
+    /// A load path from the floor through the thighs onto the pelvis.
+    Thighs,
+    /// A load path from the floor through the feet and legs onto the pelvis.
+    Feet,
+}
+
+/// Everything the diagnosis knows of one candidate: a candidate *is* its definition
+/// ([`Candidate`]), written once in its family's file and listed in [`all`].
 pub struct Definition {
-    /// Identifier used in verdicts and reports.
+    /// Identifier used in verdicts and reports (the JSON's spelling of the candidate).
     pub id: &'static str,
     /// Its family.
     pub family: Family,
-    /// The effect parameters with bounds and starts.
-    pub params: fn() -> Vec<Param>,
-    /// Whether the system has the part this candidate extends.
-    pub applies_to: fn(&System) -> bool,
+    /// The effect parameters with bounds and starts ([`Definition::params`]).
+    params: fn() -> Vec<Param>,
+    /// Whether the system has the part this candidate extends ([`Definition::applies_to`]).
+    applies_to: fn(&System) -> bool,
     /// Applies the effect with parameter values `p` (in [`Definition::params`] order) to a variant
-    /// (system and measuring chain), so that effects can be stacked (forward selection).
-    pub apply: fn(&mut Variant, &[f64]) -> Result<()>,
+    /// (system and measuring chain), so that effects can be stacked ([`Definition::apply_to`]).
+    apply: fn(&mut Variant, &[f64]) -> Result<()>,
     /// How it depends on the run's magnitude.
     pub magnitude: Magnitude,
     /// Whether it acts only on the seat-pan force (the apparent-mass path): without a measured
     /// `f_seat_z` it cannot change anything and is not fitted.
     pub reads_force_only: bool,
+    /// Whether and how it retimes the transducers off the base accelerometer's logger.
+    pub retiming: Option<Retiming>,
+    /// A prior on one of its parameters from a measurement apart from the fit.
+    pub prior: Option<Prior>,
+    /// Whether a channel's calibration error found before the fit (an inverted sign, a unit slip,
+    /// corrected in the samples) is reported as this effect: a channel gain.
+    pub calibration: bool,
+    /// Fitted values (in [`Definition::params`] order) that contradict the effect, so that the
+    /// all-run judgement leaves the fit out (a softening fitted with a stiffening sign).
+    pub contradicted_by: Option<fn(&[f64]) -> bool>,
+    /// Whether forward selection may add it a second time beside itself (a second frame mode
+    /// under the first), when its family lacks more than one part ([`Family::adds_parts`]).
+    pub repeats: bool,
+    /// Its marks for the separating measurements.
+    pub looks: &'static [Look],
+    /// The measurement that tells it from any look-alike, where it has one of its own (a support
+    /// path: a run without it, or its force).
+    pub told_apart_by: Option<&'static str>,
 }
 
-/// The candidate effects; each variant's physics is documented on its [`Definition`].
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Candidate {
-    /// [`softening::BODY_SOFTENING`]
-    BodySoftening,
-    /// [`softening::BODY_SOFTENING_MAGNITUDE`]
-    BodySofteningMagnitude,
-    /// [`stiffening::CUSHION_STIFFENING`]
-    CushionStiffening,
-    /// [`stiffening::CUSHION_CONTACT`]
-    CushionContact,
-    /// [`stiffening::CUSHION_BOTTOMING`]
-    CushionBottoming,
-    /// [`viscoelastic::CUSHION_VISCOELASTIC`]
-    CushionViscoelastic,
-    /// [`viscoelastic::CUSHION_FRACTIONAL`]
-    CushionFractional,
-    /// [`sensor::DELAY`]
-    SensorDelay,
-    /// [`sensor::LOGGER_OFFSET`]
-    LoggerOffset,
-    /// [`sensor::LOGGER_DRIFT`]
-    LoggerDrift,
-    /// [`sensor::LOWPASS`]
-    SensorLowpass,
-    /// [`sensor::HIGHPASS`]
-    SensorHighpass,
-    /// [`sensor::GAIN`]
-    SensorGain,
-    /// [`sensor::MOUNT_SEAT`]
-    SensorMountSeat,
-    /// [`sensor::MOUNT_HEAD`]
-    SensorMountHead,
-    /// [`sensor::MOUNT_BASE`]
-    SensorMountBase,
-    /// [`sensor::LOWPASS_BASE`]
-    SensorLowpassBase,
-    /// [`sensor::FORCE`]
-    SensorForce,
-    /// [`sensor::MOUNT_FORCE`]
-    SensorMountForce,
-    /// [`suspension::FRICTION`]
-    SuspensionFriction,
-    /// [`suspension::END_STOP`]
-    EndStop,
-    /// [`missing_dof::FRAME`]
-    MissingDof,
-    /// [`missing_dof::BODY_MODE`]
-    BodyMode,
-    /// [`support::BACKREST`]
-    Backrest,
-    /// [`support::HANDS`]
-    HandsSupport,
-    /// [`support::FEET`]
-    FeetSupport,
-    /// [`support::THIGH`]
-    ThighSupport,
-}
+impl Definition {
+    /// The fields a candidate shares unless its definition says otherwise (`..Definition::COMMON`):
+    /// linear, on every path, retiming nothing, with no prior and no marks. Its identifier, family,
+    /// parameters, applicability and edit are placeholders every definition replaces (the
+    /// registry's test refuses an empty identifier or parameter list).
+    const COMMON: Definition = Definition {
+        id: "",
+        family: Family::Sensor,
+        params: Vec::new,
+        applies_to: |_| false,
+        apply: |_, _| Ok(()),
+        magnitude: Magnitude::Linear,
+        reads_force_only: false,
+        retiming: None,
+        prior: None,
+        calibration: false,
+        contradicted_by: None,
+        repeats: false,
+        looks: &[],
+        told_apart_by: None,
+    };
 
-impl Candidate {
-    /// Every candidate in report order.
-    pub const ALL: [Candidate; 27] = [
-        Candidate::BodySoftening,
-        Candidate::BodySofteningMagnitude,
-        Candidate::CushionStiffening,
-        Candidate::CushionContact,
-        Candidate::CushionBottoming,
-        Candidate::CushionViscoelastic,
-        Candidate::CushionFractional,
-        Candidate::SensorDelay,
-        Candidate::LoggerOffset,
-        Candidate::LoggerDrift,
-        Candidate::SensorLowpass,
-        Candidate::SensorHighpass,
-        Candidate::SensorGain,
-        Candidate::SensorMountSeat,
-        Candidate::SensorMountHead,
-        Candidate::SensorMountBase,
-        Candidate::SensorLowpassBase,
-        Candidate::SensorForce,
-        Candidate::SensorMountForce,
-        Candidate::SuspensionFriction,
-        Candidate::EndStop,
-        Candidate::MissingDof,
-        Candidate::BodyMode,
-        Candidate::Backrest,
-        Candidate::HandsSupport,
-        Candidate::FeetSupport,
-        Candidate::ThighSupport,
-    ];
-
-    /// The candidate's definition, in its family's file.
-    pub fn definition(self) -> &'static Definition {
-        match self {
-            Candidate::BodySoftening => &softening::BODY_SOFTENING,
-            Candidate::BodySofteningMagnitude => &softening::BODY_SOFTENING_MAGNITUDE,
-            Candidate::CushionStiffening => &stiffening::CUSHION_STIFFENING,
-            Candidate::CushionContact => &stiffening::CUSHION_CONTACT,
-            Candidate::CushionBottoming => &stiffening::CUSHION_BOTTOMING,
-            Candidate::CushionViscoelastic => &viscoelastic::CUSHION_VISCOELASTIC,
-            Candidate::CushionFractional => &viscoelastic::CUSHION_FRACTIONAL,
-            Candidate::SensorDelay => &sensor::DELAY,
-            Candidate::LoggerOffset => &sensor::LOGGER_OFFSET,
-            Candidate::LoggerDrift => &sensor::LOGGER_DRIFT,
-            Candidate::SensorLowpass => &sensor::LOWPASS,
-            Candidate::SensorHighpass => &sensor::HIGHPASS,
-            Candidate::SensorGain => &sensor::GAIN,
-            Candidate::SensorMountSeat => &sensor::MOUNT_SEAT,
-            Candidate::SensorMountHead => &sensor::MOUNT_HEAD,
-            Candidate::SensorMountBase => &sensor::MOUNT_BASE,
-            Candidate::SensorLowpassBase => &sensor::LOWPASS_BASE,
-            Candidate::SensorForce => &sensor::FORCE,
-            Candidate::SensorMountForce => &sensor::MOUNT_FORCE,
-            Candidate::SuspensionFriction => &suspension::FRICTION,
-            Candidate::EndStop => &suspension::END_STOP,
-            Candidate::MissingDof => &missing_dof::FRAME,
-            Candidate::BodyMode => &missing_dof::BODY_MODE,
-            Candidate::Backrest => &support::BACKREST,
-            Candidate::HandsSupport => &support::HANDS,
-            Candidate::FeetSupport => &support::FEET,
-            Candidate::ThighSupport => &support::THIGH,
-        }
+    /// The effect parameters.
+    pub fn params(&self) -> Vec<Param> {
+        (self.params)()
     }
 
-    /// Identifier used in verdicts.
-    pub fn id(self) -> &'static str {
-        self.definition().id
+    /// Whether the system has the part this candidate extends.
+    pub fn applies_to(&self, system: &System) -> bool {
+        (self.applies_to)(system)
     }
 
-    /// The candidate called `id`.
-    pub fn from_id(id: &str) -> Option<Candidate> {
-        Candidate::ALL.into_iter().find(|c| c.id() == id)
+    /// The variant with effect parameter values `p` applied to `system`.
+    pub fn apply(&self, system: &System, p: &[f64]) -> Result<Variant> {
+        let mut v = Variant::plain(system.clone());
+        self.apply_to(&mut v, p)?;
+        Ok(v)
     }
 
-    /// Its family ([`Family`]).
-    pub fn family(self) -> Family {
-        self.definition().family
+    /// Applies the effect with parameter values `p` to `v` (system and measuring chain), so that
+    /// effects can be stacked (forward selection).
+    pub fn apply_to(&self, v: &mut Variant, p: &[f64]) -> Result<()> {
+        (self.apply)(v, p)
     }
 
     /// Whether the effect changes with the run's magnitude ([`Magnitude::Dependent`]).
-    pub fn amplitude_dependent(self) -> bool {
-        matches!(self.definition().magnitude, Magnitude::Dependent { .. })
+    pub fn amplitude_dependent(&self) -> bool {
+        matches!(self.magnitude, Magnitude::Dependent { .. })
     }
 
     /// Whether the effect's distortion grows with the run's magnitude, so the distortion trend
     /// ([`crate::diagnosis::distortion`]) can place it.
-    pub fn distortion_grows(self) -> bool {
+    pub fn distortion_grows(&self) -> bool {
         matches!(
-            self.definition().magnitude,
+            self.magnitude,
             Magnitude::Dependent {
                 distortion_grows: true,
                 ..
@@ -293,45 +281,78 @@ impl Candidate {
     }
 
     /// Where a magnitude-dependent effect sits (`None` for a linear one).
-    pub fn nonlinear_at(self) -> Option<Place> {
-        match self.definition().magnitude {
+    pub fn nonlinear_at(&self) -> Option<Place> {
+        match self.magnitude {
             Magnitude::Dependent { at, .. } => Some(at),
             Magnitude::Linear => None,
         }
     }
 
-    /// Whether the candidate acts only on the seat-pan force ([`Definition::reads_force_only`]).
-    pub fn reads_force_only(self) -> bool {
-        self.definition().reads_force_only
+    /// Whether it carries the mark `look` ([`Look`]).
+    pub fn looks(&self, look: Look) -> bool {
+        self.looks.contains(&look)
     }
+}
 
-    /// Whether the candidate retimes the transducers off the base accelerometer's logger, so
-    /// that it applies only when some are ([`crate::diagnosis::acquisition::OffBase::any`]).
-    pub fn retimes_a_logger(self) -> bool {
-        matches!(self, Candidate::LoggerOffset | Candidate::LoggerDrift)
+/// Candidates are one each: the same identifier is the same definition.
+impl PartialEq for Definition {
+    fn eq(&self, other: &Self) -> bool {
+        self.id == other.id
     }
+}
 
-    /// Whether the system has the part this candidate extends.
-    pub fn applies_to(self, system: &System) -> bool {
-        (self.definition().applies_to)(system)
+impl Eq for Definition {}
+
+impl std::fmt::Debug for Definition {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.id)
     }
+}
 
-    /// The effect parameters.
-    pub fn params(self) -> Vec<Param> {
-        (self.definition().params)()
+/// A candidate effect: its definition in its family's file.
+pub type Candidate = &'static Definition;
+
+/// The families' own lists, in report order: the registry.
+static FAMILIES: [&[Candidate]; 7] = [
+    softening::DEFINITIONS,
+    stiffening::DEFINITIONS,
+    viscoelastic::DEFINITIONS,
+    sensor::DEFINITIONS,
+    suspension::DEFINITIONS,
+    missing_dof::DEFINITIONS,
+    support::DEFINITIONS,
+];
+
+/// Every candidate, in report order (family by family, each family's in its file's order).
+pub fn all() -> impl Iterator<Item = Candidate> + Clone {
+    FAMILIES.iter().flat_map(|f| f.iter().copied())
+}
+
+/// The candidate called `id`.
+pub fn from_id(id: &str) -> Option<Candidate> {
+    all().find(|c| c.id == id)
+}
+
+/// The first candidate with `property` (a retiming, a prior, the calibration finding): the stages
+/// ask the registry for a behaviour, never for a candidate by name.
+pub fn with(property: impl Fn(&Definition) -> bool) -> Option<Candidate> {
+    all().find(|c| property(c))
+}
+
+impl serde::Serialize for Definition {
+    fn serialize<S: serde::Serializer>(&self, s: S) -> std::result::Result<S::Ok, S::Error> {
+        s.serialize_str(self.id)
     }
+}
 
-    /// The variant with effect parameter values `p` applied to `system`.
-    pub fn apply(self, system: &System, p: &[f64]) -> Result<Variant> {
-        let mut v = Variant::plain(system.clone());
-        self.apply_to(&mut v, p)?;
-        Ok(v)
-    }
-
-    /// Applies the effect with parameter values `p` to `v` (system and measuring chain), so that
-    /// effects can be stacked (forward selection).
-    pub fn apply_to(self, v: &mut Variant, p: &[f64]) -> Result<()> {
-        (self.definition().apply)(v, p)
+impl<'de> serde::Deserialize<'de> for Candidate {
+    fn deserialize<D: serde::Deserializer<'de>>(d: D) -> std::result::Result<Self, D::Error> {
+        let id = String::deserialize(d)?;
+        from_id(&id).ok_or_else(|| {
+            serde::de::Error::custom(format!(
+                "unknown candidate `{id}`: not one of this wbv's `wbv gap` candidates"
+            ))
+        })
     }
 }
 
@@ -350,17 +371,44 @@ mod tests {
             .unwrap()
             .system()
             .clone();
-        for c in Candidate::ALL {
-            assert_eq!(Candidate::from_id(c.id()), Some(c));
+        let ids: Vec<&str> = all().map(|c| c.id).collect();
+        for (i, c) in all().enumerate() {
+            assert_eq!(from_id(c.id), Some(c));
+            assert!(!c.id.is_empty() && !c.params().is_empty(), "{c:?}");
+            assert!(!ids[..i].contains(&c.id), "{} twice", c.id);
             let p: Vec<f64> = c.params().iter().map(|q| q.starts[0]).collect();
             if c.applies_to(&s) {
                 c.apply(&s, &p).unwrap();
             }
+            // A prior names one of the candidate's own parameters.
+            if let Some(Prior::ClockDrift { param }) = c.prior {
+                assert!(param < c.params().len(), "{}", c.id);
+            }
         }
         // Magnitude-dependent effects are the ones the distortion trend can place.
-        for c in Candidate::ALL {
+        for c in all() {
             assert_eq!(c.amplitude_dependent(), c.nonlinear_at().is_some());
             assert!(!c.distortion_grows() || c.amplitude_dependent());
         }
+        // The behaviours the stages ask the registry for are each one candidate's.
+        for property in [
+            |c: &Definition| c.retiming == Some(Retiming::Offset),
+            |c: &Definition| matches!(c.prior, Some(Prior::ClockDrift { .. })),
+            |c: &Definition| c.calibration,
+        ] {
+            assert_eq!(all().filter(|c| property(c)).count(), 1);
+        }
+    }
+
+    #[test]
+    fn a_candidate_reads_back_from_its_id() {
+        for c in all() {
+            let json = serde_json::to_value(c).unwrap();
+            assert_eq!(json, serde_json::json!(c.id));
+            let back: Candidate = serde_json::from_value(json).unwrap();
+            assert_eq!(back, c);
+        }
+        let e = serde_json::from_value::<Candidate>(serde_json::json!("no-such")).unwrap_err();
+        assert!(e.to_string().contains("unknown candidate `no-such`"), "{e}");
     }
 }

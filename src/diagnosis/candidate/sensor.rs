@@ -4,13 +4,12 @@
 
 use super::*;
 
-/// A measuring-chain effect: linear; on the seat-pan force only when `reads_force_only`.
+/// A measuring-chain effect: linear, in the sensor family.
 const fn sensor(
     id: &'static str,
     params: fn() -> Vec<Param>,
     applies_to: fn(&System) -> bool,
     apply: fn(&mut Variant, &[f64]) -> Result<()>,
-    reads_force_only: bool,
 ) -> Definition {
     Definition {
         id,
@@ -18,10 +17,38 @@ const fn sensor(
         params,
         applies_to,
         apply,
-        magnitude: Magnitude::Linear,
-        reads_force_only,
+        ..Definition::COMMON
     }
 }
+
+/// A measuring-chain effect of the seat-pan force plate alone: without a measured `f_seat_z` it
+/// changes nothing and is not fitted.
+const fn force_sensor(
+    id: &'static str,
+    params: fn() -> Vec<Param>,
+    apply: fn(&mut Variant, &[f64]) -> Result<()>,
+) -> Definition {
+    Definition {
+        reads_force_only: true,
+        ..sensor(id, params, has_force, apply)
+    }
+}
+
+/// The family's candidates, in report order.
+pub static DEFINITIONS: &[Candidate] = &[
+    &DELAY,
+    &LOGGER_OFFSET,
+    &LOGGER_DRIFT,
+    &LOWPASS,
+    &HIGHPASS,
+    &GAIN,
+    &MOUNT_SEAT,
+    &MOUNT_HEAD,
+    &MOUNT_BASE,
+    &LOWPASS_BASE,
+    &FORCE,
+    &MOUNT_FORCE,
+];
 
 /// Every model has base and seat accelerometers.
 fn always(_: &System) -> bool {
@@ -48,7 +75,7 @@ fn mount_params(zeta_max: f64, zeta_starts: &[f64]) -> Vec<Param> {
 
 /// Lag on the seat and/or head channel (phase gap linear in frequency). Relative to the base
 /// channel, so a lag on the base accelerometer is a negative delay of both outputs.
-pub const DELAY: Definition = sensor(
+pub static DELAY: Definition = sensor(
     "sensor-delay",
     || {
         vec![
@@ -58,22 +85,21 @@ pub const DELAY: Definition = sensor(
     },
     always,
     |v, p| {
-        v.seat.delay_s += p[0];
-        v.head.delay_s += p[1];
+        v.chain.seat.delay_s += p[0];
+        v.chain.head.delay_s += p[1];
         Ok(())
     },
-    false,
 );
 
 /// Adds a lag growing as `offset + drift·t` through the run to every transducer off the base
 /// accelerometer's logger ([`crate::diagnosis::acquisition`]): the seat pad, head and force plate
 /// retimed together, not one channel at a time.
 fn retime_off_base(v: &mut Variant, offset_s: f64, drift: f64) {
-    let off = v.off_base;
+    let off = v.chain.off_base;
     for (on, ch) in [
-        (off.seat, &mut v.seat),
-        (off.head, &mut v.head),
-        (off.force, &mut v.force),
+        (off.seat, &mut v.chain.seat),
+        (off.head, &mut v.chain.head),
+        (off.force, &mut v.chain.force),
     ] {
         if on {
             ch.delay_s += offset_s;
@@ -87,19 +113,18 @@ fn retime_off_base(v: &mut Variant, offset_s: f64, drift: f64) {
 /// paths from the base show the same phase slope −2πf·offset while seat→head and the apparent
 /// mass (both on one logger) show none. With one logger this is a lag of the base accelerometer
 /// of opposite sign.
-pub const LOGGER_OFFSET: Definition = sensor(
-    "logger-offset",
-    || vec![Param::new("offset_s", -0.05, 0.05, &[0.0], false)],
-    always,
-    |v, p| {
-        retime_off_base(v, p[0], 0.0);
-        Ok(())
-    },
-    false,
-);
-
-/// The name of `logger-drift`'s rate parameter, ppm.
-pub const DRIFT_PARAM: &str = "drift_ppm";
+pub static LOGGER_OFFSET: Definition = Definition {
+    retiming: Some(Retiming::Offset),
+    ..sensor(
+        "logger-offset",
+        || vec![Param::new("offset_s", -0.05, 0.05, &[0.0], false)],
+        always,
+        |v, p| {
+            retime_off_base(v, p[0], 0.0);
+            Ok(())
+        },
+    )
+};
 
 /// Parts per million, the unit a logger's clock tolerance is quoted in.
 const PPM: f64 = 1e-6;
@@ -110,24 +135,28 @@ const PPM: f64 = 1e-6;
 /// magnitude rising with frequency and run length ([`crate::diagnosis::predict::Channel::response_in`]),
 /// which a low-pass mimics on one run length but not on runs of different lengths or on the
 /// run's halves.
-pub const LOGGER_DRIFT: Definition = sensor(
-    "logger-drift",
-    || {
-        vec![
-            Param::new("offset_s", -0.05, 0.05, &[0.0], false),
-            Param::new(DRIFT_PARAM, -2000.0, 2000.0, &[-100.0, 100.0], false),
-        ]
-    },
-    always,
-    |v, p| {
-        retime_off_base(v, p[0], p[1] * PPM);
-        Ok(())
-    },
-    false,
-);
+pub static LOGGER_DRIFT: Definition = Definition {
+    retiming: Some(Retiming::Drift),
+    // The runs' halves measure the rate directly (docs/gap.md §5, loggers).
+    prior: Some(Prior::ClockDrift { param: 1 }),
+    ..sensor(
+        "logger-drift",
+        || {
+            vec![
+                Param::new("offset_s", -0.05, 0.05, &[0.0], false),
+                Param::new("drift_ppm", -2000.0, 2000.0, &[-100.0, 100.0], false),
+            ]
+        },
+        always,
+        |v, p| {
+            retime_off_base(v, p[0], p[1] * PPM);
+            Ok(())
+        },
+    )
+};
 
 /// 4-pole Butterworth anti-alias low-pass on the seat and/or head channel.
-pub const LOWPASS: Definition = sensor(
+pub static LOWPASS: Definition = sensor(
     "sensor-lowpass",
     || {
         vec![
@@ -137,16 +166,15 @@ pub const LOWPASS: Definition = sensor(
     },
     always,
     |v, p| {
-        v.seat.lowpass_hz = p[0];
-        v.head.lowpass_hz = p[1];
+        v.chain.seat.lowpass_hz = p[0];
+        v.chain.head.lowpass_hz = p[1];
         Ok(())
     },
-    false,
 );
 
 /// First-order high-pass (AC coupling of an IEPE accelerometer) on the base, seat and/or head
 /// channel: a gap below ~2 Hz on the paths of one channel, rising phase lead.
-pub const HIGHPASS: Definition = sensor(
+pub static HIGHPASS: Definition = sensor(
     "sensor-highpass",
     || {
         vec![
@@ -157,71 +185,70 @@ pub const HIGHPASS: Definition = sensor(
     },
     always,
     |v, p| {
-        v.base.highpass_hz = p[0];
-        v.seat.highpass_hz = p[1];
-        v.head.highpass_hz = p[2];
+        v.chain.base.highpass_hz = p[0];
+        v.chain.seat.highpass_hz = p[1];
+        v.chain.head.highpass_hz = p[2];
         Ok(())
     },
-    false,
 );
 
-/// Calibration gain error on the base, seat and head accelerometers.
-pub const GAIN: Definition = sensor(
-    "sensor-gain",
-    || {
-        vec![
-            Param::new("gain_base", 0.7, 1.4, &[1.0], true),
-            Param::new("gain_seat", 0.7, 1.4, &[1.0], true),
-            Param::new("gain_head", 0.7, 1.4, &[1.0], true),
-        ]
-    },
-    always,
-    |v, p| {
-        v.base.gain *= p[0];
-        v.seat.gain *= p[1];
-        v.head.gain *= p[2];
-        Ok(())
-    },
-    false,
-);
+/// Calibration gain error on the base, seat and head accelerometers. A channel's calibration error
+/// found before the fit (an inverted sign, a unit slip) is this effect too.
+pub static GAIN: Definition = Definition {
+    calibration: true,
+    ..sensor(
+        "sensor-gain",
+        || {
+            vec![
+                Param::new("gain_base", 0.7, 1.4, &[1.0], true),
+                Param::new("gain_seat", 0.7, 1.4, &[1.0], true),
+                Param::new("gain_head", 0.7, 1.4, &[1.0], true),
+            ]
+        },
+        always,
+        |v, p| {
+            v.chain.base.gain *= p[0];
+            v.chain.seat.gain *= p[1];
+            v.chain.head.gain *= p[2];
+            Ok(())
+        },
+    )
+};
 
 /// Mount resonance of the seat-pad accelerometer.
-pub const MOUNT_SEAT: Definition = sensor(
+pub static MOUNT_SEAT: Definition = sensor(
     "sensor-mount-seat",
     || mount_params(0.7, &[0.08]),
     always,
     |v, p| {
-        v.seat.mount = Some((p[0], p[1]));
+        v.chain.seat.mount = Some((p[0], p[1]));
         Ok(())
     },
-    false,
 );
 
 /// Mount resonance of the head accelerometer.
-pub const MOUNT_HEAD: Definition = sensor(
+pub static MOUNT_HEAD: Definition = sensor(
     "sensor-mount-head",
     || mount_params(0.7, &[0.08]),
     has_head,
     |v, p| {
-        v.head.mount = Some((p[0], p[1]));
+        v.chain.head.mount = Some((p[0], p[1]));
         Ok(())
     },
-    false,
 );
 
 /// The base accelerometer's mount resonance: the measured base is the input, so it divides
 /// base→seat and base→head alike and leaves seat→head alone. Damping up to 1 and a heavily damped
 /// start: a soft, lossy mount (a magnet on a painted floor, a pad) is as likely as a resonant one.
 /// A low-pass of the base's conditioner or logger is [`LOWPASS_BASE`].
-pub const MOUNT_BASE: Definition = sensor(
+pub static MOUNT_BASE: Definition = sensor(
     "sensor-mount-base",
     || mount_params(1.0, &[0.08, 0.6]),
     always,
     |v, p| {
-        v.base.mount = Some((p[0], p[1]));
+        v.chain.base.mount = Some((p[0], p[1]));
         Ok(())
     },
-    false,
 );
 
 /// A low-pass on the base channel: its signal conditioner's filter, or the anti-alias filter of
@@ -230,7 +257,7 @@ pub const MOUNT_BASE: Definition = sensor(
 /// frequency (a 4-pole Butterworth is ratio 1, ζ 0.38 and 0.92; a 2-pole puts the second far
 /// out). The measured base is the input, so it raises base→seat and base→head alike above a few
 /// Hz with a lag and leaves seat→head alone; unlike a mount it has no numerator lead.
-pub const LOWPASS_BASE: Definition = sensor(
+pub static LOWPASS_BASE: Definition = sensor(
     "sensor-lowpass-base",
     || {
         vec![
@@ -242,17 +269,16 @@ pub const LOWPASS_BASE: Definition = sensor(
     },
     always,
     |v, p| {
-        v.base.sections = [Some((p[0], p[1])), Some((p[0] * p[2], p[3]))];
+        v.chain.base.sections = [Some((p[0], p[1])), Some((p[0] * p[2], p[3]))];
         Ok(())
     },
-    false,
 );
 
 /// The seat-pan force plate's own response (E11/E13 and the ISO 5982 mass cancellation): a delay
 /// and a 4-pole low-pass of the load cells, and the top plate's uncancelled mass,
 /// AM_meas = l_f(f)·(AM + m_plate). Its gain is not a parameter: a force gain is the same as
 /// scaling every body mass, which the null re-fit already does.
-pub const FORCE: Definition = sensor(
+pub static FORCE: Definition = force_sensor(
     "sensor-force",
     || {
         vec![
@@ -261,24 +287,20 @@ pub const FORCE: Definition = sensor(
             Param::new("m_plate_kg", -10.0, 40.0, &[0.0, 5.0], false),
         ]
     },
-    has_force,
     |v, p| {
-        v.force.delay_s += p[0];
-        v.force.lowpass_hz = p[1];
-        v.force_mass_kg += p[2];
+        v.chain.force.delay_s += p[0];
+        v.chain.force.lowpass_hz = p[1];
+        v.chain.force_mass_kg += p[2];
         Ok(())
     },
-    true,
 );
 
 /// Mount (load-cell) resonance of the seat-pan force plate.
-pub const MOUNT_FORCE: Definition = sensor(
+pub static MOUNT_FORCE: Definition = force_sensor(
     "sensor-mount-force",
     || mount_params(0.7, &[0.08]),
-    has_force,
     |v, p| {
-        v.force.mount = Some((p[0], p[1]));
+        v.chain.force.mount = Some((p[0], p[1]));
         Ok(())
     },
-    true,
 );

@@ -1,91 +1,78 @@
 //! Which measurement tells two look-alike candidates apart (docs/gap.md §8): when two effects of
 //! different families explain the runs equally well, the verdict names both and this measurement.
+//! The pair rules read the candidates' marks ([`Look`]) and families, never their names, so a new
+//! candidate enters them through the marks its definition carries.
 
-use super::Candidate::{self, *};
-use super::Family;
+use super::{Candidate, Family, Look};
 
-/// One pair rule: the candidates it tells apart and the measurement that does.
-struct Separation {
-    applies: fn(Candidate, Candidate) -> bool,
-    measurement: &'static str,
+/// One pair rule: the measurement that tells `a` and `b` apart, if the rule applies to them.
+type Separation = fn(Candidate, Candidate) -> Option<&'static str>;
+
+/// Whether {a, b} is one candidate marked `x` with one marked `y`.
+fn pair(a: Candidate, b: Candidate, x: Look, y: Look) -> bool {
+    (a.looks(x) && b.looks(y)) || (b.looks(x) && a.looks(y))
 }
 
-/// Whether {a, b} is one of `x` with one of `y`.
-fn pair(a: Candidate, b: Candidate, x: &[Candidate], y: &[Candidate]) -> bool {
-    (x.contains(&a) && y.contains(&b)) || (x.contains(&b) && y.contains(&a))
+/// The measurement of its own of whichever of `a`, `b` is marked `look`.
+fn own(a: Candidate, b: Candidate, look: Look) -> Option<&'static str> {
+    [a, b]
+        .into_iter()
+        .find(|c| c.looks(look))
+        .and_then(|c| c.told_apart_by)
 }
 
-/// Whether `a` or `b` is `c`.
-fn either(a: Candidate, b: Candidate, c: Candidate) -> bool {
-    a == c || b == c
+/// `m` when `applies`.
+fn when(applies: bool, m: &'static str) -> Option<&'static str> {
+    applies.then_some(m)
 }
 
 /// The pair rules, most specific first: the first that applies names the measurement.
 const SEPARATIONS: [Separation; 11] = [
-    Separation {
-        applies: |a, b| {
-            pair(
-                a,
-                b,
-                &[CushionStiffening, CushionContact],
-                &[CushionViscoelastic],
-            )
-        },
-        measurement: "a run at a clearly different magnitude (stiffening grows with amplitude, viscoelasticity does not)",
+    |a, b| {
+        when(
+            pair(a, b, Look::GrowsWithMagnitude, Look::SameAtEveryMagnitude),
+            "a run at a clearly different magnitude (stiffening grows with amplitude, viscoelasticity does not)",
+        )
     },
-    Separation {
-        applies: |a, b| {
-            pair(
-                a,
-                b,
-                &[BodySoftening, BodySofteningMagnitude],
-                &[CushionStiffening, CushionViscoelastic],
-            )
-        },
-        measurement: "the seat-head path or the seat force (body effects move apparent mass and seat-head, cushion effects only base-seat)",
+    |a, b| {
+        when(
+            pair(a, b, Look::BodyPaths, Look::SeatPathOnly),
+            "the seat-head path or the seat force (body effects move apparent mass and seat-head, cushion effects only base-seat)",
+        )
     },
-    Separation {
-        applies: |a, b| {
-            pair(
-                a,
-                b,
-                &[CushionViscoelastic, CushionStiffening],
-                &[MissingDof],
-            )
-        },
-        measurement: "a base-seat measurement above 20 Hz or a frame accelerometer (a frame mode shows as a narrow peak)",
+    |a, b| {
+        when(
+            pair(a, b, Look::Broadband, Look::FrameMode),
+            "a base-seat measurement above 20 Hz or a frame accelerometer (a frame mode shows as a narrow peak)",
+        )
     },
-    Separation {
-        applies: |a, b| a.family() == Family::Sensor || b.family() == Family::Sensor,
-        measurement: "a sensor calibration: a shaker run against a reference accelerometer gives each channel's gain, group delay and mount response",
+    |a, b| {
+        when(
+            a.family == Family::Sensor || b.family == Family::Sensor,
+            "a sensor calibration: a shaker run against a reference accelerometer gives each channel's gain, group delay and mount response",
+        )
     },
-    Separation {
-        applies: |a, b| pair(a, b, &[HandsSupport], &[Backrest]),
-        measurement: "a run with the hands off the wheel or handle, or a wheel (hand) force: both paths reach the upper torso, only the hands' passes through the arms",
+    |a, b| {
+        when(
+            pair(a, b, Look::Shoulders, Look::UpperTorso),
+            "a run with the hands off the wheel or handle, or a wheel (hand) force: both paths reach the upper torso, only the hands' passes through the arms",
+        )
     },
-    Separation {
-        applies: |a, b| pair(a, b, &[HandsSupport], &[FeetSupport, ThighSupport]),
-        measurement: "a head accelerometer with the seat-pan force f_seat_z (a path to the shoulders shapes seat-head, one to the pelvis the apparent mass), or a wheel (hand) force or accelerometer",
+    |a, b| {
+        when(
+            pair(a, b, Look::Shoulders, Look::Feet) || pair(a, b, Look::Shoulders, Look::Thighs),
+            "a head accelerometer with the seat-pan force f_seat_z (a path to the shoulders shapes seat-head, one to the pelvis the apparent mass), or a wheel (hand) force or accelerometer",
+        )
     },
-    Separation {
-        applies: |a, b| either(a, b, Backrest),
-        measurement: "a run without backrest contact, or the backrest's vertical force f_back_z (only a backrest carries it: it drives the torso past the seat pan)",
-    },
-    Separation {
-        applies: |a, b| either(a, b, ThighSupport),
-        measurement: "the seat-pan force f_seat_z, or a run with the thighs clear of the seat's front edge (a thigh path carries weight past the seat pan; without the force it looks like a stiffer cushion)",
-    },
-    Separation {
-        applies: |a, b| either(a, b, FeetSupport),
-        measurement: "a run with the feet on a fixed floor, or a footrest force (the feet carry part of the thighs past the seat pan)",
-    },
-    Separation {
-        applies: |a, b| either(a, b, HandsSupport),
-        measurement: "a run with the hands off the wheel or handle, or a wheel (hand) force (the arms carry part of the upper torso past the seat pan)",
-    },
-    Separation {
-        applies: |a, b| pair(a, b, &[MissingDof], &[BodyMode]),
-        measurement: "a frame accelerometer (a frame mode moves base-seat and the frame, a body mode seat-head)",
+    |a, b| own(a, b, Look::UpperTorso),
+    |a, b| own(a, b, Look::Thighs),
+    |a, b| own(a, b, Look::Feet),
+    |a, b| own(a, b, Look::Shoulders),
+    |a, b| {
+        when(
+            pair(a, b, Look::FrameMode, Look::BodyMode),
+            "a frame accelerometer (a frame mode moves base-seat and the frame, a body mode seat-head)",
+        )
     },
 ];
 
@@ -94,43 +81,71 @@ const REPEAT: &str = "a repeat run and a run at a third magnitude";
 
 /// The measurement that separates candidates `a` and `b`.
 pub fn separating_measurement(a: Candidate, b: Candidate) -> &'static str {
-    SEPARATIONS
-        .iter()
-        .find(|s| (s.applies)(a, b))
-        .map_or(REPEAT, |s| s.measurement)
+    SEPARATIONS.iter().find_map(|s| s(a, b)).unwrap_or(REPEAT)
 }
 
 #[cfg(test)]
 mod tests {
+    use super::super::{
+        all, missing_dof, sensor, softening, stiffening, support, suspension, viscoelastic,
+    };
     use super::*;
 
     #[test]
     fn the_most_specific_rule_names_the_measurement() {
         let m = separating_measurement;
         // Symmetric in its arguments.
-        for a in Candidate::ALL {
-            for b in Candidate::ALL {
+        for a in all() {
+            for b in all() {
                 assert_eq!(m(a, b), m(b, a), "{a:?} {b:?}");
             }
         }
+        let (backrest, hands, feet, thigh) = (
+            &support::BACKREST,
+            &support::HANDS,
+            &support::FEET,
+            &support::THIGH,
+        );
         assert!(
-            m(CushionContact, CushionViscoelastic)
-                .starts_with("a run at a clearly different magnitude")
+            m(
+                &stiffening::CUSHION_CONTACT,
+                &viscoelastic::CUSHION_VISCOELASTIC
+            )
+            .starts_with("a run at a clearly different magnitude")
+        );
+        assert!(
+            m(&softening::BODY_SOFTENING, &stiffening::CUSHION_STIFFENING)
+                .starts_with("the seat-head path")
+        );
+        assert!(
+            m(&viscoelastic::CUSHION_VISCOELASTIC, &missing_dof::FRAME)
+                .starts_with("a base-seat measurement above 20 Hz")
         );
         // A sensor pair rule comes before the support paths'.
-        assert!(m(SensorDelay, Backrest).starts_with("a sensor calibration"));
-        assert!(m(Backrest, FeetSupport).starts_with("a run without backrest contact"));
-        assert!(m(FeetSupport, BodyMode).starts_with("a run with the feet on a fixed floor"));
+        assert!(m(&sensor::DELAY, backrest).starts_with("a sensor calibration"));
+        assert!(m(backrest, feet).starts_with("a run without backrest contact"));
+        assert!(
+            m(thigh, feet).starts_with("the seat-pan force f_seat_z, or a run with the thighs")
+        );
+        assert!(
+            m(feet, &missing_dof::BODY_MODE).starts_with("a run with the feet on a fixed floor")
+        );
         // The hands' path against the other support paths: by where it enters the body.
-        assert!(m(HandsSupport, Backrest).starts_with("a run with the hands off the wheel"));
-        assert!(m(Backrest, HandsSupport).contains("through the arms"));
-        for lower in [FeetSupport, ThighSupport] {
-            assert!(
-                m(lower, HandsSupport).starts_with("a head accelerometer with the seat-pan force")
-            );
+        assert!(m(hands, backrest).starts_with("a run with the hands off the wheel"));
+        assert!(m(backrest, hands).contains("through the arms"));
+        for lower in [feet, thigh] {
+            assert!(m(lower, hands).starts_with("a head accelerometer with the seat-pan force"));
         }
-        assert!(m(HandsSupport, BodyMode).contains("the arms carry part of the upper torso"));
-        assert!(m(SensorGain, HandsSupport).starts_with("a sensor calibration"));
-        assert_eq!(m(EndStop, CushionFractional), REPEAT);
+        assert!(
+            m(hands, &missing_dof::BODY_MODE).contains("the arms carry part of the upper torso")
+        );
+        assert!(m(&sensor::GAIN, hands).starts_with("a sensor calibration"));
+        assert!(
+            m(&missing_dof::FRAME, &missing_dof::BODY_MODE).starts_with("a frame accelerometer")
+        );
+        assert_eq!(
+            m(&suspension::END_STOP, &viscoelastic::CUSHION_FRACTIONAL),
+            REPEAT
+        );
     }
 }

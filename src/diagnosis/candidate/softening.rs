@@ -4,9 +4,12 @@ use super::*;
 use crate::diagnosis::predict::MagnitudeSchedule;
 use crate::system::Law;
 
+/// The family's candidates, in report order.
+pub static DEFINITIONS: &[Candidate] = &[&BODY_SOFTENING, &BODY_SOFTENING_MAGNITUDE];
+
 /// Softening body link at the seat interface, the tanh law k·d_ref·tanh(d/d_ref): resonance falls
 /// as magnitude rises, within a run.
-pub const BODY_SOFTENING: Definition = Definition {
+pub static BODY_SOFTENING: Definition = Definition {
     id: "body-softening",
     family: Family::BodySoftening,
     params: || {
@@ -29,12 +32,13 @@ pub const BODY_SOFTENING: Definition = Definition {
         at: Place::Body,
         distortion_grows: true,
     },
-    reads_force_only: false,
+    looks: &[Look::BodyPaths],
+    ..Definition::COMMON
 };
 
 /// Body stiffness and damping scheduled with the run's magnitude (E1): linear within a run,
 /// softer between runs of different magnitude.
-pub const BODY_SOFTENING_MAGNITUDE: Definition = Definition {
+pub static BODY_SOFTENING_MAGNITUDE: Definition = Definition {
     id: "body-softening-magnitude",
     family: Family::BodySoftening,
     params: || {
@@ -60,5 +64,9 @@ pub const BODY_SOFTENING_MAGNITUDE: Definition = Definition {
         at: Place::Body,
         distortion_grows: true,
     },
-    reads_force_only: false,
+    looks: &[Look::BodyPaths],
+    // α_k < 0 says the body stiffens as the magnitude rises (its resonance rises): not a
+    // softening, whatever else the schedule absorbs.
+    contradicted_by: Some(|p| p[0] < 0.0),
+    ..Definition::COMMON
 };

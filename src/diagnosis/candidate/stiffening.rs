@@ -5,6 +5,9 @@
 use super::*;
 use crate::system::Law;
 
+/// The family's candidates, in report order.
+pub static DEFINITIONS: &[Candidate] = &[&CUSHION_STIFFENING, &CUSHION_CONTACT, &CUSHION_BOTTOMING];
+
 /// A nonlinearity between base and seat whose distortion grows with magnitude.
 const SUPPORT_NONLINEAR: Magnitude = Magnitude::Dependent {
     at: Place::Support,
@@ -13,7 +16,7 @@ const SUPPORT_NONLINEAR: Magnitude = Magnitude::Dependent {
 
 /// Cubic stiffening, F = k d + k3 d³. k3 is stated for the first cushion link and scaled by each
 /// link's stiffness, so every link stiffens at the same deflection.
-pub const CUSHION_STIFFENING: Definition = Definition {
+pub static CUSHION_STIFFENING: Definition = Definition {
     id: "cushion-stiffening",
     family: Family::CushionStiffening,
     params: || vec![Param::new("k3_n_m3", 1e6, 1e12, &[1e8, 3e9, 1e11], true)],
@@ -29,11 +32,16 @@ pub const CUSHION_STIFFENING: Definition = Definition {
         Ok(())
     },
     magnitude: SUPPORT_NONLINEAR,
-    reads_force_only: false,
+    looks: &[
+        Look::GrowsWithMagnitude,
+        Look::SeatPathOnly,
+        Look::Broadband,
+    ],
+    ..Definition::COMMON
 };
 
 /// Quadratic contact stiffening, F = k d (1 + |d|/d0): the second stiffening form.
-pub const CUSHION_CONTACT: Definition = Definition {
+pub static CUSHION_CONTACT: Definition = Definition {
     id: "cushion-contact",
     family: Family::CushionStiffening,
     params: || vec![Param::new("d0_m", 1e-4, 1.0, &[0.002, 0.02, 0.2], true)],
@@ -46,7 +54,8 @@ pub const CUSHION_CONTACT: Definition = Definition {
         Ok(())
     },
     magnitude: SUPPORT_NONLINEAR,
-    reads_force_only: false,
+    looks: &[Look::GrowsWithMagnitude],
+    ..Definition::COMMON
 };
 
 /// Bottoming of the cushion under the occupant's preload: a compression-only stop, a second layer
@@ -55,7 +64,7 @@ pub const CUSHION_CONTACT: Definition = Definition {
 /// k + k_stop·P(compression > gap) grows with the run's r.m.s. and the pad motion turns asymmetric
 /// — the signature of foam loaded by the body's weight. One gap for every cushion link (they share
 /// the seat's deflection); each link's stop in proportion to its own stiffness.
-pub const CUSHION_BOTTOMING: Definition = Definition {
+pub static CUSHION_BOTTOMING: Definition = Definition {
     id: "cushion-bottoming",
     family: Family::CushionStiffening,
     // Gap from 0.1 mm (a layer touching at the sag) to 5 cm; the stop from a tenth of the
@@ -77,7 +86,7 @@ pub const CUSHION_BOTTOMING: Definition = Definition {
         Ok(())
     },
     magnitude: SUPPORT_NONLINEAR,
-    reads_force_only: false,
+    ..Definition::COMMON
 };
 
 #[cfg(test)]
@@ -88,9 +97,7 @@ mod tests {
     #[test]
     fn bottoming_puts_a_compression_stop_on_every_cushion_link() {
         let s = catalog::resolve("reference").unwrap().system().clone();
-        let v = Candidate::CushionBottoming
-            .apply(&s, &[0.002, 1.5])
-            .unwrap();
+        let v = CUSHION_BOTTOMING.apply(&s, &[0.002, 1.5]).unwrap();
         let cushion = cushion_links(&s);
         assert!(!cushion.is_empty());
         for &i in &cushion {
@@ -103,10 +110,7 @@ mod tests {
                 })
             );
         }
-        assert_eq!(
-            Candidate::CushionBottoming.family(),
-            Family::CushionStiffening
-        );
-        assert!(Candidate::CushionBottoming.amplitude_dependent());
+        assert_eq!(CUSHION_BOTTOMING.family, Family::CushionStiffening);
+        assert!(CUSHION_BOTTOMING.amplitude_dependent());
     }
 }

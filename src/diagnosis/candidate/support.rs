@@ -6,6 +6,9 @@
 use super::*;
 use structure::{body_point_mass, heaviest_body_mass};
 
+/// The family's candidates, in report order.
+pub static DEFINITIONS: &[Candidate] = &[&BACKREST, &HANDS, &FEET, &THIGH];
+
 /// Damping ratio of the joints and contacts of a support limb (knee and heel pad, shoulder and
 /// grip): soft tissue.
 pub const SUPPORT_ZETA: f64 = 0.3;
@@ -102,7 +105,7 @@ fn tie(
 /// A backrest (E7): the upper torso leans on the seat frame through a foam — a spring–damper tuned
 /// to `f_support_hz` with a relaxing Maxwell arm (k_m/k, τ; the standard linear solid of a backrest
 /// pad, stiffer and lossier above 1/(2πτ); k_m → 0 is the plain spring–damper).
-pub const BACKREST: Definition = Definition {
+pub static BACKREST: Definition = Definition {
     id: "backrest",
     family: Family::SupportPath,
     params: || {
@@ -124,14 +127,17 @@ pub const BACKREST: Definition = Definition {
         s.links.push(Link { role, ..link });
         Ok(())
     },
-    magnitude: Magnitude::Linear,
-    reads_force_only: false,
+    looks: &[Look::UpperTorso],
+    told_apart_by: Some(
+        "a run without backrest contact, or the backrest's vertical force f_back_z (only a backrest carries it: it drives the torso past the seat pan)",
+    ),
+    ..Definition::COMMON
 };
 
 /// Feet on the floor (E9): a legs mass joined to the lower body (pelvis and thighs) by a knee
 /// spring–damper and to the base by a heel pad (`add_limb`, [`tie`]): a load path past the seat
 /// pan that the seat-pan force does not see.
-pub const FEET: Definition = Definition {
+pub static FEET: Definition = Definition {
     id: "feet-support",
     family: Family::SupportPath,
     params: || {
@@ -150,8 +156,11 @@ pub const FEET: Definition = Definition {
         tie(s, role, "heel", (j, None), p[0], p[2], SUPPORT_ZETA);
         Ok(())
     },
-    magnitude: Magnitude::Linear,
-    reads_force_only: false,
+    looks: &[Look::Feet],
+    told_apart_by: Some(
+        "a run with the feet on a fixed floor, or a footrest force (the feet carry part of the thighs past the seat pan)",
+    ),
+    ..Definition::COMMON
 };
 
 /// Mass of a steering wheel with its hub (kg): 2–5 kg with an airbag module. Fixed, so the
@@ -184,7 +193,7 @@ pub const COLUMN_ZETA: f64 = 0.05;
 /// Rakheja and Boileau 2004, Int. J. Ind. Ergonomics 34); the Boileau–Rakheja body of the
 /// reference model was itself fitted to drivers with their hands on a wheel, so on it the
 /// candidate stands for a grip its data did not have, or a firmer one.
-pub const HANDS: Definition = Definition {
+pub static HANDS: Definition = Definition {
     id: "hands-support",
     family: Family::SupportPath,
     params: || {
@@ -207,14 +216,17 @@ pub const HANDS: Definition = Definition {
         tie(s, role, "column", (w, None), WHEEL_KG, p[3], COLUMN_ZETA);
         Ok(())
     },
-    magnitude: Magnitude::Linear,
-    reads_force_only: false,
+    looks: &[Look::Shoulders],
+    told_apart_by: Some(
+        "a run with the hands off the wheel or handle, or a wheel (hand) force (the arms carry part of the upper torso past the seat pan)",
+    ),
+    ..Definition::COMMON
 };
 
 /// A thigh path (E9 as a spring–damper): the lower body (pelvis and thighs) joined to the base
 /// directly, past the seat pan — the thighs on the front edge of the seat. Without `f_seat_z` it
 /// is a stiffer, more damped cushion; the seat-pan force misses it.
-pub const THIGH: Definition = Definition {
+pub static THIGH: Definition = Definition {
     id: "thigh-support",
     family: Family::SupportPath,
     params: || {
@@ -234,8 +246,11 @@ pub const THIGH: Definition = Definition {
         });
         Ok(())
     },
-    magnitude: Magnitude::Linear,
-    reads_force_only: false,
+    looks: &[Look::Thighs],
+    told_apart_by: Some(
+        "the seat-pan force f_seat_z, or a run with the thighs clear of the seat's front edge (a thigh path carries weight past the seat pan; without the force it looks like a stiffer cushion)",
+    ),
+    ..Definition::COMMON
 };
 
 #[cfg(test)]
@@ -259,15 +274,15 @@ mod tests {
         assert!(target(Target::UpperBody, &bare).is_some());
         // The segment model has its own backrest and footrest (and no point-mass body).
         let segments = system(catalog::PAPER_000);
-        assert!(!Candidate::Backrest.applies_to(&segments));
-        assert!(!Candidate::FeetSupport.applies_to(&segments));
-        assert!(!Candidate::HandsSupport.applies_to(&segments));
+        assert!(!BACKREST.applies_to(&segments));
+        assert!(!FEET.applies_to(&segments));
+        assert!(!HANDS.applies_to(&segments));
     }
 
     #[test]
     fn feet_support_adds_a_legs_mass_tuned_to_its_knee_and_heel() {
         let s = system("reference");
-        let v = Candidate::FeetSupport.apply(&s, &[6.0, 3.0, 12.0]).unwrap();
+        let v = FEET.apply(&s, &[6.0, 3.0, 12.0]).unwrap();
         let t = &v.system;
         assert_eq!(t.dof(), s.dof() + 1);
         let j = t.dof() - 1;
@@ -291,9 +306,7 @@ mod tests {
     #[test]
     fn hands_support_adds_arms_between_the_shoulders_and_a_wheel_on_its_column() {
         let s = system("reference");
-        let v = Candidate::HandsSupport
-            .apply(&s, &[4.0, 5.0, 20.0, 30.0])
-            .unwrap();
+        let v = HANDS.apply(&s, &[4.0, 5.0, 20.0, 30.0]).unwrap();
         let t = &v.system;
         assert_eq!(t.dof(), s.dof() + 2);
         let (a, w) = (t.dof() - 2, t.dof() - 1);

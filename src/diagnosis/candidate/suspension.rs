@@ -4,6 +4,9 @@
 use super::*;
 use crate::system::Law;
 
+/// The family's candidates, in report order.
+pub static DEFINITIONS: &[Candidate] = &[&FRICTION, &END_STOP];
+
 /// Reference velocity of the friction law in m/s (tanh regularisation width).
 pub const FRICTION_V_REF: f64 = 0.01;
 
@@ -14,7 +17,7 @@ fn has_suspension(s: &System) -> bool {
 
 /// Coulomb friction on the suspension, F_c tanh(v/v_ref). Its share of the force falls as the
 /// magnitude rises, so its distortion does not grow with magnitude.
-pub const FRICTION: Definition = Definition {
+pub static FRICTION: Definition = Definition {
     id: "suspension-friction",
     family: Family::Suspension,
     params: || vec![Param::new("f_c_n", 0.5, 1000.0, &[5.0, 50.0], true)],
@@ -32,7 +35,7 @@ pub const FRICTION: Definition = Definition {
         at: Place::Support,
         distortion_grows: false,
     },
-    reads_force_only: false,
+    ..Definition::COMMON
 };
 
 /// End-stops on the suspension beyond ±gap (E6, `Law::EndStop`): a stop of stiffness
@@ -41,7 +44,7 @@ pub const FRICTION: Definition = Definition {
 /// free because a real bump stop is progressive rubber: its Gaussian-equivalent stiffness ratio is
 /// anywhere from ~0.3 to 30 depending on how far the stroke penetrates, and a fixed ratio forces
 /// the gap to absorb that spread.
-pub const END_STOP: Definition = Definition {
+pub static END_STOP: Definition = Definition {
     id: "end-stop",
     family: Family::Suspension,
     // Gap from 0.2 mm (a stiff suspension's stroke at low magnitude is ~0.5 mm r.m.s.) to 10 cm
@@ -69,7 +72,7 @@ pub const END_STOP: Definition = Definition {
         at: Place::Support,
         distortion_grows: true,
     },
-    reads_force_only: false,
+    ..Definition::COMMON
 };
 
 #[cfg(test)]
@@ -84,7 +87,7 @@ mod tests {
         let i = role_link(&s, Role::Suspension).unwrap();
         let k = s.links[i].element.static_stiffness();
         for (gap, ratio) in [(0.0007, 0.3), (0.002, 25.0)] {
-            let v = Candidate::EndStop.apply(&s, &[gap, ratio]).unwrap();
+            let v = END_STOP.apply(&s, &[gap, ratio]).unwrap();
             assert_eq!(
                 v.system.links[i].law,
                 Some(Law::EndStop {
@@ -93,11 +96,7 @@ mod tests {
                 })
             );
         }
-        let names: Vec<String> = Candidate::EndStop
-            .params()
-            .into_iter()
-            .map(|p| p.name)
-            .collect();
+        let names: Vec<String> = END_STOP.params().into_iter().map(|p| p.name).collect();
         assert_eq!(names, ["gap_m", "k_stop_over_k"]);
     }
 }

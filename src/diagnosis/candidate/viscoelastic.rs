@@ -4,9 +4,12 @@
 
 use super::*;
 
+/// The family's candidates, in report order.
+pub static DEFINITIONS: &[Candidate] = &[&CUSHION_VISCOELASTIC, &CUSHION_FRACTIONAL];
+
 /// Viscoelastic cushion: a Maxwell arm (k_m in series with c_m = k_m·τ) in parallel with each
 /// Kelvin–Voigt cushion link, with free stiffness ratio and relaxation time τ.
-pub const CUSHION_VISCOELASTIC: Definition = Definition {
+pub static CUSHION_VISCOELASTIC: Definition = Definition {
     id: "cushion-viscoelastic",
     family: Family::CushionViscoelasticity,
     params: || {
@@ -24,8 +27,12 @@ pub const CUSHION_VISCOELASTIC: Definition = Definition {
         }
         Ok(())
     },
-    magnitude: Magnitude::Linear,
-    reads_force_only: false,
+    looks: &[
+        Look::SameAtEveryMagnitude,
+        Look::SeatPathOnly,
+        Look::Broadband,
+    ],
+    ..Definition::COMMON
 };
 
 /// Fractional Kelvin–Voigt cushion: the foam's dashpot is a fractional one, F = k·d + c_α·D^α d,
@@ -33,7 +40,7 @@ pub const CUSHION_VISCOELASTIC: Definition = Definition {
 /// follow); c_α from a loss scale at 5 Hz against the viscous dashpot, so α = 1, scale 1 is the
 /// plain cushion. Realised as a power-law spectrum of Maxwell arms ([`fractional_arms`],
 /// simulable in time).
-pub const CUSHION_FRACTIONAL: Definition = Definition {
+pub static CUSHION_FRACTIONAL: Definition = Definition {
     id: "cushion-fractional",
     family: Family::CushionViscoelasticity,
     params: || {
@@ -70,8 +77,7 @@ pub const CUSHION_FRACTIONAL: Definition = Definition {
         }
         Ok(())
     },
-    magnitude: Magnitude::Linear,
-    reads_force_only: false,
+    ..Definition::COMMON
 };
 
 /// Reference frequency of the fractional cushion's modulus, Hz: the body-mode region.

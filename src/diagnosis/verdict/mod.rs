@@ -1,19 +1,23 @@
-//! The verdict stage: a typed [`Verdict`] chosen from the evidence by the ordered, named
-//! [`rules::RULES`] (docs/gap.md §7), then the distortion's second opinion ([`located`]).
+//! The verdict stage: the diagnosis's one decision ([`decide`]), made from one typed evidence
+//! record ([`Evidence`]) by ordered, named rules (docs/gap.md §7), returned as a [`Decision`] that
+//! carries the verdict and the [`Rule`] that decided it.
 //!
-//! The rules read only the [`Evidence`]: the null re-fit, the ranked candidates, the held-out best
-//! if the check run accepts it, the all-run judgement of amplitude-dependent effects and the
-//! distortion trend. The text is rendered from the verdict in [`super::text`].
+//! The stages before it gather the evidence (the null re-fit and the ranked candidates, the
+//! held-out acceptance, the all-run judgement, the distortion and clock trends, the forward
+//! selection's second effect, the calibration findings); the text and the report render the
+//! decision ([`super::text`]) and change nothing of it.
 
 pub(super) mod rules;
 
 use super::all_runs::AllRuns;
-use super::candidate::Candidate;
+use super::candidate::{self, Candidate};
 use super::clock::ClockTrend;
 use super::distortion::Distortion;
 pub(super) use super::evidence::training_closed;
-use super::outcome::{Ranked, Stage, VerdictId};
+pub use super::outcome::Rule;
+use super::outcome::{ChannelError, Effects, Ranked, Stage, VerdictId};
 use super::score;
+pub(super) use super::select::Second;
 
 /// What the diagnosis concludes. Calibration findings (an inverted channel, a unit slip) stand
 /// beside it in [`super::Diagnosis::channel_errors`].
@@ -50,6 +54,9 @@ pub enum Verdict {
         /// How it falls short.
         shortfall: Shortfall,
     },
+    /// Nothing structural: a channel's calibration error found (and corrected) before the fit
+    /// is the finding, reported as the calibration candidate ([`candidate::Definition::calibration`]).
+    Calibration(Candidate),
     /// Nothing significant: the re-fitted base model explains the held-out run.
     None,
 }
@@ -152,9 +159,10 @@ impl Verdict {
     /// `not-identifiable`.
     pub fn id(&self) -> VerdictId {
         match self {
-            Verdict::Named { effect, .. } => VerdictId::Effect(effect.id().to_string()),
+            Verdict::Named { effect, .. } => VerdictId::Effect(effect),
             Verdict::NotIdentifiable { .. } => VerdictId::NotIdentifiable,
             Verdict::Unexplained | Verdict::Partial { .. } => VerdictId::Unexplained,
+            Verdict::Calibration(gain) => VerdictId::Effect(gain),
             Verdict::None => VerdictId::None,
         }
     }
@@ -176,35 +184,40 @@ impl Verdict {
     }
 }
 
-/// What the verdict rules read.
-pub(super) struct Evidence<'a> {
+/// The one evidence record the stages produce and the rules read.
+pub(super) struct Evidence {
     /// The null re-fit (base parameters re-fitted on the training runs).
-    pub null: &'a Ranked,
+    pub null: Ranked,
     /// The candidates, best held-out ΔBIC first; the all-run winner's entry carries its all-run
     /// fit.
-    pub cands: &'a [Ranked],
+    pub cands: Vec<Ranked>,
     /// The held-out best if the check run accepts it ([`held_out_accepted`]), as ranked before the
     /// all-run fit.
-    pub accepted: Option<&'a Ranked>,
+    pub accepted: Option<Ranked>,
     /// The amplitude-dependent effect re-fitted on all runs, when it was judged there.
-    pub all_runs: Option<&'a AllRuns>,
+    pub all_runs: Option<AllRuns>,
     /// The runs' distortion trend.
-    pub distortion: Option<&'a Distortion>,
+    pub distortion: Option<Distortion>,
     /// How the lag behind the base moves between the runs' halves.
-    pub clock: Option<&'a ClockTrend>,
+    pub clock: Option<ClockTrend>,
+    /// Forward selection's second effect beside the effect the rules name ([`nominee`]).
+    pub second: Option<Second>,
+    /// Channels found inverted or in the wrong unit and corrected before the fit.
+    pub channel_errors: Vec<ChannelError>,
 }
 
-impl Evidence<'_> {
+impl Evidence {
     /// The ranked entry of candidate `c`.
     pub fn entry(&self, c: Candidate) -> Option<&Ranked> {
-        self.cands.iter().find(|r| r.id == c.id())
+        self.cands.iter().find(|r| r.id == Effects::One(c))
     }
 
     /// The entry of `c` as the held-out rules saw it: the accepted best's pre-all-run entry when
     /// `c` is that best, else the ranked one.
     pub fn held_out_entry(&self, c: Candidate) -> Option<&Ranked> {
         self.accepted
-            .filter(|a| a.id == c.id())
+            .as_ref()
+            .filter(|a| a.id == Effects::One(c))
             .or_else(|| self.entry(c))
     }
 
@@ -212,28 +225,128 @@ impl Evidence<'_> {
     pub fn best(&self) -> Option<&Ranked> {
         self.cands.first()
     }
+
+    /// The held-out best when it is detected (ΔBIC ≤ [`super::thresholds::ACCEPT_DELTA_BIC`]).
+    fn detected_best(&self) -> Option<Candidate> {
+        self.best()
+            .filter(|b| b.delta_bic <= super::thresholds::ACCEPT_DELTA_BIC)
+            .and_then(candidate)
+    }
+}
+
+/// The diagnosis's decision: the verdict, the rule that decided it, and what the rules found
+/// beside it.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Decision {
+    /// The verdict.
+    pub verdict: Verdict,
+    /// The rule that decided it: the last that set or changed the verdict.
+    pub rule: Rule,
+    /// A detected candidate the rules set aside because it closes too little of the gap (or of a
+    /// residue below the structural threshold), for the text to mention.
+    pub set_aside: Option<Candidate>,
+    /// An amplitude-dependent named effect whose equivalent linear model moves the check run's
+    /// ISO figures away ([`Shortfall::decides`]): a warning, not the verdict.
+    pub caveat: Option<Shortfall>,
+    /// The calibration candidate when a channel's calibration error was found, named after a
+    /// structural effect (or as the finding itself, [`Verdict::Calibration`]).
+    pub calibration: Option<Candidate>,
+}
+
+impl Decision {
+    /// The effects named, best first: the named effect and its second, then the calibration
+    /// finding when there is one.
+    pub fn named(&self) -> Vec<Candidate> {
+        let mut named: Vec<Candidate> = match &self.verdict {
+            Verdict::Named { effect, second, .. } => {
+                std::iter::once(*effect).chain(*second).collect()
+            }
+            _ => Vec::new(),
+        };
+        if let Some(gain) = self.calibration.filter(|g| !named.contains(g)) {
+            named.push(gain);
+        }
+        named
+    }
 }
 
 /// The candidate a ranked entry stands for (`None` for the null).
 pub(super) fn candidate(r: &Ranked) -> Option<Candidate> {
-    Candidate::from_id(&r.id)
+    r.id.candidate()
 }
 
-/// The frequency-response verdict: the first of [`rules::RULES`] that applies.
-pub(super) fn decide(e: &Evidence) -> Verdict {
-    rules::RULES
+/// The frequency-response verdict and its rule: the first of [`rules::RULES`] that applies; then
+/// the second opinions, [`rules::located`] when the distortion places a nonlinearity elsewhere and
+/// [`rules::clocked`] when the lag moves through the runs.
+fn structural(e: &Evidence) -> (Verdict, Rule) {
+    let (responses, rule) = rules::RULES
         .iter()
-        .find_map(|r| (r.apply)(e))
-        .expect("the last rule always applies")
+        .find_map(|(rule, apply)| apply(e).map(|v| (v, *rule)))
+        .expect("the last rule always applies");
+    let (v, rule) = match rules::located(e, &responses) {
+        Some(v) => (v, Rule::DistortionSite),
+        None => (responses, rule),
+    };
+    match rules::clocked(e, &v) {
+        Some(v) => (v, Rule::ClockDrift),
+        None => (v, rule),
+    }
 }
 
-/// The verdict after the second opinions: [`rules::located`] replaces the frequency-response
-/// verdict when the distortion places a nonlinearity elsewhere, [`rules::clocked`] a timing or
-/// filter effect when the lag moves through the runs.
-pub(super) fn conclude(e: &Evidence) -> Verdict {
-    let responses = decide(e);
-    let v = rules::located(e, &responses).unwrap_or(responses);
-    rules::clocked(e, &v).unwrap_or(v)
+/// The effect the rules name before the second effect and the shortfall are read: the one forward
+/// selection pairs a second effect with.
+pub(super) fn nominee(e: &Evidence) -> Option<Candidate> {
+    structural(e).0.effect()
+}
+
+/// The decision, in one place: the rules of [`Rule::ORDER`] in turn. The frequency-response rules
+/// and the second opinions name the verdict ([`structural`]); a named effect takes the second
+/// effect forward selection found beside it; the model with the named effect(s) must explain the
+/// check run ([`shortfall`]), else the verdict is a partial explanation; with nothing structural a
+/// channel's calibration error is the finding.
+pub(super) fn decide(e: &Evidence) -> Decision {
+    let (mut verdict, mut rule) = structural(e);
+    let set_aside = match rule {
+        Rule::DetectedButClosesLittle | Rule::NoStructuralGap => e.detected_best(),
+        _ => None,
+    };
+    let mut caveat = None;
+    if let Verdict::Named { effect, second, .. } = &mut verdict {
+        let pair = e.second.as_ref().filter(|s| s.first == *effect);
+        *second = pair.map(|s| s.added);
+        let named = pair.map_or_else(
+            || e.entry(effect).map(|r| &r.check),
+            |s| Some(&s.pair.check),
+        );
+        let linear = std::iter::once(*effect)
+            .chain(*second)
+            .all(|c| !c.amplitude_dependent());
+        match named.and_then(|st| shortfall(&e.null.check, st)) {
+            Some(s) if s.decides(linear) => {
+                verdict = Verdict::Partial {
+                    best: effect,
+                    second: *second,
+                    shortfall: s,
+                };
+                rule = Rule::ExplainsOnlyInPart;
+            }
+            away => caveat = away,
+        }
+    }
+    let calibration = (!e.channel_errors.is_empty())
+        .then(|| candidate::with(|c| c.calibration))
+        .flatten();
+    if let (Verdict::None, Some(gain)) = (&verdict, calibration) {
+        verdict = Verdict::Calibration(gain);
+        rule = Rule::CalibrationFinding;
+    }
+    Decision {
+        verdict,
+        rule,
+        set_aside,
+        caveat,
+        calibration,
+    }
 }
 
 /// Overdispersion ĉ = max(1, χ²/ν) of a fit (QAIC, Burnham & Anderson 2002, §2.5): when even the
@@ -274,15 +387,4 @@ pub(super) fn practically_small(b: &Ranked) -> bool {
     b.aw_change_percent.abs() < aw
         && b.seat_change_points.abs() < seat
         && b.band_gap_change_db.abs() < db
-}
-
-/// The verdict's identifier in the JSON. A calibration error found when nothing structural is
-/// named is the finding: `sensor-gain` then stands for the corrected channel.
-pub(super) fn reported_id(v: &Verdict, calibration_errors: bool) -> VerdictId {
-    match v {
-        Verdict::None if calibration_errors => {
-            VerdictId::Effect(Candidate::SensorGain.id().to_string())
-        }
-        v => v.id(),
-    }
 }

@@ -3,54 +3,31 @@
 //! say.
 
 use super::{
-    Basis, Evidence, Verdict, candidate, overdispersion, practically_small, training_closed,
+    Basis, Evidence, Rule, Verdict, candidate, overdispersion, practically_small, training_closed,
 };
-use crate::diagnosis::candidate::{Candidate, Family, separating_measurement};
+use crate::diagnosis::candidate::{
+    Candidate, Definition, Family, Prior, separating_measurement, with,
+};
 use crate::diagnosis::outcome::Ranked;
 use crate::diagnosis::score;
 use crate::diagnosis::thresholds::{
     ACCEPT_DELTA_BIC, GAP_CHI2, IDENTIFIABLE_MARGIN, MIN_CLOSED, PRACTICAL_GAP,
 };
 
-/// A named verdict rule.
-pub(in crate::diagnosis) struct Rule {
-    /// Short name (docs/gap.md §7 lists them in this order; the tests check it).
-    #[cfg_attr(not(test), expect(dead_code, reason = "read by the tests"))]
-    pub name: &'static str,
-    /// The verdict if the rule applies.
-    pub apply: fn(&Evidence) -> Option<Verdict>,
-}
+/// A frequency-response rule: the verdict if it applies.
+pub(in crate::diagnosis) type Apply = fn(&Evidence) -> Option<Verdict>;
 
-/// The rules in the order they are tried; the last always applies.
-pub(in crate::diagnosis) const RULES: &[Rule] = &[
-    Rule {
-        name: "refitted-on-all-runs",
-        apply: refitted_on_all_runs,
-    },
-    Rule {
-        name: "amplitude-effect-on-all-runs",
-        apply: amplitude_effect_on_all_runs,
-    },
-    Rule {
-        name: "look-alikes",
-        apply: look_alikes,
-    },
-    Rule {
-        name: "accepted-on-held-out",
-        apply: accepted_on_held_out,
-    },
-    Rule {
-        name: "detected-but-closes-little",
-        apply: detected_but_closes_little,
-    },
-    Rule {
-        name: "no-structural-gap",
-        apply: no_structural_gap,
-    },
-    Rule {
-        name: "no-candidate-closes-the-gap",
-        apply: unexplained,
-    },
+/// The frequency-response rules in the order they are tried; the last always applies. The second
+/// opinions ([`located`], [`clocked`]) and the rules after them are applied by
+/// [`super::decide`].
+pub(in crate::diagnosis) const RULES: &[(Rule, Apply)] = &[
+    (Rule::RefittedOnAllRuns, refitted_on_all_runs),
+    (Rule::AmplitudeEffectOnAllRuns, amplitude_effect_on_all_runs),
+    (Rule::LookAlikes, look_alikes),
+    (Rule::AcceptedOnHeldOut, accepted_on_held_out),
+    (Rule::DetectedButClosesLittle, detected_but_closes_little),
+    (Rule::NoStructuralGap, no_structural_gap),
+    (Rule::NoCandidateClosesTheGap, unexplained),
 ];
 
 /// An amplitude-dependent effect re-fitted on all runs together is named when the all-run
@@ -60,7 +37,7 @@ pub(in crate::diagnosis) const RULES: &[Rule] = &[
 /// magnitudes every two-parameter magnitude law passes through both, so a held-out run between
 /// them tests the law's form, not the effect; all runs together test the effect.
 fn refitted_on_all_runs(e: &Evidence) -> Option<Verdict> {
-    let a = e.all_runs?;
+    let a = e.all_runs.as_ref()?;
     e.entry(a.candidate)?;
     Some(Verdict::Named {
         effect: a.candidate,
@@ -81,7 +58,7 @@ fn amplitude_effect_on_all_runs(e: &Evidence) -> Option<Verdict> {
     if e.accepted.is_some() {
         return None;
     }
-    let null = e.null;
+    let null = &e.null;
     let b = e
         .cands
         .iter()
@@ -115,9 +92,9 @@ struct HeldOutCall<'a> {
 /// misfit both share makes every log-likelihood difference ĉ times too large. All runs together
 /// (the training fit's in-sample BIC plus the held-out one) break a tie when they separate the
 /// pair by the same margin, in units of the smaller training ĉ.
-fn held_out_call<'a>(e: &Evidence<'a>) -> Option<HeldOutCall<'a>> {
-    let b = e.accepted?;
-    let family = |r: &Ranked| candidate(r).map(|c| c.family());
+fn held_out_call(e: &Evidence) -> Option<HeldOutCall<'_>> {
+    let b = e.accepted.as_ref()?;
+    let family = |r: &Ranked| candidate(r).map(|c| c.family);
     let check_c = overdispersion(b.check.chi2_red.max(b.train_chi2_red));
     let rival = e.cands.iter().skip(1).find(|s| {
         (s.delta_bic - b.delta_bic) / check_c < IDENTIFIABLE_MARGIN
@@ -169,7 +146,7 @@ fn accepted_on_held_out(e: &Evidence) -> Option<Verdict> {
         return None;
     }
     let w = call.winner;
-    let family = |r: &Ranked| candidate(r).map(|c| c.family());
+    let family = |r: &Ranked| candidate(r).map(|c| c.family);
     let alternative = e
         .cands
         .iter()
@@ -226,13 +203,13 @@ fn unexplained(_: &Evidence) -> Option<Verdict> {
 /// magnitude rises) unless the site's best fits all runs as well, within the margin in units of
 /// its training ĉ.
 pub(in crate::diagnosis) fn located(e: &Evidence, responses: &Verdict) -> Option<Verdict> {
-    let site = e.distortion?.site?;
+    let site = e.distortion.as_ref()?.site?;
     let named = responses.effect();
     let marginal = |c: Candidate| {
         score::chi2_within_noise(e.null.check.chi2_red, e.null.check.residuals)
             && e.entry(c).is_some_and(practically_small)
     };
-    if named.is_some_and(|c| site.admits(c) || (c.family() == Family::Sensor && !marginal(c))) {
+    if named.is_some_and(|c| site.admits(c) || (c.family == Family::Sensor && !marginal(c))) {
         return None;
     }
     let b = e
@@ -265,14 +242,16 @@ mod tests;
 /// shows a drift as a mean lag and a low-pass-like loss), the drift is named if it is detected on
 /// the held-out run.
 pub(in crate::diagnosis) fn clocked(e: &Evidence, responses: &Verdict) -> Option<Verdict> {
-    e.clock.filter(|c| c.significant())?;
+    e.clock.as_ref().filter(|c| c.significant())?;
     let named = responses.effect()?;
-    if named.family() != Family::Sensor || named == Candidate::LoggerDrift {
+    let clock = |c: &Definition| matches!(c.prior, Some(Prior::ClockDrift { .. }));
+    if named.family != Family::Sensor || clock(named) {
         return None;
     }
-    let drift = e.entry(Candidate::LoggerDrift)?;
+    let drifting = with(clock)?;
+    let drift = e.entry(drifting)?;
     (drift.delta_bic <= ACCEPT_DELTA_BIC).then(|| Verdict::Named {
-        effect: Candidate::LoggerDrift,
+        effect: drifting,
         basis: Basis::Clock {
             responses: responses.id(),
         },

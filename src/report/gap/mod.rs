@@ -53,6 +53,12 @@ fn stage_row(out: &mut String, label: &str, s: &Stage) {
     );
 }
 
+/// Whether every effect of entry `r` is named in `d` (a forward-selected pair when both are).
+fn named(d: &Diagnosis, r: &Ranked) -> bool {
+    let effects = r.id.candidates();
+    !effects.is_empty() && effects.iter().all(|c| d.named.contains(c))
+}
+
 /// The stages of the before/after table: nominal, re-fitted, then the named effects (the forward
 /// pair last).
 fn stages(d: &Diagnosis) -> Vec<(String, &Stage)> {
@@ -63,11 +69,12 @@ fn stages(d: &Diagnosis) -> Vec<(String, &Stage)> {
             &d.null.check,
         ),
     ];
-    for r in d.candidates.iter().filter(|r| d.named.contains(&r.id)) {
+    for r in d.candidates.iter().filter(|r| named(d, r)) {
         v.push((format!("re-fitted + {}", r.id), &r.check));
     }
-    if let Some(s) = d.second.as_ref().filter(|s| d.named.contains(&s.id)) {
-        v.push((format!("re-fitted + {}", d.named.join(" + ")), &s.check));
+    if let Some(s) = d.second.as_ref().filter(|s| named(d, s)) {
+        let pair: Vec<&str> = s.id.candidates().iter().map(|c| c.id).collect();
+        v.push((format!("re-fitted + {}", pair.join(" + ")), &s.check));
     }
     // Nothing named: the best candidate still shows how little it changes.
     if d.named.is_empty()
@@ -91,23 +98,24 @@ pub fn section(out: &mut String, d: &Diagnosis, source: &str) -> Result<Summary>
          run), and how far it closes the gap.</p>",
         super::esc(source)
     );
-    let named = if d.named.is_empty() {
+    let ids: Vec<&str> = d.named.iter().map(|c| c.id).collect();
+    let named_list = if ids.is_empty() {
         "no effect named".to_string()
     } else {
-        format!("named: {}", d.named.join(", "))
+        format!("named: {}", ids.join(", "))
     };
     let _ = writeln!(
         out,
         "<p class=\"verdict\">Verdict: <b>{}</b> ({}). {}</p>",
         super::esc(d.verdict.as_str()),
-        super::esc(&named),
+        super::esc(&named_list),
         super::esc(&d.verdict_text)
     );
     let effects: Vec<&Ranked> = d
         .candidates
         .iter()
         .chain(d.second.iter())
-        .filter(|r| d.named.contains(&r.id))
+        .filter(|r| named(d, r))
         .collect();
     if !effects.is_empty() {
         out.push_str(
@@ -125,7 +133,7 @@ pub fn section(out: &mut String, d: &Diagnosis, source: &str) -> Result<Summary>
                 out,
                 "<tr><td>{}</td><td>{:.1}</td><td>{:.2}</td><td>{:.0}</td><td>{:+.1}</td>\
                  <td>{:+.1}</td><td>{:+.2}</td><td>{}</td></tr>",
-                super::esc(&r.id),
+                super::esc(&r.id.to_string()),
                 r.delta_bic,
                 r.probability,
                 100.0 * r.fraction_closed,
@@ -190,7 +198,7 @@ pub fn section(out: &mut String, d: &Diagnosis, source: &str) -> Result<Summary>
     }
     Ok(Summary {
         verdict: d.verdict.to_string(),
-        named: d.named.clone(),
+        named: ids.iter().map(|id| id.to_string()).collect(),
         source: source.into(),
     })
 }

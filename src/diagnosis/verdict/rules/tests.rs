@@ -3,16 +3,30 @@
 
 use super::*;
 use crate::diagnosis::all_runs::AllRuns;
-use crate::diagnosis::candidate::Candidate;
+use crate::diagnosis::candidate::{Candidate, from_id};
 use crate::diagnosis::distortion::{Distortion, Site};
 use crate::diagnosis::gapmap::Weighted;
-use crate::diagnosis::outcome::{Stage, VerdictId};
-use crate::diagnosis::verdict::{decide, held_out_accepted};
+use crate::diagnosis::outcome::{Effects, Stage, VerdictId};
+use crate::diagnosis::verdict::{Decision, Rule, decide, held_out_accepted};
+
+/// The candidate called `id`.
+fn c(id: &str) -> Candidate {
+    from_id(id).expect(id)
+}
+
+/// The entry of `id` (`null` or a candidate).
+fn effects(id: &str) -> Effects {
+    if id == "null" {
+        Effects::Null
+    } else {
+        Effects::One(c(id))
+    }
+}
 
 /// A ranked entry with the figures the rules read (sizes 2 % / 2 points).
 fn ranked(id: &str, train: f64, check: f64, dbic: f64, dbic_all: f64, closed: f64) -> Ranked {
     Ranked {
-        id: id.into(),
+        id: effects(id),
         params: Vec::new(),
         train_chi2_red: train,
         delta_bic: dbic,
@@ -42,22 +56,36 @@ fn ranked(id: &str, train: f64, check: f64, dbic: f64, dbic_all: f64, closed: f6
 }
 
 /// The evidence of `null` and `cands` with the held-out acceptance the diagnosis computes.
-fn evidence<'a>(null: &'a Ranked, cands: &'a [Ranked]) -> Evidence<'a> {
+fn evidence(null: &Ranked, cands: &[Ranked]) -> Evidence {
     Evidence {
-        null,
-        cands,
-        accepted: held_out_accepted(null, cands),
+        null: null.clone(),
+        cands: cands.to_vec(),
+        accepted: held_out_accepted(null, cands).cloned(),
         all_runs: None,
         distortion: None,
         clock: None,
+        second: None,
+        channel_errors: Vec::new(),
     }
 }
 
-/// The verdict and its text.
+/// The verdict and its sentence.
 fn judged(e: &Evidence) -> (Verdict, String) {
-    let v = decide(e);
-    let t = crate::diagnosis::text::verdict(&v, e);
-    (v, t)
+    let d = decide(e);
+    let t = crate::diagnosis::text::sentence(&d, e);
+    (d.verdict, t)
+}
+
+/// The sentence of verdict `v` decided by `rule` on `e`.
+fn sentence(v: &Verdict, rule: Rule, e: &Evidence) -> String {
+    let d = Decision {
+        verdict: v.clone(),
+        rule,
+        set_aside: None,
+        caveat: None,
+        calibration: None,
+    };
+    crate::diagnosis::text::sentence(&d, e)
 }
 
 fn named(c: Candidate) -> impl Fn(&Verdict) -> bool {
@@ -68,9 +96,9 @@ fn named(c: Candidate) -> impl Fn(&Verdict) -> bool {
 fn the_rule_list_ends_in_a_rule_that_always_applies() {
     let null = ranked("null", 1.0, 1.0, 0.0, 0.0, 1.0);
     let e = evidence(&null, &[]);
-    let last = RULES.last().expect("rules");
-    assert_eq!(last.name, "no-candidate-closes-the-gap");
-    assert_eq!((last.apply)(&e), Some(Verdict::Unexplained));
+    let (rule, apply) = RULES.last().expect("rules");
+    assert_eq!(rule.name(), "no-candidate-closes-the-gap");
+    assert_eq!(apply(&e), Some(Verdict::Unexplained));
 }
 
 #[test]
@@ -84,19 +112,19 @@ fn refitted_on_all_runs_names_the_all_run_judgement() {
         ranked("cushion-stiffening", 1.2, 2.5, -12.0, -300.0, 0.25),
     ];
     let all = AllRuns {
-        candidate: Candidate::CushionStiffening,
+        candidate: c("cushion-stiffening"),
         delta_bic: -300.0,
         null_chi2_red: 4.0,
         chi2_red: 1.5,
     };
     let mut e = evidence(&null, &cands);
-    e.all_runs = Some(&all);
-    assert!(refitted_on_all_runs(&e).is_some_and(|v| named(Candidate::CushionStiffening)(&v)));
+    e.all_runs = Some(all);
+    assert!(refitted_on_all_runs(&e).is_some_and(|v| named(c("cushion-stiffening"))(&v)));
     let (v, text) = judged(&e);
     assert_eq!(
         v,
         Verdict::Named {
-            effect: Candidate::CushionStiffening,
+            effect: c("cushion-stiffening"),
             basis: Basis::AllRuns { refitted: true },
             second: None
         }
@@ -125,7 +153,7 @@ fn amplitude_effect_on_all_runs_needs_detection_and_a_share_of_the_training_gap(
     assert_eq!(
         amplitude_effect_on_all_runs(&e),
         Some(Verdict::Named {
-            effect: Candidate::BodySoftening,
+            effect: c("body-softening"),
             basis: Basis::AllRuns { refitted: false },
             second: None
         })
@@ -157,17 +185,17 @@ fn a_sensor_effect_is_named_on_the_held_out_run_only() {
     let e = evidence(&null, &cands);
     assert!(e.accepted.is_none());
     let (v, text) = judged(&e);
-    assert!(named(Candidate::CushionStiffening)(&v), "{text}");
+    assert!(named(c("cushion-stiffening"))(&v), "{text}");
     // A linear effect is the same at every magnitude: the held-out run's word stands.
     let mut linear = cands.clone();
-    linear[1].id = "cushion-viscoelastic".into();
+    linear[1].id = effects("cushion-viscoelastic");
     let (v, text) = judged(&evidence(&null, &linear));
-    assert!(!named(Candidate::CushionViscoelastic)(&v), "{text}");
+    assert!(!named(c("cushion-viscoelastic"))(&v), "{text}");
     // Accepted on the held-out run (closes 30 % there), the sensor gain is named.
     let mut cands = cands;
     cands[0].fraction_closed = 0.30;
     let (v, text) = judged(&evidence(&null, &cands));
-    assert!(named(Candidate::SensorGain)(&v), "{text}");
+    assert!(named(c("sensor-gain"))(&v), "{text}");
 }
 
 #[test]
@@ -185,10 +213,9 @@ fn look_alikes_of_two_families_are_not_identifiable() {
     assert_eq!(
         v,
         Verdict::NotIdentifiable {
-            a: Candidate::SensorDelay,
-            b: Candidate::Backrest,
-            separating: separating_measurement(Candidate::SensorDelay, Candidate::Backrest)
-                .to_string(),
+            a: c("sensor-delay"),
+            b: c("backrest"),
+            separating: separating_measurement(c("sensor-delay"), c("backrest")).to_string(),
         }
     );
     assert!(v.separating().is_some_and(|m| m.contains("shaker run")));
@@ -199,7 +226,7 @@ fn look_alikes_of_two_families_are_not_identifiable() {
     ];
     assert_eq!(look_alikes(&evidence(&null, &same)), None);
     let (v, text) = judged(&evidence(&null, &same));
-    assert!(named(Candidate::SensorDelay)(&v), "{text}");
+    assert!(named(c("sensor-delay"))(&v), "{text}");
     assert!(
         text.contains("sensor-lowpass fits almost as well"),
         "{text}"
@@ -216,7 +243,7 @@ fn a_support_path_close_to_another_names_what_tells_their_places_apart() {
         ranked("feet-support", 1.2, 1.35, -47.0, -78.0, 0.68),
     ];
     let (v, text) = judged(&evidence(&null, &cands));
-    assert!(named(Candidate::HandsSupport)(&v), "{text}");
+    assert!(named(c("hands-support"))(&v), "{text}");
     assert!(
         text.contains("feet-support fits almost as well: where the path enters the body is uncertain; to tell, a head accelerometer with the seat-pan force"),
         "{text}"
@@ -236,7 +263,7 @@ fn accepted_on_held_out_names_a_detected_effect_that_closes_a_quarter_of_the_gap
     assert_eq!(
         v,
         Verdict::Named {
-            effect: Candidate::MissingDof,
+            effect: c("missing-dof"),
             basis: Basis::HeldOut {
                 tie: None,
                 alternative: None
@@ -244,7 +271,7 @@ fn accepted_on_held_out_names_a_detected_effect_that_closes_a_quarter_of_the_gap
             second: None
         }
     );
-    let text = crate::diagnosis::text::verdict(&v, &e);
+    let text = sentence(&v, Rule::AcceptedOnHeldOut, &e);
     assert!(
         text.contains("closes 60 % of the structural gap on the held-out run"),
         "{text}"
@@ -292,7 +319,10 @@ fn no_structural_gap_is_none() {
     // The same χ² with a 0.3 dB gap is a gap: the rule does not apply, the last one does.
     let gap = ranked("null", 40.0, 40.0, 0.0, 0.0, 1.0);
     assert_eq!(no_structural_gap(&evidence(&gap, &cands)), None);
-    assert_eq!(decide(&evidence(&gap, &cands)), Verdict::Unexplained);
+    assert_eq!(
+        decide(&evidence(&gap, &cands)).verdict,
+        Verdict::Unexplained
+    );
 }
 
 #[test]
@@ -306,7 +336,7 @@ fn within_the_noise_a_detected_effect_is_named_however_little_it_closes() {
     cands[0].seat_change_points = 0.6;
     cands[0].band_gap_change_db = -0.0;
     let (v, text) = judged(&evidence(&null, &cands));
-    assert!(named(Candidate::Backrest)(&v), "{text}");
+    assert!(named(c("backrest"))(&v), "{text}");
     assert!(text.contains("practically small"), "{text}");
     assert!(
         text.contains("within the noise after the re-fit, by 24 % (0.41 → 0.31)"),
@@ -317,7 +347,7 @@ fn within_the_noise_a_detected_effect_is_named_however_little_it_closes() {
     cands[0].delta_bic = -27.4;
     let e = evidence(&null, &cands);
     assert!(e.accepted.is_none());
-    assert_eq!(decide(&e), Verdict::None);
+    assert_eq!(decide(&e).verdict, Verdict::None);
     // Above the noise the fraction of the gap rules: 23 % of a gap of 1.6 is not named.
     let gap = ranked("null", 1.7, 1.6, 0.0, 0.0, 1.0);
     cands[0].delta_bic = -35.0;
@@ -358,7 +388,7 @@ fn the_overdispersion_of_a_margin_counts_the_training_runs_misfit() {
         ),
     ];
     let (v, text) = judged(&evidence(&null, &cands));
-    assert!(named(Candidate::SuspensionFriction)(&v), "{text}");
+    assert!(named(c("suspension-friction"))(&v), "{text}");
     assert!(
         text.contains("on all runs together suspension-friction is ahead"),
         "{text}"
@@ -378,13 +408,13 @@ fn a_held_out_tie_is_decided_by_all_runs_only_when_they_separate_it() {
         matches!(
             v,
             Verdict::Named {
-                effect: Candidate::Backrest,
+                effect,
                 basis: Basis::HeldOut {
-                    tie: Some(Candidate::SensorDelay),
+                    tie: Some(tie),
                     ..
                 },
                 ..
-            }
+            } if effect == c("backrest") && tie == c("sensor-delay")
         ),
         "{text}"
     );
@@ -398,7 +428,7 @@ fn a_held_out_tie_is_decided_by_all_runs_only_when_they_separate_it() {
         ranked("sensor-delay", 1.1, 0.8, -23.7, -98.0, 0.33),
     ];
     let (v, text) = judged(&evidence(&null, &ahead));
-    assert!(named(Candidate::Backrest)(&v), "{text}");
+    assert!(named(c("backrest"))(&v), "{text}");
     assert!(text.contains("sensor-delay fits almost as well"), "{text}");
     // A misfit both share (χ²/ν 25 on the held-out run, 24 on training) makes a 15-unit
     // held-out difference a tie that all runs, 870 apart (36 ĉ), decide.
@@ -408,7 +438,7 @@ fn a_held_out_tie_is_decided_by_all_runs_only_when_they_separate_it() {
         ranked("backrest", 24.0, 25.1, -533_621.0, -14_204_576.0, 0.997),
     ];
     let (v, text) = judged(&evidence(&poor, &big));
-    assert!(named(Candidate::Backrest)(&v), "{text}");
+    assert!(named(c("backrest"))(&v), "{text}");
     // Unscaled, 15 units would have named the held-out run's best.
     let mut fit = big.clone();
     for c in &mut fit {
@@ -416,7 +446,7 @@ fn a_held_out_tie_is_decided_by_all_runs_only_when_they_separate_it() {
         c.train_chi2_red = 1.0;
     }
     let (v, text) = judged(&evidence(&poor, &fit));
-    assert!(named(Candidate::SensorDelay)(&v), "{text}");
+    assert!(named(c("sensor-delay"))(&v), "{text}");
 }
 
 /// A distortion trend that locates a nonlinearity at `site`.
@@ -441,22 +471,22 @@ fn the_distortion_names_the_site_s_nonlinearity_over_a_linear_verdict() {
         ranked("cushion-stiffening", 2.0, 2.5, -11.0, -55.0, 0.25),
     ];
     let mut e = evidence(&null, &cands);
-    e.distortion = Some(&dist);
-    let responses = decide(&e);
-    assert!(named(Candidate::CushionViscoelastic)(&responses));
+    e.distortion = Some(dist.clone());
+    let responses = RULES.iter().find_map(|(_, apply)| apply(&e)).unwrap();
+    assert!(named(c("cushion-viscoelastic"))(&responses));
     assert_eq!(
         located(&e, &responses),
         Some(Verdict::Named {
-            effect: Candidate::CushionStiffening,
+            effect: c("cushion-stiffening"),
             basis: Basis::Distortion {
-                responses: VerdictId::Effect("cushion-viscoelastic".into())
+                responses: VerdictId::Effect(c("cushion-viscoelastic"))
             },
             second: None
         })
     );
     // A sensor effect coexists with a structural nonlinearity: it stands.
     let sensor = Verdict::Named {
-        effect: Candidate::SensorDelay,
+        effect: c("sensor-delay"),
         basis: Basis::HeldOut {
             tie: None,
             alternative: None,
@@ -472,14 +502,14 @@ fn the_distortion_names_the_site_s_nonlinearity_over_a_linear_verdict() {
     (small.aw_change_percent, small.seat_change_points) = (0.1, 0.1);
     let marginal = vec![small, cands[1].clone(), cands[2].clone()];
     let mut m = evidence(&within, &marginal);
-    m.distortion = Some(&dist);
+    m.distortion = Some(dist.clone());
     let v = located(&m, &sensor).expect("renamed");
-    assert!(named(Candidate::CushionStiffening)(&v), "{v:?}");
+    assert!(named(c("cushion-stiffening"))(&v), "{v:?}");
     // The same sensor effect at its full size (a_w 2 %) stands.
     let mut full = marginal.clone();
     full[0].aw_change_percent = 2.0;
     let mut m = evidence(&within, &full);
-    m.distortion = Some(&dist);
+    m.distortion = Some(dist.clone());
     assert_eq!(located(&m, &sensor), None);
     // Without a located site there is no second opinion.
     e.distortion = None;
@@ -503,22 +533,22 @@ fn a_friction_named_on_the_responses_stands_against_a_body_site() {
         second: None,
     };
     let mut e = evidence(&null, &cands);
-    e.distortion = Some(&dist);
-    assert_eq!(located(&e, &held(Candidate::SuspensionFriction)), None);
+    e.distortion = Some(dist.clone());
+    assert_eq!(located(&e, &held(c("suspension-friction"))), None);
     // The same figures for a cushion stiffening: the body site renames it.
     let mut stiff = cands.clone();
-    stiff[0].id = "cushion-stiffening".into();
+    stiff[0].id = effects("cushion-stiffening");
     let mut e = evidence(&null, &stiff);
-    e.distortion = Some(&dist);
-    let v = located(&e, &held(Candidate::CushionStiffening)).expect("renamed");
-    assert!(named(Candidate::BodySoftening)(&v));
+    e.distortion = Some(dist.clone());
+    let v = located(&e, &held(c("cushion-stiffening"))).expect("renamed");
+    assert!(named(c("body-softening"))(&v));
     // A friction the site's best fits as well as (within 6 ĉ over all runs) is renamed too.
     let mut close = cands.clone();
     close[1].delta_bic_all = -255.0;
     let mut e = evidence(&null, &close);
-    e.distortion = Some(&dist);
-    let v = located(&e, &held(Candidate::SuspensionFriction)).expect("renamed");
-    assert!(named(Candidate::BodySoftening)(&v));
+    e.distortion = Some(dist.clone());
+    let v = located(&e, &held(c("suspension-friction"))).expect("renamed");
+    assert!(named(c("body-softening"))(&v));
 }
 
 #[test]
@@ -526,11 +556,13 @@ fn docs_gap_md_lists_the_rules_in_their_order() {
     let doc = std::fs::read_to_string("docs/gap.md").expect("docs/gap.md");
     let section = &doc[doc.find("## 7 The verdict rules").expect("§7")..];
     let mut at = 0;
-    for r in RULES {
+    for r in Rule::ORDER {
         let i = section[at..]
-            .find(&format!("**{}**", r.name))
-            .unwrap_or_else(|| panic!("docs/gap.md §7 lacks rule {} after position {at}", r.name));
-        at += i + r.name.len();
+            .find(&format!("**{}**", r.name()))
+            .unwrap_or_else(|| {
+                panic!("docs/gap.md §7 lacks rule {} after position {at}", r.name())
+            });
+        at += i + r.name().len();
     }
 }
 
@@ -600,4 +632,209 @@ fn the_iso_figures_decide_only_for_linear_effects() {
     // A linear effect's model predicts the seat PSD in full; an equivalent-linear one does not.
     assert!(away.decides(true));
     assert!(!away.decides(false));
+}
+
+/// The decision's rules in order, each with a fixture it decides: the verdict follows from the
+/// rule's statement (docs/gap.md §7), and a rule added to [`Rule::ORDER`] without a fixture here
+/// fails the test.
+#[test]
+fn every_rule_in_order_decides_its_fixture() {
+    use crate::diagnosis::clock::ClockTrend;
+    use crate::diagnosis::outcome::ChannelError;
+    use crate::diagnosis::verdict::Shortfall;
+    let held = |effect: &str| Verdict::Named {
+        effect: c(effect),
+        basis: Basis::HeldOut {
+            tie: None,
+            alternative: None,
+        },
+        second: None,
+    };
+    // The no-gap fixture: null 1.5 on the check run and nothing detected.
+    let quiet = || {
+        evidence(
+            &ranked("null", 1.5, 1.5, 0.0, 0.0, 1.0),
+            &[ranked("backrest", 1.4, 1.45, -3.0, -5.0, 0.1)],
+        )
+    };
+    let fixtures: Vec<(Rule, Evidence, Verdict)> = vec![
+        (
+            Rule::RefittedOnAllRuns,
+            {
+                // The all-run judgement found a stiffening that the held-out run ranks second.
+                let mut e = evidence(
+                    &ranked("null", 5.0, 3.0, 0.0, 0.0, 1.0),
+                    &[
+                        ranked("cushion-viscoelastic", 4.5, 1.5, -30.0, -40.0, 0.75),
+                        ranked("cushion-stiffening", 1.2, 2.5, -12.0, -300.0, 0.25),
+                    ],
+                );
+                e.all_runs = Some(AllRuns {
+                    candidate: c("cushion-stiffening"),
+                    delta_bic: -300.0,
+                    null_chi2_red: 4.0,
+                    chi2_red: 1.5,
+                });
+                e
+            },
+            Verdict::Named {
+                effect: c("cushion-stiffening"),
+                basis: Basis::AllRuns { refitted: true },
+                second: None,
+            },
+        ),
+        (
+            Rule::AmplitudeEffectOnAllRuns,
+            evidence(
+                // Nothing accepted on the check run; a softening detected on all runs.
+                &ranked("null", 5.0, 1.5, 0.0, 0.0, 1.0),
+                &[ranked("body-softening", 2.0, 1.4, -5.0, -80.0, 0.2)],
+            ),
+            Verdict::Named {
+                effect: c("body-softening"),
+                basis: Basis::AllRuns { refitted: false },
+                second: None,
+            },
+        ),
+        (
+            Rule::LookAlikes,
+            evidence(
+                // Two families 0.3 apart on the check run and 3 on all runs.
+                &ranked("null", 1.5, 1.2, 0.0, 0.0, 1.0),
+                &[
+                    ranked("sensor-delay", 1.1, 0.8, -24.0, -98.0, 0.33),
+                    ranked("backrest", 0.9, 0.8, -23.7, -101.0, 0.44),
+                ],
+            ),
+            Verdict::NotIdentifiable {
+                a: c("sensor-delay"),
+                b: c("backrest"),
+                separating: separating_measurement(c("sensor-delay"), c("backrest")).to_string(),
+            },
+        ),
+        (
+            Rule::AcceptedOnHeldOut,
+            evidence(
+                // Detected at −40 and closing 60 % of the check run's structural gap.
+                &ranked("null", 3.0, 3.0, 0.0, 0.0, 1.0),
+                &[
+                    ranked("missing-dof", 1.5, 1.8, -40.0, -60.0, 0.6),
+                    ranked("backrest", 2.5, 2.8, -12.0, -20.0, 0.1),
+                ],
+            ),
+            held("missing-dof"),
+        ),
+        (
+            Rule::DetectedButClosesLittle,
+            evidence(
+                // A structural gap, the best detected at −40 closing 10 %.
+                &ranked("null", 3.0, 3.0, 0.0, 0.0, 1.0),
+                &[ranked("body-mode", 2.9, 2.8, -40.0, -41.0, 0.1)],
+            ),
+            Verdict::Unexplained,
+        ),
+        (Rule::NoStructuralGap, quiet(), Verdict::None),
+        (
+            Rule::NoCandidateClosesTheGap,
+            evidence(
+                // χ²/ν 40 with a 0.3 dB band gap, nothing detected.
+                &ranked("null", 40.0, 40.0, 0.0, 0.0, 1.0),
+                &[ranked("backrest", 39.0, 39.5, -3.0, -5.0, 0.01)],
+            ),
+            Verdict::Unexplained,
+        ),
+        (
+            Rule::DistortionSite,
+            {
+                // The responses name a linear foam; the distortion grows between base and seat.
+                let mut e = evidence(
+                    &ranked("null", 3.0, 3.0, 0.0, 0.0, 1.0),
+                    &[
+                        ranked("cushion-viscoelastic", 1.5, 1.8, -40.0, -60.0, 0.6),
+                        ranked("cushion-contact", 2.0, 2.5, -12.0, -50.0, 0.25),
+                        ranked("cushion-stiffening", 2.0, 2.5, -11.0, -55.0, 0.25),
+                    ],
+                );
+                e.distortion = Some(located_at(Site::Support));
+                e
+            },
+            Verdict::Named {
+                effect: c("cushion-stiffening"),
+                basis: Basis::Distortion {
+                    responses: VerdictId::Effect(c("cushion-viscoelastic")),
+                },
+                second: None,
+            },
+        ),
+        (
+            Rule::ClockDrift,
+            {
+                // The responses name a delay; the lag moves between the runs' halves by 150 ± 2 ppm
+                // and the drift is detected on the check run.
+                let mut e = evidence(
+                    &ranked("null", 3.0, 3.0, 0.0, 0.0, 1.0),
+                    &[
+                        ranked("sensor-delay", 1.5, 1.8, -40.0, -60.0, 0.6),
+                        ranked("logger-drift", 1.6, 1.9, -36.0, -58.0, 0.55),
+                    ],
+                );
+                e.clock = Some(ClockTrend {
+                    drift_ppm: 150.0,
+                    sigma_ppm: 2.0,
+                    runs: 3,
+                });
+                e
+            },
+            Verdict::Named {
+                effect: c("logger-drift"),
+                basis: Basis::Clock {
+                    responses: VerdictId::Effect(c("sensor-delay")),
+                },
+                second: None,
+            },
+        ),
+        (
+            Rule::ExplainsOnlyInPart,
+            evidence(
+                // Accepted (closes 67 %) but the check run stays at χ²/ν 100, above EXPLAINED_CHI2.
+                &ranked("null", 300.0, 300.0, 0.0, 0.0, 1.0),
+                &[ranked("missing-dof", 100.0, 100.0, -4000.0, -5000.0, 0.67)],
+            ),
+            Verdict::Partial {
+                best: c("missing-dof"),
+                second: None,
+                shortfall: Shortfall::FarAboveNoise { chi2_red: 100.0 },
+            },
+        ),
+        (
+            Rule::CalibrationFinding,
+            {
+                let mut e = quiet();
+                e.channel_errors = vec![ChannelError {
+                    channels: "a_seat_z".into(),
+                    error: "inverted (gain −1)".into(),
+                    factor: -1.0,
+                    runs: vec!["run-1".into()],
+                }];
+                e
+            },
+            Verdict::Calibration(c("sensor-gain")),
+        ),
+    ];
+    let order: Vec<Rule> = fixtures.iter().map(|(r, _, _)| *r).collect();
+    assert_eq!(
+        order,
+        Rule::ORDER,
+        "one fixture per rule, in the decision's order"
+    );
+    for (rule, e, want) in &fixtures {
+        let d = decide(e);
+        assert_eq!((&d.verdict, d.rule), (want, *rule), "{}", rule.name());
+    }
+    // The rule that decided is what the JSON's `decided_by` names.
+    for r in Rule::ORDER {
+        let json = serde_json::to_value(r).unwrap();
+        assert_eq!(json, serde_json::json!(r.name()));
+        assert_eq!(serde_json::from_value::<Rule>(json).unwrap(), r);
+    }
 }

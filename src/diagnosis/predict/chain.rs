@@ -1,0 +1,212 @@
+//! The measuring chain (docs/gap.md §5, sensor family): each transducer's own response —
+//! calibration gain, delay and a clock drifting through the run, filters, mount — and the force
+//! plate's uncancelled mass, between the system's motion and what the logger records.
+
+use super::super::acquisition::OffBase;
+use super::super::measure::RunSpectra;
+use num_complex::Complex64;
+use std::f64::consts::PI;
+
+/// A measuring channel's own response: gain × 4-pole Butterworth low-pass × first-order
+/// high-pass × mount resonance × delay. The identity is `Channel::default()`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Channel {
+    /// Calibration gain (1 = calibrated).
+    pub gain: f64,
+    /// Lag in s (sensor or acquisition delay) at the start of the run.
+    pub delay_s: f64,
+    /// Clock drift of the channel's logger against the base's, s per s (1e-6 = 1 ppm): the lag
+    /// grows to `delay_s + drift·t` at `t` s into the run ([`Channel::response_in`]).
+    pub drift: f64,
+    /// Corner of a 4-pole Butterworth low-pass (anti-alias filter) in Hz; ∞ = none.
+    pub lowpass_hz: f64,
+    /// Corner of a first-order high-pass in Hz, iω/(iω + ω_c): the AC coupling of an IEPE
+    /// accelerometer or its conditioner (typically 0.1–1 Hz, so inside ISO 2631-1's band from
+    /// 0.5 Hz); 0 = DC-coupled.
+    pub highpass_hz: f64,
+    /// Mount resonance (Hz, damping ratio) as the absolute transmissibility of a base-excited
+    /// oscillator, (1 + 2iζr)/(1 − r² + 2iζr), r = f/f_m; `None` = rigid mount.
+    pub mount: Option<(f64, f64)>,
+    /// A low-pass of two to four poles of a signal conditioner or of another logger's filter, as
+    /// second-order sections (natural frequency Hz, damping ratio), each 1/(1 − r² + 2iζr),
+    /// r = f/f_n; `None` = no section.
+    pub sections: [Option<(f64, f64)>; 2],
+}
+
+impl Default for Channel {
+    fn default() -> Self {
+        Channel {
+            gain: 1.0,
+            delay_s: 0.0,
+            drift: 0.0,
+            lowpass_hz: f64::INFINITY,
+            highpass_hz: 0.0,
+            mount: None,
+            sections: [None; 2],
+        }
+    }
+}
+
+/// The centres of a run's Welch segments, where H1 averages a lag that drifts through the run.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SegmentTimes {
+    /// Centre of the first segment, s from the run's start.
+    pub first_s: f64,
+    /// Spacing of the centres, s (half a segment: 50 % overlap).
+    pub hop_s: f64,
+    /// Number of segments L.
+    pub count: usize,
+}
+
+impl SegmentTimes {
+    /// The segment centres of `run`: segments of 1/Δf s, half-overlapped (see [`crate::diagnosis::measure`]).
+    pub fn of(run: &RunSpectra) -> Self {
+        let seg = 1.0 / run.df_hz;
+        SegmentTimes {
+            first_s: 0.5 * seg,
+            hop_s: 0.5 * seg,
+            count: run.segments.max(1),
+        }
+    }
+}
+
+impl Channel {
+    /// The channel's response at `f` Hz within a run whose H1 averages segments at `times`: a
+    /// lag `delay_s + drift·t` growing through the run enters H1 as the mean of its phasors over
+    /// the segment centres t_k = t₀ + k·h, a geometric sum,
+    /// (1/L) Σ e^{−iω·drift·t_k} = e^{−iω·drift·(t₀ + (L−1)h/2)} · sin(L x/2)/(L sin(x/2)),
+    /// x = ω·drift·h: the mid-run lag and a sinc-like loss of magnitude that grows with frequency
+    /// and run length (a drift looks like a low-pass on a whole run; its lag moves between
+    /// segments).
+    pub fn response_in(&self, f: f64, times: &SegmentTimes) -> Complex64 {
+        let h = self.response(f);
+        if self.drift == 0.0 {
+            return h;
+        }
+        let omega = 2.0 * PI * f;
+        let l = times.count as f64;
+        let mid = times.first_s + 0.5 * (l - 1.0) * times.hop_s;
+        let x = omega * self.drift * times.hop_s;
+        let loss = if (0.5 * x).sin().abs() < 1e-12 {
+            1.0
+        } else {
+            (0.5 * l * x).sin() / (l * (0.5 * x).sin())
+        };
+        h * Complex64::from_polar(loss, -omega * self.drift * mid)
+    }
+
+    /// The channel's response at `f` Hz at the start of a run (no drift yet).
+    pub fn response(&self, f: f64) -> Complex64 {
+        let omega = 2.0 * PI * f;
+        let mut h = Complex64::from_polar(self.gain, -omega * self.delay_s);
+        if self.lowpass_hz.is_finite() {
+            // Butterworth poles exp(iπ(2k + n + 1)/(2n)), n = 4 (Butterworth 1930).
+            let s = Complex64::new(0.0, f / self.lowpass_hz);
+            for a in [5.0, 7.0] {
+                let p = Complex64::from_polar(1.0, a * PI / 8.0);
+                h *= p * p.conj() / ((s - p) * (s - p.conj()));
+            }
+        }
+        if self.highpass_hz > 0.0 {
+            let s = Complex64::new(0.0, f / self.highpass_hz);
+            h *= s / (s + 1.0);
+        }
+        if let Some((fm, z)) = self.mount {
+            let r = f / fm;
+            let num = Complex64::new(1.0, 2.0 * z * r);
+            h *= num / Complex64::new(1.0 - r * r, 2.0 * z * r);
+        }
+        for (fn_, z) in self.sections.iter().flatten() {
+            let r = f / fn_;
+            h /= Complex64::new(1.0 - r * r, 2.0 * z * r);
+        }
+        h
+    }
+}
+
+/// The transducers of a rig and their loggers: what every measured path is read through.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Chain {
+    /// The base accelerometer.
+    pub base: Channel,
+    /// The seat-pad accelerometer.
+    pub seat: Channel,
+    /// The head accelerometer.
+    pub head: Channel,
+    /// The seat-pan force plate's load cells (their gain is not separable from the body's masses,
+    /// so only delay, low-pass and mount act).
+    pub force: Channel,
+    /// Uncancelled top-plate mass of the force plate in kg (negative: over-cancelled): the load
+    /// cells also carry the plate moving with the seat surface, F_meas = F + m·a_seat, so the
+    /// apparent mass reads m too much at every frequency (ISO 5982 practice subtracts it).
+    pub force_mass_kg: f64,
+    /// The transducers on another logger than the base accelerometer, which a timing effect
+    /// between the loggers retimes ([`crate::diagnosis::acquisition`]).
+    pub off_base: OffBase,
+}
+
+impl Default for Chain {
+    /// Ideal transducers, all on one logger's time base.
+    fn default() -> Self {
+        Chain {
+            base: Channel::default(),
+            seat: Channel::default(),
+            head: Channel::default(),
+            force: Channel::default(),
+            force_mass_kg: 0.0,
+            off_base: OffBase::default(),
+        }
+    }
+}
+
+impl Chain {
+    /// Whether any channel's clock drifts.
+    pub fn drifts(&self) -> bool {
+        [&self.base, &self.seat, &self.head, &self.force]
+            .iter()
+            .any(|c| c.drift != 0.0)
+    }
+
+    /// The chain with every channel's clock drift removed: the same power spectra (a lag changes
+    /// none) without the loss of magnitude that averaging a drifting lag over a run costs H1
+    /// ([`Channel::response_in`]).
+    pub fn without_drift(&self) -> Chain {
+        let mut c = *self;
+        for ch in [&mut c.base, &mut c.seat, &mut c.head, &mut c.force] {
+            ch.drift = 0.0;
+        }
+        c
+    }
+
+    /// The backrest's load cells: read through the force plate's conditioning and logger (its
+    /// lag, drift and low-pass), not its top plate or mount.
+    pub fn backrest_cells(&self) -> Channel {
+        Channel {
+            mount: None,
+            ..self.force
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn ac_coupling_is_3_db_down_and_45_degrees_ahead_at_its_corner() {
+        // iω/(iω + ω_c): |H| = 1/√2 and arg H = +45° at f = f_c; 1/√(1 + (f_c/f)²) elsewhere.
+        let ch = Channel {
+            highpass_hz: 0.8,
+            ..Channel::default()
+        };
+        let h = ch.response(0.8);
+        assert!((h.norm() - 0.5f64.sqrt()).abs() < 1e-12, "{h}");
+        assert!((h.arg().to_degrees() - 45.0).abs() < 1e-9, "{h}");
+        let h = ch.response(2.0);
+        assert!(
+            (h.norm() - 1.0 / (1.0 + 0.16f64).sqrt()).abs() < 1e-12,
+            "{h}"
+        );
+        assert_eq!(Channel::default().response(0.5), Complex64::new(1.0, 0.0));
+    }
+}
