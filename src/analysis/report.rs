@@ -107,7 +107,7 @@ pub struct Report {
     /// SEAT % from a_seat_z over a_base_z with Wk, when both exist.
     pub seat_percent: Option<f64>,
     /// Health figures for the daily exposure (ISO 2631-1 Annex B, Directive 2002/44/EC); `None`
-    /// when no exposure duration was given.
+    /// when no exposure duration was given or no seat channel exists.
     pub health: Option<Health>,
     /// ISO 2631-5:2018 spinal dose of the seat's z axis (seated, vertical), when its crest factor
     /// exceeds 9 (ISO 2631-1 6.2.1) or it was asked for ([`Options::shocks`]); for the daily dose
