@@ -9,24 +9,37 @@ pub enum Error {
     /// A model definition (TOML) is invalid: `file`, the dotted `key` and what was expected.
     #[error("{file}: {key}: {message}")]
     Model {
+        /// The model file as given.
         file: String,
+        /// The dotted TOML key at fault, e.g. `seat.stiffness`.
         key: String,
+        /// What was expected.
         message: String,
     },
     /// A data file (CSV, excitation table, MCAP run) is invalid at a line or record.
     #[error("{file}{}: {message}", line.map(|l| format!(":{l}")).unwrap_or_default())]
     Data {
+        /// The data file as given.
         file: String,
+        /// The 1-based line or record at fault, when one can be named.
         line: Option<usize>,
+        /// What was expected.
         message: String,
     },
     /// A parameter given on the command line or through the API is out of its valid range.
     #[error("{parameter}: {message}")]
-    Parameter { parameter: String, message: String },
+    Parameter {
+        /// The option or field at fault.
+        parameter: String,
+        /// What was expected.
+        message: String,
+    },
     /// An operating-system I/O error on a named path.
     #[error("{path}: {source}")]
     Io {
+        /// The path the operation failed on.
         path: String,
+        /// The operating system's error.
         #[source]
         source: std::io::Error,
     },

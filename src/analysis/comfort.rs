@@ -16,11 +16,17 @@ use std::fmt;
 #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum Comfort {
+    /// a_v < 0.315 m/s² (Annex C.2.3).
     NotUncomfortable,
+    /// 0.315–0.63 m/s² (Annex C.2.3).
     ALittleUncomfortable,
+    /// 0.5–1 m/s² (Annex C.2.3).
     FairlyUncomfortable,
+    /// 0.8–1.6 m/s² (Annex C.2.3).
     Uncomfortable,
+    /// 1.25–2.5 m/s² (Annex C.2.3).
     VeryUncomfortable,
+    /// a_v > 2 m/s² (Annex C.2.3).
     ExtremelyUncomfortable,
 }
 

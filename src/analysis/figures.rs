@@ -20,9 +20,13 @@ pub enum Averaging {
 /// figures bit for bit.
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
 pub struct Moments {
+    /// Number of samples fed.
     pub count: usize,
+    /// Σa², (m/s²)² summed over samples (r.m.s., ISO 2631-1:1997 eq. 1).
     pub sum_sq: f64,
+    /// Σa⁴, (m/s²)⁴ summed over samples (VDV, ISO 2631-1:1997 eq. 5).
     pub sum_4: f64,
+    /// max |a|, m/s² (crest factor, ISO 2631-1:1997 clause 6.2.1).
     pub peak: f64,
 }
 

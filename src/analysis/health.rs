@@ -184,9 +184,11 @@ pub struct Health {
     pub exposure_hours: f64,
     /// Highest k-weighted axis r.m.s. (m/s²) and its axis.
     pub a_w_max: f64,
+    /// The axis of [`Health::a_w_max`] (`x`, `y` or `z`).
     pub axis: String,
     /// A(8) in m/s².
     pub a8: f64,
+    /// [`Health::a8`] against the Directive 2002/44/EC action and limit values (Art. 3(2)).
     pub a8_status: DirectiveStatus,
     /// The highest of 1.4·VDV_x, 1.4·VDV_y and VDV_z, each scaled to the exposure as
     /// (VDV⁴ T/T_run)^¼, m/s^1.75 (Directive 2002/44/EC Annex B.1, axis by axis).
@@ -194,9 +196,12 @@ pub struct Health {
     /// The axis of [`Health::vdv_exposure`] (not necessarily [`Health::axis`]).
     #[serde(default)]
     pub vdv_axis: String,
+    /// [`Health::vdv_exposure`] against the Directive 2002/44/EC VDV action and limit values
+    /// (Art. 3(2)).
     pub vdv_status: DirectiveStatus,
     /// Caution zone by eq. B.1 and B.2.
     pub zone_b1: Zone,
+    /// Caution zone by eq. B.2 (a T^¼ constant), ISO 2631-1:1997 Annex B.
     pub zone_b2: Zone,
 }
 

@@ -49,8 +49,11 @@ impl Default for Options {
 /// Figures of one acceleration channel `a_<place>_<axis>` (m/s² in).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct ChannelReport {
+    /// The channel's name, `a_<place>_<axis>`.
     pub name: String,
+    /// The measuring place, e.g. `seat`, `base`, `backrest`.
     pub place: String,
+    /// The axis, `x`, `y` or `z` (ISO 2631-1 Figure 1).
     pub axis: String,
     /// Weighting applied (ISO 2631-1 Tables 1–2: z → Wk, x/y → Wd, backrest x → Wc).
     pub weighting: Weighting,
@@ -88,19 +91,26 @@ pub struct ChannelReport {
 /// The report of one run.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct Report {
+    /// The run or file analysed, as given.
     pub source: String,
+    /// Sample rate of the channels, Hz.
     pub sample_rate_hz: f64,
+    /// Duration analysed, s.
     pub duration_s: f64,
+    /// One report per acceleration channel.
     pub channels: Vec<ChannelReport>,
     /// Contact surface used for comfort ("seat" when present).
     pub comfort_place: String,
     /// Vibration total value a_v = (Σ k² a_w²)^½ over the comfort surface (and backrest), m/s² (eq. 10).
     pub total_value: f64,
+    /// Comfort class of [`Report::total_value`] (ISO 2631-1 Annex C.2.3).
     pub comfort: Comfort,
     /// All Annex C ranges containing a_v.
     pub comfort_statement: String,
     /// SEAT % from a_seat_z over a_base_z with Wk, when both exist.
     pub seat_percent: Option<f64>,
+    /// Health figures for the daily exposure (ISO 2631-1 Annex B, Directive 2002/44/EC); `None`
+    /// when no exposure duration was given or no seat channel exists.
     pub health: Option<Health>,
     /// ISO 2631-5:2018 spinal dose of the seat's z axis (seated, vertical), when its crest factor
     /// exceeds 9 (ISO 2631-1 6.2.1) or it was asked for ([`Options::shocks`]); for the daily dose

@@ -121,6 +121,7 @@ impl Sex {
 /// example's: a man exposed from 20 years of age for 20 years, 120 days a year.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct History {
+    /// The person assessed (Annex C: m_z, strength ageing and Weibull coefficients depend on it).
     pub sex: Sex,
     /// Age b at which the exposure began, years.
     pub start_age_years: f64,
@@ -505,6 +506,7 @@ impl SpineDose {
 pub struct ShockSettings {
     /// Assess even without a crest factor above 9.
     pub requested: bool,
+    /// The exposure history used for R (ISO 2631-5:2018 Annex C).
     pub history: History,
 }
 
@@ -539,6 +541,7 @@ pub struct Shocks {
     pub standard: String,
     /// The seat channel assessed (`a_seat_z`).
     pub channel: String,
+    /// Why the assessment was made.
     pub trigger: Trigger,
     /// Number of positive peaks of the spinal response.
     pub peaks: usize,
@@ -558,6 +561,7 @@ pub struct Shocks {
     pub r: f64,
     /// Probability of an injury of the vertebral end-plates P(R) (Annex C Formula C.5), 0–1.
     pub injury_probability: f64,
+    /// The exposure history R was computed for (ISO 2631-5:2018 Annex C).
     pub history: History,
 }
 

@@ -41,24 +41,38 @@ pub enum Weighting {
 /// Annex A parameters; `None` is a corner at ∞. Frequencies in Hz.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Parameters {
+    /// High-pass corner f1 of Hh, Hz (eq. A.1).
     pub f1: f64,
+    /// Quality factor Q1 of Hh.
     pub q1: f64,
+    /// Low-pass corner f2 of Hl, Hz (eq. A.2).
     pub f2: f64,
+    /// Quality factor Q2 of Hl.
     pub q2: f64,
+    /// Transition zero f3 of Ht, Hz (eq. A.3).
     pub f3: Option<f64>,
+    /// Transition pole f4 of Ht, Hz (eq. A.3).
     pub f4: Option<f64>,
+    /// Quality factor Q4 of Ht.
     pub q4: f64,
+    /// Upward-step zero f5 of Hs, Hz (eq. A.4).
     pub f5: Option<f64>,
+    /// Quality factor Q5 of Hs.
     pub q5: f64,
+    /// Upward-step pole f6 of Hs, Hz (eq. A.4).
     pub f6: Option<f64>,
+    /// Quality factor Q6 of Hs.
     pub q6: f64,
+    /// Gain K of Ht (dimensionless).
     pub k: f64,
 }
 
 /// An analog second-order section (b2 s² + b1 s + b0) / (a2 s² + a1 s + a0), s in rad/s.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct AnalogSection {
+    /// Numerator coefficients b0, b1, b2.
     pub b: [f64; 3],
+    /// Denominator coefficients a0, a1, a2.
     pub a: [f64; 3],
 }
 

@@ -17,7 +17,12 @@ pub enum Method {
     /// Newmark-β with parameters γ and β (Newmark 1959). γ = 1/2, β = 1/4 is the unconditionally
     /// stable average-acceleration (trapezoidal) rule; γ = 1/2, β = 1/6 the linear-acceleration rule,
     /// stable for ω·dt < 2√3.
-    Newmark { gamma: f64, beta: f64 },
+    Newmark {
+        /// γ, weight of the new acceleration in the velocity update (dimensionless).
+        gamma: f64,
+        /// β, weight of the new acceleration in the displacement update (dimensionless).
+        beta: f64,
+    },
     /// Classical fourth-order Runge–Kutta on the first-order form, explicit: stable only while every
     /// eigenvalue λ of the system keeps |R(λ·dt)| ≤ 1 ([`stability`]).
     Rk4,

@@ -25,7 +25,9 @@ pub use settle::{FIT_S, WeightingChain, predict_past};
 /// One digital second-order section H(z) = (b0 + b1 z⁻¹ + b2 z⁻²)/(1 + a1 z⁻¹ + a2 z⁻²).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Biquad {
+    /// Numerator coefficients b0, b1, b2.
     pub b: [f64; 3],
+    /// Denominator coefficients a1, a2 (a0 = 1).
     pub a: [f64; 2],
 }
 
@@ -148,8 +150,11 @@ pub fn match_section(sec: &AnalogSection, fs: f64) -> Option<Biquad> {
 /// A weighting filter for one sample rate: a cascade of biquads.
 #[derive(Debug, Clone, PartialEq)]
 pub struct WeightingFilter {
+    /// The frequency weighting realised (ISO 2631-1:1997 Annex A).
     pub weighting: Weighting,
+    /// Sample rate the coefficients are for, Hz.
     pub fs: f64,
+    /// The biquads, applied in order.
     pub sections: Vec<Biquad>,
 }
 

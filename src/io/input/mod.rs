@@ -93,6 +93,7 @@ pub struct Options {
 /// and what the reader decided.
 #[derive(Debug, Clone)]
 pub struct Input {
+    /// The channels, in SI units (m/s² for accelerations).
     pub signals: Signals,
     /// Choices made and columns left out, one sentence each, for the user to see.
     pub notes: Vec<String>,
