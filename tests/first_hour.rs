@@ -139,6 +139,35 @@ fn an_undeclared_unit_is_stated_beside_every_verdict() {
         &dir,
     );
     assert_eq!(summary["unit_assumed"], true);
+    // The working day too: its verdict says which operation's channel assumes m/s².
+    let (ok, text, _) = wbv(&["exposure", "--operation", "g-seat.csv:4"], &dir);
+    assert!(ok);
+    let verdict: Vec<&str> = text
+        .lines()
+        .skip_while(|l| !l.starts_with("Working day"))
+        .collect();
+    assert!(
+        verdict[1].contains("UNIT NOT DECLARED") && verdict[1].contains("g-seat.csv a_seat_z"),
+        "{text}"
+    );
+    let day = json(&["exposure", "--operation", "g-seat.csv:4", "--json"], &dir);
+    assert_eq!(day["unit_assumed"], true);
+    assert_eq!(
+        day["operations"][0]["unit_assumed_channels"],
+        serde_json::json!(["a_seat_z"])
+    );
+    let declared = json(
+        &[
+            "exposure",
+            "--operation",
+            "g-seat.csv:4",
+            "--units",
+            "g",
+            "--json",
+        ],
+        &dir,
+    );
+    assert_eq!(declared["unit_assumed"], false);
 }
 
 /// A spreadsheet's export with `,` between fields and quoted decimal commas (`"0,001953"`), with

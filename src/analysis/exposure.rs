@@ -53,6 +53,10 @@ pub struct Operation {
     pub crest_factor_z: Option<f64>,
     /// The spinal response's peaks of the seat's z axis (ISO 2631-5), when computed.
     pub spine: Option<Peaks>,
+    /// Seat channels whose unit neither the file nor `--units` declared: their figures assume
+    /// m/s² ([`super::Report::unit_assumed_channels`]).
+    #[serde(default)]
+    pub unit_assumed_channels: Vec<String>,
 }
 
 impl Operation {
@@ -83,6 +87,12 @@ impl Operation {
             axes,
             crest_factor_z: report.channel("a_seat_z").map(|c| c.crest_factor),
             spine: report.seat_spine,
+            unit_assumed_channels: report
+                .unit_assumed_channels
+                .iter()
+                .filter(|c| c.starts_with("a_seat_"))
+                .cloned()
+                .collect(),
         })
     }
 }
@@ -108,6 +118,9 @@ pub struct OperationRow {
     pub crest_factor_z: Option<f64>,
     /// ISO 2631-5 acceleration dose D_z of the measurement, m/s², when computed.
     pub d_z: Option<f64>,
+    /// Seat channels whose unit was assumed (m/s²): none declared by the file or `--units`.
+    #[serde(default)]
+    pub unit_assumed_channels: Vec<String>,
 }
 
 impl OperationRow {
@@ -179,6 +192,9 @@ pub struct Day {
     pub iso2631_5: Option<Shocks>,
     /// What the reader should know (operations left out of the spinal dose, shocks).
     pub notes: Vec<String>,
+    /// Whether any operation's seat channel had no declared unit, so that the day's figures and
+    /// verdict assume m/s² (the rows' `unit_assumed_channels` name them).
+    pub unit_assumed: bool,
 }
 
 /// Refuses hours a day of the operation `name` outside 0 < hours ≤ 24.
@@ -294,6 +310,7 @@ pub fn assess(operations: &[Operation], shocks: &ShockSettings) -> Result<Day> {
                 hours_to_a8_limit: health::hours_to_a8(k_a_w_max, health::A8_LIMIT),
                 crest_factor_z: op.crest_factor_z,
                 d_z: op.spine.map(|p| p.dose()),
+                unit_assumed_channels: op.unit_assumed_channels.clone(),
             }
         })
         .collect();
@@ -325,6 +342,9 @@ pub fn assess(operations: &[Operation], shocks: &ShockSettings) -> Result<Day> {
         hours_to_vdv_limit: scale(health::VDV_LIMIT, vdv_day, 4),
         iso2631_5,
         notes,
+        unit_assumed: operations
+            .iter()
+            .any(|o| !o.unit_assumed_channels.is_empty()),
     })
 }
 
@@ -417,6 +437,28 @@ impl Day {
                 t(self.hours_to_vdv_limit)
             ),
         ];
+        if self.unit_assumed {
+            // No number tells g from m/s² on a zero-mean channel: the verdict carries the
+            // assumption where it is read.
+            let named: Vec<String> = self
+                .operations
+                .iter()
+                .flat_map(|o| {
+                    o.unit_assumed_channels
+                        .iter()
+                        .map(move |c| format!("{} {c}", o.name))
+                })
+                .collect();
+            lines.insert(
+                1,
+                format!(
+                    "  UNIT NOT DECLARED: the day's figures assume m/s² for {}; data in g would \
+                     read 9.81 × too low and the verdict several zones too mild: give --units \
+                     (m/s2, g, mg or mm/s2, or CHANNEL=UNIT)",
+                    named.join(", ")
+                ),
+            );
+        }
         if let Some(s) = &self.iso2631_5 {
             lines.extend(s.statement());
         }
@@ -443,6 +485,7 @@ mod tests {
                 .collect(),
             crest_factor_z: Some(4.0),
             spine: None,
+            unit_assumed_channels: Vec::new(),
         }
     }
 
