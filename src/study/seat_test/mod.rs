@@ -23,6 +23,7 @@
 pub mod contacts;
 pub mod damping;
 pub mod measured;
+pub mod occupant;
 pub mod runs;
 
 use crate::analysis::{Spectrum, Weighting};
@@ -34,20 +35,10 @@ use crate::model::Model;
 use crate::scenario::Scenario;
 use crate::simulate::Settings as RunSettings;
 use crate::simulate::{AnalysisObserver, SpectraObserver};
-use crate::system::Role;
 use contacts::{ContactObserver, Contacts};
+pub use occupant::{HEAVY_KG, LIGHT_KG, Occupant, REFERENCE_OPERATOR_KG, occupant_model};
 use serde::Serialize;
 use std::collections::BTreeMap;
-
-/// Light test person's body mass, kg: the middle of 52–55 kg **[U]** (the range is quoted for
-/// ISO 7096 and ISO 10326-1 test persons in the project's research notes; the clause was not read).
-pub const LIGHT_KG: f64 = 53.5;
-/// Heavy test person's body mass, kg: the middle of 98–103 kg **[U]** (as [`LIGHT_KG`]).
-pub const HEAVY_KG: f64 = 100.5;
-/// The operator a built-in occupant model stands for, kg **[U]**: the models give the seat-supported
-/// part of a body; wbv takes every one to be a 75 kg operator (the mass of the standard's inert
-/// test mass) when it scales it to a test person.
-pub const REFERENCE_OPERATOR_KG: f64 = 75.0;
 
 /// Duration of one simulated run, s **[U]**: ISO 10326-1's run duration was not read. 600 s makes
 /// the three runs' averaged platform PSD (Δf 0.5 Hz, ~1800 Welch segments) scatter by 7 % of its
@@ -58,53 +49,10 @@ pub const RUN_DURATION_S: f64 = 600.0;
 /// Most runs made while looking for three consecutive ones that agree.
 pub const MAX_RUNS: usize = 8;
 
-/// A test person.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
-#[serde(rename_all = "lowercase")]
-pub enum Occupant {
-    /// [`LIGHT_KG`].
-    Light,
-    /// [`HEAVY_KG`].
-    Heavy,
-}
-
 impl OccupantTest {
     /// `light`, `heavy`, or `measured` for a lab's runs.
     pub fn label(&self) -> &'static str {
         self.occupant.map_or("measured", |p| p.name())
-    }
-}
-
-impl Occupant {
-    /// Both, in the standard's order.
-    pub const BOTH: [Occupant; 2] = [Occupant::Light, Occupant::Heavy];
-
-    /// Body mass, kg.
-    pub fn mass_kg(self) -> f64 {
-        match self {
-            Occupant::Light => LIGHT_KG,
-            Occupant::Heavy => HEAVY_KG,
-        }
-    }
-
-    /// `light` or `heavy`.
-    pub fn name(self) -> &'static str {
-        match self {
-            Occupant::Light => "light",
-            Occupant::Heavy => "heavy",
-        }
-    }
-
-    /// Parses `light` or `heavy`.
-    pub fn parse(s: &str) -> Result<Occupant> {
-        match s {
-            "light" => Ok(Occupant::Light),
-            "heavy" => Ok(Occupant::Heavy),
-            other => Err(Error::parameter(
-                "--occupant",
-                format!("`{other}`; expected light or heavy"),
-            )),
-        }
     }
 }
 
@@ -346,37 +294,6 @@ pub(crate) fn chain_of(model: &Model) -> Result<&crate::model::chain::Chain> {
             ),
         )
     })
-}
-
-/// `model` with its body scaled to `occupant` ([module doc](self)); with the scale and the body
-/// mass after scaling.
-pub fn occupant_model(model: &Model, occupant: Occupant) -> Result<(Model, f64, f64)> {
-    let chain = chain_of(model)?;
-    let s = occupant.mass_kg() / REFERENCE_OPERATOR_KG;
-    let mut values = Vec::new();
-    let mut body = 0.0;
-    for m in chain.masses.iter().filter(|m| m.role == Role::Body) {
-        values.push((format!("mass.{}.m", m.name), m.m * s));
-        body += m.m * s;
-    }
-    if body == 0.0 {
-        return Err(Error::parameter(
-            "--model",
-            format!(
-                "`{}` has no body masses to scale to a test person",
-                model.name
-            ),
-        ));
-    }
-    for l in chain.links.iter().filter(|l| l.role == Role::Body) {
-        for field in ["k", "c", "k_m", "c_m"] {
-            let path = format!("link.{}.{field}", l.name);
-            if let Ok(v) = model.get(&path) {
-                values.push((path, v * s));
-            }
-        }
-    }
-    Ok((model.with_values(&values)?, s, body))
 }
 
 /// The results of one simulated or measured run: figures from the ISO 2631-1 report, the PSDs.
