@@ -11,7 +11,7 @@
 
 use super::candidate::Candidate;
 use super::evidence::{delta_bic_refit, sizes, training_closed};
-use super::fitting::{self, Base, Fitted, effect_values, fit_candidate};
+use super::fitting::{self, Base, Fitted, fit_candidate};
 use super::measure::RunSpectra;
 use super::outcome::Effects;
 use super::outcome::Ranked;
@@ -134,19 +134,9 @@ fn judge(
             (c, f, d)
         })
         .collect();
-    // A fit whose values contradict its effect is left out and the best of the others judged: a
-    // magnitude schedule fitted with α_k < 0 says the support stiffens as magnitude rises (the
-    // resonance rises), which is not body softening — the cushion-stiffening forms among the
-    // others (a preloaded cushion stiffens between runs, which a negative body exponent could
-    // otherwise absorb).
-    let contradicted = |c: Candidate, f: &Fitted| {
-        c.contradicted_by
-            .is_some_and(|wrong| wrong(&effect_values(base, c, &f.fit.u)))
-    };
-    let best = scored
-        .into_iter()
-        .filter(|(c, f, _)| !contradicted(*c, f))
-        .min_by(|a, b| a.2.total_cmp(&b.2));
+    // A fit's parameters cannot contradict its effect: each family's bounds keep its sign (a
+    // magnitude schedule cannot stiffen the body), so the best re-fit BIC is judged as it is.
+    let best = scored.into_iter().min_by(|a, b| a.2.total_cmp(&b.2));
     if best.as_ref().is_some_and(|b| Some(b.0) == rival) {
         return Ok(None);
     }
