@@ -134,9 +134,13 @@ fn judge(
             (c, f, d)
         })
         .collect();
-    // A fit's parameters cannot contradict its effect: each family's bounds keep its sign (a
-    // magnitude schedule cannot stiffen the body), so the best re-fit BIC is judged as it is.
-    let best = scored.into_iter().min_by(|a, b| a.2.total_cmp(&b.2));
+    // A fit whose values contradict its effect is left out and the best of the others judged: a
+    // magnitude schedule that moves only the damping (α_k at 0) is not body softening — the
+    // cushion-stiffening forms among the others (a preloaded cushion stiffens between runs).
+    let best = scored
+        .into_iter()
+        .filter(|(c, f, _)| !fitting::contradicts(base, &[*c], &f.fit.u))
+        .min_by(|a, b| a.2.total_cmp(&b.2));
     if best.as_ref().is_some_and(|b| Some(b.0) == rival) {
         return Ok(None);
     }

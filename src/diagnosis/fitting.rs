@@ -78,6 +78,21 @@ fn drift_prior(trend: &ClockTrend, drift_ppm: f64) -> f64 {
     (drift_ppm - trend.drift_ppm) / (2.0 * trend.sigma_ppm).max(1.0)
 }
 
+/// Whether the fitted parameter vector `u` (base parameters, then each candidate's) contradicts
+/// one of the stack `cands`' effects (its definition's `contradicted_by`).
+pub(super) fn contradicts(base: &Base, cands: &[Candidate], u: &[f64]) -> bool {
+    let mut at = base.params.len();
+    for c in cands {
+        let ps = c.params();
+        let values: Vec<f64> = ps.iter().zip(&u[at..]).map(|(p, u)| p.value(*u)).collect();
+        at += ps.len();
+        if c.contradicted_by.is_some_and(|wrong| wrong(&values)) {
+            return true;
+        }
+    }
+    false
+}
+
 /// The variant for parameter vector `u` (base parameters, then each candidate's); `rms_ref` (m/s²)
 /// is the reference magnitude of a magnitude schedule.
 pub(super) fn build(base: &Base, cands: &[Candidate], u: &[f64], rms_ref: f64) -> Result<Variant> {

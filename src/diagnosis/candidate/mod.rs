@@ -219,6 +219,10 @@ pub struct Definition {
     /// Whether a channel's calibration error found before the fit (an inverted sign, a unit slip,
     /// corrected in the samples) is reported as this effect: a channel gain.
     pub calibration: bool,
+    /// Fitted values (in [`Definition::params`] order) that contradict the effect: such a fit is
+    /// left out wherever fits are compared ([`crate::diagnosis`]'s ranking, forward selection and
+    /// all-run judgement), as a softening that shows no fall of stiffness.
+    pub contradicted_by: Option<fn(&[f64]) -> bool>,
     /// Whether forward selection may add it a second time beside itself (a second frame mode
     /// under the first), when its family lacks more than one part ([`Family::adds_parts`]).
     pub repeats: bool,
@@ -245,6 +249,7 @@ impl Definition {
         retiming: None,
         prior: None,
         calibration: false,
+        contradicted_by: None,
         repeats: false,
         looks: &[],
         told_apart_by: None,
