@@ -9,20 +9,7 @@
 //!   softening, whatever else the diagnosis says.
 
 mod common;
-use common::wbv;
 use std::path::{Path, PathBuf};
-
-fn fixtures() -> Option<PathBuf> {
-    match std::env::var("WBV_INPUT_FIXTURES") {
-        Ok(d) => Some(PathBuf::from(d)),
-        Err(_) => {
-            eprintln!(
-                "WBV_INPUT_FIXTURES not set: run tools/input-fixtures/run DIR first (tools/test does)"
-            );
-            None
-        }
-    }
-}
 
 fn read_json(p: &Path) -> serde_json::Value {
     serde_json::from_str(&std::fs::read_to_string(p).unwrap()).unwrap()
@@ -40,20 +27,7 @@ fn diagnosed(dir: &Path) -> Vec<(PathBuf, serde_json::Value, serde_json::Value)>
     cases
         .into_iter()
         .map(|case| {
-            let cmd: Vec<String> =
-                serde_json::from_value(read_json(&case.join("cmd.json"))).unwrap();
-            let mut args: Vec<String> = vec!["gap".into(), "--model".into(), "reference".into()];
-            for a in cmd {
-                let p = case.join(&a);
-                args.push(if p.is_file() {
-                    p.to_str().unwrap().to_string()
-                } else {
-                    a
-                });
-            }
-            args.push("--json".into());
-            let refs: Vec<&str> = args.iter().map(String::as_str).collect();
-            let out = wbv(&refs);
+            let out = common::gap_case(&case);
             assert!(
                 out.status.success(),
                 "{}: {}",
@@ -115,7 +89,9 @@ fn place(truth: &serde_json::Value) -> &'static str {
 
 #[test]
 fn a_conditioners_multi_pole_high_pass_is_named_with_its_corner_and_order() {
-    let Some(dir) = fixtures() else { return };
+    let Some(dir) = common::input_fixtures() else {
+        return;
+    };
     for (case, truth, doc) in diagnosed(&dir.join("conditioner-highpass")) {
         let order = truth["params"]["order"].as_f64().unwrap();
         assert!(
@@ -154,7 +130,9 @@ fn a_conditioners_multi_pole_high_pass_is_named_with_its_corner_and_order() {
 
 #[test]
 fn a_conditioners_low_pass_of_other_orders_is_named_a_low_pass() {
-    let Some(dir) = fixtures() else { return };
+    let Some(dir) = common::input_fixtures() else {
+        return;
+    };
     for (case, truth, doc) in diagnosed(&dir.join("conditioner-lowpass")) {
         assert_eq!(
             doc["verdict"],
@@ -183,7 +161,9 @@ fn a_conditioners_low_pass_of_other_orders_is_named_a_low_pass() {
 
 #[test]
 fn a_body_stiffening_between_runs_is_never_named_a_softening() {
-    let Some(dir) = fixtures() else { return };
+    let Some(dir) = common::input_fixtures() else {
+        return;
+    };
     for (case, _, doc) in diagnosed(&dir.join("body-stiffening")) {
         let named: Vec<String> = doc["named"]
             .as_array()
