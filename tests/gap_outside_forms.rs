@@ -3,8 +3,8 @@
 //! `tools/test` runs this test with `WBV_INPUT_FIXTURES=DIR`):
 //! - a conditioner's high-pass of two to four poles (three RC stages, a Bessel, a Butterworth) on
 //!   one accelerometer, and a low-pass of two poles (two RC stages, a Bessel): the measuring chain
-//!   is named, with a filter whose −3 dB corner is the truth's and, for a Butterworth truth, its
-//!   order;
+//!   is named, with a filter whose −3 dB corner is the truth's and, for a Butterworth or RC
+//!   truth, its order and design;
 //! - a body that stiffens between runs (its resonance rises with magnitude): never named a
 //!   softening, whatever else the diagnosis says.
 
@@ -117,10 +117,23 @@ fn a_conditioners_multi_pole_high_pass_is_named_with_its_corner_and_order() {
             "{}: corner {got:.3} Hz against the truth's −3 dB corner {want:.3} Hz",
             case.display()
         );
-        if truth["params"]["design"] == "butter" {
+        // A design the candidate has (Butterworth poles, identical RC stages) is named with its
+        // order; a Bessel lies between them and is named by the nearer.
+        let rc = match truth["params"]["design"].as_str().unwrap() {
+            "butter" => Some(0.0),
+            "rc" => Some(1.0),
+            _ => None,
+        };
+        if let Some(rc) = rc {
             assert_eq!(
                 fitted(&doc, "sensor-highpass", "highpass_order"),
                 order,
+                "{}",
+                case.display()
+            );
+            assert_eq!(
+                fitted(&doc, "sensor-highpass", "highpass_rc_stages"),
+                rc,
                 "{}",
                 case.display()
             );

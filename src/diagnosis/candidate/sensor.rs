@@ -185,9 +185,10 @@ pub static LOWPASS: Definition = sensor(
     },
 );
 
-/// Butterworth high-pass on the base, seat and/or head channel: the AC coupling of an IEPE
-/// accelerometer (one pole) or a charge amplifier's or conditioner's high-pass (two to four), the
-/// order chosen by evidence (one order for the rig's conditioners). A gap below a few Hz on the
+/// High-pass on the base, seat and/or head channel: the AC coupling of an IEPE accelerometer (one
+/// pole) or a charge amplifier's or conditioner's high-pass (two to four), with Butterworth poles
+/// or as identical RC stages; order and design chosen by evidence (one for the rig's
+/// conditioners), each channel's −3 dB corner fitted. A gap below a few Hz on the
 /// paths of one channel, with a phase lead rising to n·90° below the corner.
 pub static HIGHPASS: Definition = sensor(
     "sensor-highpass",
@@ -197,6 +198,9 @@ pub static HIGHPASS: Definition = sensor(
             Param::new("highpass_seat_hz", 0.01, 5.0, &[0.1], true),
             Param::new("highpass_head_hz", 0.01, 5.0, &[0.1], true),
             Param::choice("highpass_order", FILTER_ORDERS),
+            // 0: Butterworth poles; 1: identical RC stages (a real n-fold pole). Two designs
+            // that bracket the damping of a conditioner's poles (a Bessel lies between).
+            Param::choice("highpass_rc_stages", &[0.0, 1.0]),
         ]
     },
     always,
@@ -209,6 +213,7 @@ pub static HIGHPASS: Definition = sensor(
         ] {
             ch.highpass_hz = f;
             ch.highpass_order = n;
+            ch.highpass_rc = p[4] > 0.5;
         }
         Ok(())
     },

@@ -29,6 +29,10 @@ pub struct Channel {
     pub highpass_hz: f64,
     /// Poles of that high-pass, 1–4 (1 by default: AC coupling).
     pub highpass_order: u8,
+    /// The high-pass as `highpass_order` identical first-order RC stages (a real n-fold pole,
+    /// cascaded coupling networks) rather than Butterworth poles; `highpass_hz` stays its −3 dB
+    /// corner.
+    pub highpass_rc: bool,
     /// Mount resonance (Hz, damping ratio) as the absolute transmissibility of a base-excited
     /// oscillator, (1 + 2iζr)/(1 − r² + 2iζr), r = f/f_m; `None` = rigid mount.
     pub mount: Option<(f64, f64)>,
@@ -48,6 +52,7 @@ impl Default for Channel {
             lowpass_order: 4,
             highpass_hz: 0.0,
             highpass_order: 1,
+            highpass_rc: false,
             mount: None,
             sections: [None; 2],
         }
@@ -109,7 +114,14 @@ impl Channel {
         if self.lowpass_hz.is_finite() {
             h *= butterworth(Complex64::new(0.0, f / self.lowpass_hz), self.lowpass_order);
         }
-        if self.highpass_hz > 0.0 && f > 0.0 {
+        if self.highpass_hz > 0.0 && f > 0.0 && self.highpass_rc {
+            // n stages s/(s + ω_s), each 3 dB/n down where the whole is 3 dB down:
+            // (1 + (f_s/f)²)^n = 2 at f = f_c, so f_s = f_c·√(2^(1/n) − 1).
+            let n = self.highpass_order.max(1);
+            let fs = self.highpass_hz * (2f64.powf(1.0 / f64::from(n)) - 1.0).sqrt();
+            let s = Complex64::new(0.0, f / fs);
+            h *= (s / (s + 1.0)).powi(i32::from(n));
+        } else if self.highpass_hz > 0.0 && f > 0.0 {
             // The high-pass is the low-pass at 1/s (s → ω_c/s): Π s/(s − p_k).
             h *= butterworth(
                 Complex64::new(0.0, -self.highpass_hz / f),
@@ -265,6 +277,38 @@ mod tests {
             let wrap = |a: f64| (a + 540.0).rem_euclid(360.0) - 180.0;
             assert!((wrap(lp.response(20.0).arg().to_degrees() + corner)).abs() < 1e-9);
             assert!((wrap(hp.response(0.5).arg().to_degrees() - corner)).abs() < 1e-9);
+        }
+    }
+
+    #[test]
+    fn rc_stages_are_3_db_down_at_their_corner_with_the_stages_own_magnitude() {
+        // n stages at f_s: |H| = (1 + (f_s/f)²)^(−n/2), 1/√2 at the −3 dB corner f_c, f_s =
+        // f_c·√(2^(1/n) − 1); the phase is n·atan(f_s/f).
+        for n in 1..=4u8 {
+            let ch = Channel {
+                highpass_hz: 0.8,
+                highpass_order: n,
+                highpass_rc: true,
+                ..Channel::default()
+            };
+            let fs = 0.8 * (2f64.powf(1.0 / f64::from(n)) - 1.0).sqrt();
+            assert!((ch.response(0.8).norm() - 0.5f64.sqrt()).abs() < 1e-12);
+            for f in [0.2, 1.5, 6.0] {
+                let h = ch.response(f);
+                let want = (1.0 + (fs / f).powi(2)).powf(-f64::from(n) / 2.0);
+                assert!(
+                    (h.norm() - want).abs() < 1e-12,
+                    "n={n} f={f}: {} vs {want}",
+                    h.norm()
+                );
+                let phase = f64::from(n) * (fs / f).atan();
+                let d = (h.arg() - phase).rem_euclid(2.0 * PI);
+                assert!(
+                    d.min(2.0 * PI - d) < 1e-9,
+                    "n={n} f={f}: {} vs {phase}",
+                    h.arg()
+                );
+            }
         }
     }
 }
