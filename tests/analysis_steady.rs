@@ -4,6 +4,8 @@
 //! offset held through a quiet first second; `tools/test` runs this with `WBV_INPUT_FIXTURES=DIR`.
 //! Without that variable the test says so and checks nothing else.
 
+mod common;
+
 use wbv::analysis::{Options, Report};
 use wbv::io::input::InputArgs;
 use wbv::measurement::read;
@@ -15,13 +17,7 @@ fn report(dir: &std::path::Path, file: &str) -> Report {
 }
 
 fn fixtures() -> Option<(std::path::PathBuf, serde_json::Value)> {
-    let Ok(dir) = std::env::var("WBV_INPUT_FIXTURES") else {
-        eprintln!(
-            "WBV_INPUT_FIXTURES not set: run tools/input-fixtures/run DIR first (tools/test does)"
-        );
-        return None;
-    };
-    let dir = std::path::PathBuf::from(dir).join("steady");
+    let dir = common::input_fixtures()?.join("steady");
     let text = std::fs::read_to_string(dir.join("manifest.json")).unwrap();
     Some((dir, serde_json::from_str(&text).unwrap()))
 }

@@ -571,7 +571,11 @@ fn candidates_named_outside(files: &BTreeMap<String, String>) -> Vec<String> {
     let cands = candidates(files);
     let mut out = Vec::new();
     for (path, text) in files {
-        if path.starts_with("src/gap_bench/") || path.ends_with("/tests.rs") {
+        // A `tests.rs` file or a `tests/` folder under src is a split-out `#[cfg(test)] mod tests`.
+        if path.starts_with("src/gap_bench/")
+            || path.ends_with("/tests.rs")
+            || path.contains("/tests/")
+        {
             continue;
         }
         let code = code(text);

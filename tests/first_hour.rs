@@ -5,23 +5,12 @@
 //! `tools/test` runs this with `WBV_INPUT_FIXTURES=DIR`; without it the test says so and checks
 //! nothing else.
 
+mod common;
+
 use serde_json::Value;
-use std::path::PathBuf;
 use std::process::Command;
 
 /// The fixture directory, or None (with a note) when `WBV_INPUT_FIXTURES` is not set.
-fn fixtures() -> Option<PathBuf> {
-    match std::env::var("WBV_INPUT_FIXTURES") {
-        Ok(d) => Some(PathBuf::from(d)),
-        Err(_) => {
-            eprintln!(
-                "WBV_INPUT_FIXTURES not set: run tools/input-fixtures/run DIR first (tools/test does)"
-            );
-            None
-        }
-    }
-}
-
 /// `wbv args` in `cwd`: (success, stdout, stderr).
 fn wbv(args: &[&str], cwd: &std::path::Path) -> (bool, String, String) {
     let out = Command::new(env!("CARGO_BIN_EXE_wbv"))
@@ -67,7 +56,9 @@ fn seat_a_w(v: &Value) -> f64 {
 /// the figures assume m/s²; `--units g` removes the assumption and scales every figure by g_n.
 #[test]
 fn an_undeclared_unit_is_stated_beside_every_verdict() {
-    let Some(dir) = fixtures() else { return };
+    let Some(dir) = common::input_fixtures() else {
+        return;
+    };
     let (ok, text, err) = wbv(&["analyze", "g-seat.csv"], &dir);
     assert!(ok, "{err}");
     let verdicts: Vec<&str> = text
@@ -175,7 +166,9 @@ fn an_undeclared_unit_is_stated_beside_every_verdict() {
 /// is never a units row), the decimal commas said in a note.
 #[test]
 fn a_spreadsheet_with_quoted_decimal_commas_is_read() {
-    let Some(dir) = fixtures() else { return };
+    let Some(dir) = common::input_fixtures() else {
+        return;
+    };
     let v = json(
         &[
             "analyze",
@@ -201,7 +194,9 @@ fn a_spreadsheet_with_quoted_decimal_commas_is_read() {
 /// `--column` naming no column, or one already taken, lists every column of the file.
 #[test]
 fn a_missing_column_lists_the_files_columns() {
-    let Some(dir) = fixtures() else { return };
+    let Some(dir) = common::input_fixtures() else {
+        return;
+    };
     let e = one_error_line(
         &["analyze", "logger.csv", "--column", "a_seat_z=Acc Z"],
         &dir,
@@ -232,7 +227,9 @@ fn a_missing_column_lists_the_files_columns() {
 /// with the duration it gives.
 #[test]
 fn fs_never_contradicts_the_time_column() {
-    let Some(dir) = fixtures() else { return };
+    let Some(dir) = common::input_fixtures() else {
+        return;
+    };
     let e = one_error_line(&["analyze", "g-seat.csv", "--fs", "1000"], &dir);
     assert!(
         e.contains("1000 Hz") && e.contains("512 Hz") && e.contains("--ignore-time"),

@@ -7,19 +7,6 @@
 
 mod common;
 use common::wbv;
-use std::path::PathBuf;
-
-fn fixtures() -> Option<PathBuf> {
-    match std::env::var("WBV_INPUT_FIXTURES") {
-        Ok(d) => Some(PathBuf::from(d)),
-        Err(_) => {
-            eprintln!(
-                "WBV_INPUT_FIXTURES not set: run tools/input-fixtures/run DIR first (tools/test does)"
-            );
-            None
-        }
-    }
-}
 
 fn json(out: &std::process::Output) -> serde_json::Value {
     assert!(
@@ -41,7 +28,9 @@ fn warnings(doc: &serde_json::Value) -> Vec<String> {
 
 #[test]
 fn analyze_names_clipping_only_where_a_converter_reached_its_range() {
-    let Some(dir) = fixtures() else { return };
+    let Some(dir) = common::input_fixtures() else {
+        return;
+    };
     let dir = dir.join("loggers");
     let manifest: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(dir.join("manifest.json")).unwrap()).unwrap();
@@ -71,25 +60,14 @@ fn analyze_names_clipping_only_where_a_converter_reached_its_range() {
 
 #[test]
 fn a_coarse_quiet_channel_keeps_its_path_in_the_gap_diagnosis() {
-    let Some(dir) = fixtures() else { return };
+    let Some(dir) = common::input_fixtures() else {
+        return;
+    };
     let case = dir.join("coarse-logger/case-000");
     let truth: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(case.join("truth.json")).unwrap()).unwrap();
     assert_eq!(truth["nuisances"]["coarse_logger"]["channel"], "a_head_z");
-    let cmd: Vec<String> =
-        serde_json::from_str(&std::fs::read_to_string(case.join("cmd.json")).unwrap()).unwrap();
-    let mut args: Vec<String> = vec!["gap".into(), "--model".into(), "reference".into()];
-    for a in cmd {
-        let p = case.join(&a);
-        args.push(if p.is_file() {
-            p.to_str().unwrap().to_string()
-        } else {
-            a
-        });
-    }
-    args.push("--json".into());
-    let refs: Vec<&str> = args.iter().map(String::as_str).collect();
-    let doc = json(&wbv(&refs));
+    let doc = json(&common::gap_case(&case));
     let w = warnings(&doc);
     assert!(
         w.iter().all(|w| !w.contains("clipped")

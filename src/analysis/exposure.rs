@@ -452,10 +452,8 @@ impl Day {
             lines.insert(
                 1,
                 format!(
-                    "  UNIT NOT DECLARED: the day's figures assume m/s² for {}; data in g would \
-                     read 9.81 × too low and the verdict several zones too mild: give --units \
-                     (m/s2, g, mg or mm/s2, or CHANNEL=UNIT)",
-                    named.join(", ")
+                    "  UNIT NOT DECLARED: the day's figures assume m/s²: {}",
+                    super::units::undeclared(&named.join(", "))
                 ),
             );
         }

@@ -387,11 +387,7 @@ impl Report {
     pub fn unit_assumption(&self) -> Option<String> {
         self.unit_assumed.then(|| {
             let names = self.unit_assumed_channels.join(", ");
-            format!(
-                "assumes m/s²: no unit was declared for {names}; data in g would read 9.81 × too \
-                 low and their verdicts several classes too mild: give --units (m/s2, g, mg or \
-                 mm/s2, or CHANNEL=UNIT)"
-            )
+            format!("assumes m/s²: {}", super::units::undeclared(&names))
         })
     }
 

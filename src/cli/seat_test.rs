@@ -156,17 +156,13 @@ fn print_text(t: &SeatTest) {
         println!(
             "  {:<8} {:>9} {:>9.3} {:>9.3} {:>7.3} {:>10.3} {:>8} {:>9}",
             o.label(),
-            o.body_mass_kg.map_or("-".into(), |m| format!("{m:.1}")),
+            o.mass_cell(),
             o.a_wp,
             o.a_ws,
             o.seat,
             o.a_ws_corrected,
-            match o.psd_within_tolerance {
-                Some(true) => "yes",
-                Some(false) => "NO",
-                None => "-",
-            },
-            o.end_stop_contacts.map_or("-".into(), |c| c.to_string())
+            o.psd_cell(),
+            o.contacts_cell()
         );
         for r in &o.runs {
             println!(

@@ -11,7 +11,7 @@
 
 use super::candidate::Candidate;
 use super::evidence::{delta_bic_refit, sizes, training_closed};
-use super::fitting::{self, Base, Fitted, effect_values, fit_candidate};
+use super::fitting::{self, Base, Fitted, fit_candidate};
 use super::measure::RunSpectra;
 use super::outcome::Effects;
 use super::outcome::Ranked;
@@ -135,17 +135,11 @@ fn judge(
         })
         .collect();
     // A fit whose values contradict its effect is left out and the best of the others judged: a
-    // magnitude schedule fitted with α_k < 0 says the support stiffens as magnitude rises (the
-    // resonance rises), which is not body softening — the cushion-stiffening forms among the
-    // others (a preloaded cushion stiffens between runs, which a negative body exponent could
-    // otherwise absorb).
-    let contradicted = |c: Candidate, f: &Fitted| {
-        c.contradicted_by
-            .is_some_and(|wrong| wrong(&effect_values(base, c, &f.fit.u)))
-    };
+    // magnitude schedule that moves only the damping (α_k at 0) is not body softening — the
+    // cushion-stiffening forms among the others (a preloaded cushion stiffens between runs).
     let best = scored
         .into_iter()
-        .filter(|(c, f, _)| !contradicted(*c, f))
+        .filter(|(c, f, _)| !fitting::contradicts(base, &[*c], &f.fit.u))
         .min_by(|a, b| a.2.total_cmp(&b.2));
     if best.as_ref().is_some_and(|b| Some(b.0) == rival) {
         return Ok(None);

@@ -78,15 +78,19 @@ fn drift_prior(trend: &ClockTrend, drift_ppm: f64) -> f64 {
     (drift_ppm - trend.drift_ppm) / (2.0 * trend.sigma_ppm).max(1.0)
 }
 
-/// The values of candidate `c`'s parameters in the parameter vector `u` of its fit alone (base
-/// parameters, then its own).
-pub(super) fn effect_values(base: &Base, c: Candidate, u: &[f64]) -> Vec<f64> {
-    let nb = base.params.len();
-    c.params()
-        .iter()
-        .zip(&u[nb..])
-        .map(|(p, u)| p.value(*u))
-        .collect()
+/// Whether the fitted parameter vector `u` (base parameters, then each candidate's) contradicts
+/// one of the stack `cands`' effects (its definition's `contradicted_by`).
+pub(super) fn contradicts(base: &Base, cands: &[Candidate], u: &[f64]) -> bool {
+    let mut at = base.params.len();
+    for c in cands {
+        let ps = c.params();
+        let values: Vec<f64> = ps.iter().zip(&u[at..]).map(|(p, u)| p.value(*u)).collect();
+        at += ps.len();
+        if c.contradicted_by.is_some_and(|wrong| wrong(&values)) {
+            return true;
+        }
+    }
+    false
 }
 
 /// The variant for parameter vector `u` (base parameters, then each candidate's); `rms_ref` (m/s²)
@@ -189,13 +193,71 @@ pub(super) fn fit_candidate(
             })
             .collect();
     }
-    let fit = if starts.len() == 1 {
-        fit::levenberg_marquardt(&f, &starts[0], &lo, &hi, &settings(FIT_ITERATIONS))?
+    // A structural choice (a filter's order) is pinned to each of its values in turn, the others
+    // fitted from their starts; the lowest cost wins, ties to the first value listed.
+    let pinned: Vec<usize> = (nb..nb + eff.len())
+        .filter(|&i| eff[i - nb].discrete)
+        .collect();
+    let mut choices: Vec<Vec<Vec<f64>>> = Vec::new();
+    for s in starts {
+        match choices
+            .iter_mut()
+            .find(|c| pinned.iter().all(|&i| c[0][i] == s[i]))
+        {
+            Some(c) => c.push(s),
+            None => choices.push(vec![s]),
+        }
+    }
+    let mut fit: Option<fit::Fit> = None;
+    for starts in &choices {
+        let ft = multistart(&f, starts, &lo, &hi, &pinned)?;
+        if fit.as_ref().is_none_or(|b| ft.cost < b.cost) {
+            fit = Some(ft);
+        }
+    }
+    let fit = fit.expect("at least one start");
+    Ok(Fitted {
+        variant: build(base, cands, &fit.u, rms_ref)?,
+        params: estimates(base, cands, &fit),
+        fit,
+        stage: None,
+    })
+}
+
+/// Levenberg–Marquardt from the best of `starts` (each scouted briefly when there are several,
+/// then the best carried to convergence), with the parameters at `pinned` held at the starts'
+/// values: they are left out of the solved vector, so the covariance is the free parameters' and
+/// a pinned parameter's row and standard error are zero.
+fn multistart<F>(
+    f: &F,
+    starts: &[Vec<f64>],
+    lo: &[f64],
+    hi: &[f64],
+    pinned: &[usize],
+) -> Result<fit::Fit>
+where
+    F: Fn(&[f64]) -> Result<Vec<f64>> + Sync,
+{
+    let full = &starts[0];
+    let free: Vec<usize> = (0..full.len()).filter(|i| !pinned.contains(i)).collect();
+    let expand = |v: &[f64]| -> Vec<f64> {
+        let mut u = full.clone();
+        for (k, &i) in free.iter().enumerate() {
+            u[i] = v[k];
+        }
+        u
+    };
+    let take = |x: &[f64]| -> Vec<f64> { free.iter().map(|&i| x[i]).collect() };
+    let g = |v: &[f64]| f(&expand(v));
+    let (lo, hi) = (take(lo), take(hi));
+    let starts: Vec<Vec<f64>> = starts.iter().map(|s| take(s)).collect();
+    let ft = if starts.len() == 1 {
+        fit::levenberg_marquardt(&g, &starts[0], &lo, &hi, &settings(FIT_ITERATIONS))?
     } else {
         // Scout every start briefly, then carry the best one to convergence.
         let scouts: Vec<fit::Fit> = starts
             .par_iter()
-            .map(|s| fit::levenberg_marquardt(&f, s, &lo, &hi, &settings(SCOUT_ITERATIONS)))
+            .map(|s| fit::levenberg_marquardt(&g, s, &lo, &hi, &settings(SCOUT_ITERATIONS)))
             .collect::<Result<_>>()?;
         let mut best: Option<fit::Fit> = None;
         for ft in scouts {
@@ -204,13 +266,28 @@ pub(super) fn fit_candidate(
             }
         }
         let scout = best.expect("at least one start");
-        fit::levenberg_marquardt(&f, &scout.u, &lo, &hi, &settings(FIT_ITERATIONS))?
+        fit::levenberg_marquardt(&g, &scout.u, &lo, &hi, &settings(FIT_ITERATIONS))?
     };
-    Ok(Fitted {
-        variant: build(base, cands, &fit.u, rms_ref)?,
-        params: estimates(base, cands, &fit),
-        fit,
-        stage: None,
+    let p = full.len();
+    let mut sigma_u = vec![0.0; p];
+    for (k, &i) in free.iter().enumerate() {
+        sigma_u[i] = ft.sigma_u[k];
+    }
+    let covariance = ft.covariance.map(|c| {
+        let mut full_cov = nalgebra::DMatrix::zeros(p, p);
+        for (a, &i) in free.iter().enumerate() {
+            for (b, &j) in free.iter().enumerate() {
+                full_cov[(i, j)] = c[(a, b)];
+            }
+        }
+        full_cov
+    });
+    Ok(fit::Fit {
+        u: expand(&ft.u),
+        cost: ft.cost,
+        sigma_u,
+        covariance,
+        evaluations: ft.evaluations,
     })
 }
 
@@ -313,7 +390,8 @@ pub(super) fn estimates(base: &Base, cands: &[Candidate], ft: &fit::Fit) -> Vec<
                     ft.sigma_u[i]
                 },
                 change_percent: None,
-                at_bound: near(i),
+                // A structural choice sits on one of its values, not against a bound.
+                at_bound: !p.discrete && near(i),
             }
         })
         .collect()

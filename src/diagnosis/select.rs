@@ -61,6 +61,10 @@ pub(super) fn rank(
     let mut fits = Vec::new();
     let mut trials = Vec::new();
     for (&c, f) in applicable.iter().zip(fitted) {
+        // A fit whose values contradict its effect is not ranked (a softening with no fall).
+        if fitting::contradicts(base, &[c], &f.fit.u) {
+            continue;
+        }
         fits.push((c, f.fit.u));
         trials.push(Trial {
             effects: Effects::One(c),
@@ -130,6 +134,9 @@ pub(super) fn second_effect(
     let pairs = fitting::fit_each(base, &stacks, tr, warm, Some(ck))?;
     let mut second: Option<Second> = None;
     for (pair, ft) in stacks.iter().zip(pairs) {
+        if fitting::contradicts(base, pair, &ft.fit.u) {
+            continue;
+        }
         let trial = Trial {
             effects: Effects::Pair(bc, pair[1]),
             extra: pair[1].params().len(),

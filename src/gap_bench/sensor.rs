@@ -1,8 +1,8 @@
 //! A sensor's own dynamics applied to one simulated channel: 4-pole Butterworth/Bessel low-pass,
-//! mount resonance, gain and delay. Written here independently of wbv's ISO weighting filters:
+//! two-pole high-pass, mount resonance, gain and delay. Written here independently of wbv's ISO weighting filters:
 //! analog prototypes mapped by the bilinear transform with pre-warping at the corner (Oppenheim &
 //! Schafer, *Discrete-Time Signal Processing*, 3rd ed., §7.1.2), run as cascaded second-order
-//! sections. Hand-written because the project has no IIR-design crate and needs only these four.
+//! sections. Hand-written because the project has no IIR-design crate and needs only these.
 
 use super::forms::Sensor;
 use num_complex::Complex64;
@@ -114,6 +114,10 @@ pub fn apply(sensor: &Sensor, x: &mut Vec<f64>, fs: f64) {
                 Biquad::bilinear([d0, 0.0, 0.0], [d0, -2.0 * p.re], k).run(x);
             }
         }
+        Sensor::HighPass { fc_hz, zeta } => {
+            let w = warp(fc_hz);
+            Biquad::bilinear([0.0, 0.0, 1.0], [w * w, 2.0 * zeta * w], k).run(x);
+        }
         // The top plate's mass is added by the caller (it needs a_seat_z); the load cells here.
         Sensor::Mount { f_hz, zeta } | Sensor::Plate { f_hz, zeta, .. } => {
             // Absolute transmissibility of a base-excited oscillator: (ω₀² + 2ζω₀ s)/(s² + 2ζω₀ s + ω₀²).
@@ -182,6 +186,23 @@ mod tests {
             (lowpass_response(80.0, true, 80.0).norm() - std::f64::consts::FRAC_1_SQRT_2).abs()
                 < 1e-6
         );
+    }
+
+    #[test]
+    fn two_pole_high_pass_has_its_closed_form_magnitude() {
+        // |H| = r²/√((1 − r²)² + (2ζr)²), r = f/f_c: 1/(2ζ) at the corner, 1/4 below it at r = ½
+        // for two RC stages (ζ = 1: 1/(1 + r⁻²)).
+        // Driven at 1 Hz (whole periods in the projected second), corners at 2, 1 and ½ Hz.
+        for (zeta, fc) in [(1.0, 1.0), (1.0, 2.0), (0.6, 1.0), (0.6, 0.5)] {
+            let s = Sensor::HighPass { fc_hz: fc, zeta };
+            let h = measured(&s, 200.0, 1.0);
+            let r: f64 = 1.0 / fc;
+            let expect = r * r / ((1.0 - r * r).powi(2) + (2.0 * zeta * r).powi(2)).sqrt();
+            assert!(
+                (h.norm() / expect - 1.0).abs() < 0.02,
+                "ζ {zeta} fc {fc}: {h} vs {expect}"
+            );
+        }
     }
 
     #[test]

@@ -278,17 +278,13 @@ pub fn html(t: &SeatTest) -> Result<String> {
             "<tr><td>{}</td><td>{}</td><td>{:.4}</td><td>{:.4}</td><td>{:.3}</td><td>{:.4}</td>\
              <td>{}</td><td>{}</td></tr>",
             o.label(),
-            o.body_mass_kg.map_or("-".into(), |m| format!("{m:.1}")),
+            o.mass_cell(),
             o.a_wp,
             o.a_ws,
             o.seat,
             o.a_ws_corrected,
-            match o.psd_within_tolerance {
-                Some(true) => "yes",
-                Some(false) => "no",
-                None => "-",
-            },
-            o.end_stop_contacts.map_or("-".into(), |c| c.to_string())
+            o.psd_cell(),
+            o.contacts_cell()
         );
     }
     out.push_str("</table>\n");

@@ -43,3 +43,36 @@ pub fn wbv(args: &[&str]) -> std::process::Output {
         .output()
         .unwrap()
 }
+
+/// The directory `tools/input-fixtures/run DIR` wrote (`WBV_INPUT_FIXTURES`, which `tools/test`
+/// sets); `None`, with a note, when a test runs without it.
+pub fn input_fixtures() -> Option<std::path::PathBuf> {
+    match std::env::var("WBV_INPUT_FIXTURES") {
+        Ok(d) => Some(std::path::PathBuf::from(d)),
+        Err(_) => {
+            eprintln!(
+                "WBV_INPUT_FIXTURES not set: run tools/input-fixtures/run DIR first (tools/test does)"
+            );
+            None
+        }
+    }
+}
+
+/// `wbv gap --model reference … --json` on a case tools/blind-gap/gen.py wrote: its `cmd.json`
+/// arguments, the case's files given by their paths.
+pub fn gap_case(case: &std::path::Path) -> std::process::Output {
+    let cmd: Vec<String> =
+        serde_json::from_str(&std::fs::read_to_string(case.join("cmd.json")).unwrap()).unwrap();
+    let mut args: Vec<String> = vec!["gap".into(), "--model".into(), "reference".into()];
+    for a in cmd {
+        let p = case.join(&a);
+        args.push(if p.is_file() {
+            p.to_str().unwrap().to_string()
+        } else {
+            a
+        });
+    }
+    args.push("--json".into());
+    let refs: Vec<&str> = args.iter().map(String::as_str).collect();
+    wbv(&refs)
+}

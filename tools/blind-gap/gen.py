@@ -267,7 +267,8 @@ FAMILIES = {
 }
 # Forms reached only by a study set (--form): the random rotation above stays as it was, so the
 # cases of earlier seeds are drawn the same.
-STUDY_FORMS = {"missing-dof": ["rocking-frame"]}
+STUDY_FORMS = {"missing-dof": ["rocking-frame"], "sensor": ["highpass-multi", "lowpass-multi"],
+               "body-stiffening": ["magnitude-stiffening"]}
 
 
 def prony_fractional(kf, alpha, f0, rng_lo=0.2, rng_hi=100.0, n=8):
@@ -314,6 +315,11 @@ def draw_effect(rng, family, form, strength):
             # a second, stiffer layer touches beyond a gap delta past the sag (bottoming/progressive)
             p = {"gap_over_sigma": max(0.2, rng.uniform(0.6, 1.6) / strength),
                  "k_stop_over_k": rng.uniform(0.5, 2.0)}
+    elif family == "body-stiffening":
+        # the opposite of a softening: k(A) = k (1 + s (1 - exp(-A / A_s))), the body's resonance
+        # rising with magnitude (a tensing subject); damping follows with half of s
+        p = {"s": {lk: -min(0.8, rng.uniform(0.2, 0.5) * strength) for lk in ("k2", "k3", "k4")},
+             "A_s": rng.uniform(0.4, 1.2)}
     elif family == "softening":
         if form == "tanh":
             p = {"link": "k4", "ds_over_sigma": max(0.4, rng.uniform(1.0, 2.5) / strength)}
@@ -359,6 +365,17 @@ def draw_effect(rng, family, form, strength):
         elif form == "lowpass":
             p["f_hz"] = max(8.0, rng.uniform(15, 50) / strength)
             p["zeta"] = rng.uniform(0.5, 0.71)
+        elif form == "highpass-multi":
+            # a conditioner's high-pass: a charge amplifier's 2-pole, a 3- or 4-pole filter, in
+            # designs other than Butterworth (cascaded RC stages, Bessel) or Butterworth itself
+            p["order"] = int(rng.choice([2, 3, 4]))
+            p["design"] = str(rng.choice(["rc", "bessel", "butter"]))
+            p["f_hz"] = min(3.0, rng.uniform(0.3, 1.2) * strength)
+        elif form == "lowpass-multi":
+            p["channel"] = str(rng.choice(["a_seat_z", "a_head_z"]))
+            p["order"] = int(rng.choice([1, 2, 3]))
+            p["design"] = str(rng.choice(["rc", "bessel"]))
+            p["f_hz"] = max(8.0, rng.uniform(12, 40) / strength)
         else:
             p["gain"] = 1 + float(rng.choice([-1, 1])) * min(0.3, rng.uniform(0.05, 0.15) * strength)
     return p
@@ -475,7 +492,7 @@ def build_plant(subject, family, form, p, A_rms, sigma):
                 spring = k * eb + rr * k * (a - eb)
                 return -math.copysign(spring, e) + k * e
             nonlinear = (i, j, rb)
-    elif family == "softening":
+    elif family in ("softening", "body-stiffening"):
         for lk, s in p["s"].items():
             i, j, k, c = links[lk]
             fk = 1 - s * (1 - math.exp(-A_rms / p["A_s"]))
@@ -619,6 +636,22 @@ def sensor_filter(x, fs, p):
         return np.fft.irfft(np.fft.rfft(x) * np.exp(-2j * np.pi * f * p["delay_s"]), n)
     if "gain" in p:
         return x * p["gain"]
+    if "design" in p:
+        # analog prototype (scipy.signal) to second-order sections by the bilinear transform, as a
+        # DAQ's IIR filter runs (sections: a 0.3 Hz corner at kHz rates is ill-conditioned as one
+        # polynomial)
+        hp = p["form"] == "highpass-multi"
+        wc, n = 2 * np.pi * p["f_hz"], p["order"]
+        if p["design"] == "rc":
+            # n identical first-order RC stages, each at f_hz
+            z, pl, k = ([0.0] * n, [-wc] * n, 1.0) if hp else ([], [-wc] * n, wc ** n)
+        elif p["design"] == "bessel":
+            z, pl, k = signal.bessel(n, wc, "highpass" if hp else "lowpass", analog=True,
+                                     norm="mag", output="zpk")
+        else:
+            z, pl, k = signal.butter(n, wc, "highpass" if hp else "lowpass", analog=True, output="zpk")
+        zd, pd, kd = signal.bilinear_zpk(np.asarray(z, float), np.asarray(pl, complex), k, fs)
+        return signal.sosfilt(signal.zpk2sos(zd, pd, kd), x)
     wn = 2 * np.pi * p["f_hz"]
     z = p["zeta"]
     if "mount" == p.get("form"):
@@ -1065,7 +1098,7 @@ def make_case(case_dir, seed, index, override=None, model="reference"):
         if family == "none":
             det = {"detect_pct": 0.0}
             break
-        if family == "softening" and form == "magnitude-saturating":
+        if form in ("magnitude-saturating", "magnitude-stiffening"):
             det = between_run_detectability(runs_clean, fs, [0, 2, 1])
         else:
             det = detectability(twins_out, runs_clean, fs)

@@ -52,6 +52,10 @@ pub struct Param {
     pub starts: Vec<f64>,
     /// Optimised on a log scale.
     pub log: bool,
+    /// A structural choice among its `starts` (a filter's order): each value is fitted with the
+    /// others free and the lowest cost kept, which among fits of equal parameter count is the
+    /// lowest BIC; it counts as one parameter in the BIC penalty.
+    pub discrete: bool,
 }
 
 impl Param {
@@ -61,6 +65,16 @@ impl Param {
             bounds: (lo, hi),
             starts: starts.to_vec(),
             log,
+            discrete: false,
+        }
+    }
+    /// A structural choice among `values` ([`Param::discrete`]), fitted value by value.
+    fn choice(name: &str, values: &[f64]) -> Self {
+        let lo = values.iter().copied().fold(f64::INFINITY, f64::min);
+        let hi = values.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+        Param {
+            discrete: true,
+            ..Param::new(name, lo, hi, values, false)
         }
     }
     /// The value from u.
@@ -205,8 +219,9 @@ pub struct Definition {
     /// Whether a channel's calibration error found before the fit (an inverted sign, a unit slip,
     /// corrected in the samples) is reported as this effect: a channel gain.
     pub calibration: bool,
-    /// Fitted values (in [`Definition::params`] order) that contradict the effect, so that the
-    /// all-run judgement leaves the fit out (a softening fitted with a stiffening sign).
+    /// Fitted values (in [`Definition::params`] order) that contradict the effect: such a fit is
+    /// left out wherever fits are compared ([`crate::diagnosis`]'s ranking, forward selection and
+    /// all-run judgement), as a softening that shows no fall of stiffness.
     pub contradicted_by: Option<fn(&[f64]) -> bool>,
     /// Whether forward selection may add it a second time beside itself (a second frame mode
     /// under the first), when its family lacks more than one part ([`Family::adds_parts`]).

@@ -155,25 +155,41 @@ pub static LOGGER_DRIFT: Definition = Definition {
     )
 };
 
-/// 4-pole Butterworth anti-alias low-pass on the seat and/or head channel.
+/// The orders a conditioner's Butterworth filter is tried at, chosen by evidence: one pole (an
+/// RC coupling) to four (a logger's or charge amplifier's filter).
+const FILTER_ORDERS: &[f64] = &[1.0, 2.0, 3.0, 4.0];
+
+/// A filter order from its fitted choice (one of [`FILTER_ORDERS`]).
+fn order(p: f64) -> u8 {
+    p.round().clamp(1.0, 4.0) as u8
+}
+
+/// Butterworth low-pass (an anti-alias or conditioner filter) on the seat and/or head channel,
+/// of one to four poles, the order chosen by evidence (one order for the rig's conditioners).
 pub static LOWPASS: Definition = sensor(
     "sensor-lowpass",
     || {
         vec![
             Param::new("lowpass_seat_hz", 10.0, 5000.0, &[150.0], true),
             Param::new("lowpass_head_hz", 10.0, 5000.0, &[150.0], true),
+            Param::choice("lowpass_order", FILTER_ORDERS),
         ]
     },
     always,
     |v, p| {
         v.chain.seat.lowpass_hz = p[0];
         v.chain.head.lowpass_hz = p[1];
+        v.chain.seat.lowpass_order = order(p[2]);
+        v.chain.head.lowpass_order = order(p[2]);
         Ok(())
     },
 );
 
-/// First-order high-pass (AC coupling of an IEPE accelerometer) on the base, seat and/or head
-/// channel: a gap below ~2 Hz on the paths of one channel, rising phase lead.
+/// High-pass on the base, seat and/or head channel: the AC coupling of an IEPE accelerometer (one
+/// pole) or a charge amplifier's or conditioner's high-pass (two to four), with Butterworth poles
+/// or as identical RC stages; order and design chosen by evidence (one for the rig's
+/// conditioners), each channel's −3 dB corner fitted. A gap below a few Hz on the
+/// paths of one channel, with a phase lead rising to n·90° below the corner.
 pub static HIGHPASS: Definition = sensor(
     "sensor-highpass",
     || {
@@ -181,13 +197,24 @@ pub static HIGHPASS: Definition = sensor(
             Param::new("highpass_base_hz", 0.01, 5.0, &[0.1], true),
             Param::new("highpass_seat_hz", 0.01, 5.0, &[0.1], true),
             Param::new("highpass_head_hz", 0.01, 5.0, &[0.1], true),
+            Param::choice("highpass_order", FILTER_ORDERS),
+            // 0: Butterworth poles; 1: identical RC stages (a real n-fold pole). Two designs
+            // that bracket the damping of a conditioner's poles (a Bessel lies between).
+            Param::choice("highpass_rc_stages", &[0.0, 1.0]),
         ]
     },
     always,
     |v, p| {
-        v.chain.base.highpass_hz = p[0];
-        v.chain.seat.highpass_hz = p[1];
-        v.chain.head.highpass_hz = p[2];
+        let n = order(p[3]);
+        for (ch, f) in [
+            (&mut v.chain.base, p[0]),
+            (&mut v.chain.seat, p[1]),
+            (&mut v.chain.head, p[2]),
+        ] {
+            ch.highpass_hz = f;
+            ch.highpass_order = n;
+            ch.highpass_rc = p[4] > 0.5;
+        }
         Ok(())
     },
 );

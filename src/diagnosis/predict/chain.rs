@@ -7,8 +7,8 @@ use super::super::measure::RunSpectra;
 use num_complex::Complex64;
 use std::f64::consts::PI;
 
-/// A measuring channel's own response: gain × 4-pole Butterworth low-pass × first-order
-/// high-pass × mount resonance × delay. The identity is `Channel::default()`.
+/// A measuring channel's own response: gain × Butterworth low-pass × Butterworth high-pass ×
+/// mount resonance × delay. The identity is `Channel::default()`.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Channel {
     /// Calibration gain (1 = calibrated).
@@ -18,12 +18,21 @@ pub struct Channel {
     /// Clock drift of the channel's logger against the base's, s per s (1e-6 = 1 ppm): the lag
     /// grows to `delay_s + drift·t` at `t` s into the run ([`Channel::response_in`]).
     pub drift: f64,
-    /// Corner of a 4-pole Butterworth low-pass (anti-alias filter) in Hz; ∞ = none.
+    /// Corner (−3 dB) of a Butterworth low-pass (an anti-alias or conditioner filter) in Hz;
+    /// ∞ = none.
     pub lowpass_hz: f64,
-    /// Corner of a first-order high-pass in Hz, iω/(iω + ω_c): the AC coupling of an IEPE
-    /// accelerometer or its conditioner (typically 0.1–1 Hz, so inside ISO 2631-1's band from
-    /// 0.5 Hz); 0 = DC-coupled.
+    /// Poles of that low-pass, 1–4 (4 by default: a logger's anti-alias filter).
+    pub lowpass_order: u8,
+    /// Corner (−3 dB) of a Butterworth high-pass in Hz: the AC coupling of an IEPE accelerometer
+    /// (one pole, iω/(iω + ω_c)) or a charge amplifier's or conditioner's high-pass (two to four),
+    /// typically 0.1–1 Hz, so inside ISO 2631-1's band from 0.5 Hz; 0 = DC-coupled.
     pub highpass_hz: f64,
+    /// Poles of that high-pass, 1–4 (1 by default: AC coupling).
+    pub highpass_order: u8,
+    /// The high-pass as `highpass_order` identical first-order RC stages (a real n-fold pole,
+    /// cascaded coupling networks) rather than Butterworth poles; `highpass_hz` stays its −3 dB
+    /// corner.
+    pub highpass_rc: bool,
     /// Mount resonance (Hz, damping ratio) as the absolute transmissibility of a base-excited
     /// oscillator, (1 + 2iζr)/(1 − r² + 2iζr), r = f/f_m; `None` = rigid mount.
     pub mount: Option<(f64, f64)>,
@@ -40,7 +49,10 @@ impl Default for Channel {
             delay_s: 0.0,
             drift: 0.0,
             lowpass_hz: f64::INFINITY,
+            lowpass_order: 4,
             highpass_hz: 0.0,
+            highpass_order: 1,
+            highpass_rc: false,
             mount: None,
             sections: [None; 2],
         }
@@ -100,16 +112,23 @@ impl Channel {
         let omega = 2.0 * PI * f;
         let mut h = Complex64::from_polar(self.gain, -omega * self.delay_s);
         if self.lowpass_hz.is_finite() {
-            // Butterworth poles exp(iπ(2k + n + 1)/(2n)), n = 4 (Butterworth 1930).
-            let s = Complex64::new(0.0, f / self.lowpass_hz);
-            for a in [5.0, 7.0] {
-                let p = Complex64::from_polar(1.0, a * PI / 8.0);
-                h *= p * p.conj() / ((s - p) * (s - p.conj()));
-            }
+            h *= butterworth(Complex64::new(0.0, f / self.lowpass_hz), self.lowpass_order);
         }
-        if self.highpass_hz > 0.0 {
-            let s = Complex64::new(0.0, f / self.highpass_hz);
-            h *= s / (s + 1.0);
+        if self.highpass_hz > 0.0 && f > 0.0 && self.highpass_rc {
+            // n stages s/(s + ω_s), each 3 dB/n down where the whole is 3 dB down:
+            // (1 + (f_s/f)²)^n = 2 at f = f_c, so f_s = f_c·√(2^(1/n) − 1).
+            let n = self.highpass_order.max(1);
+            let fs = self.highpass_hz * (2f64.powf(1.0 / f64::from(n)) - 1.0).sqrt();
+            let s = Complex64::new(0.0, f / fs);
+            h *= (s / (s + 1.0)).powi(i32::from(n));
+        } else if self.highpass_hz > 0.0 && f > 0.0 {
+            // The high-pass is the low-pass at 1/s (s → ω_c/s): Π s/(s − p_k).
+            h *= butterworth(
+                Complex64::new(0.0, -self.highpass_hz / f),
+                self.highpass_order,
+            );
+        } else if self.highpass_hz > 0.0 {
+            return Complex64::new(0.0, 0.0);
         }
         if let Some((fm, z)) = self.mount {
             let r = f / fm;
@@ -122,6 +141,19 @@ impl Channel {
         }
         h
     }
+}
+
+/// The normalised Butterworth low-pass of `order` poles at s = iω/ω_c (Butterworth 1930):
+/// Π_k (−p_k)/(s − p_k), poles p_k = exp(iπ(2k + n + 1)/(2n)), k = 0…n−1, on the unit circle's left
+/// half, so |H|² = 1/(1 + (ω/ω_c)^(2n)).
+fn butterworth(s: Complex64, order: u8) -> Complex64 {
+    let n = f64::from(order.max(1));
+    (0..order.max(1))
+        .map(|k| {
+            let p = Complex64::from_polar(1.0, PI * (2.0 * f64::from(k) + n + 1.0) / (2.0 * n));
+            -p / (s - p)
+        })
+        .product()
 }
 
 /// The transducers of a rig and their loggers: what every measured path is read through.
@@ -208,5 +240,75 @@ mod tests {
             "{h}"
         );
         assert_eq!(Channel::default().response(0.5), Complex64::new(1.0, 0.0));
+    }
+
+    #[test]
+    fn butterworth_filters_of_every_order_have_their_textbook_magnitude_and_corner_phase() {
+        // Order n: |H_lp|² = 1/(1 + (f/f_c)^(2n)), |H_hp|² = 1/(1 + (f_c/f)^(2n)); at the corner
+        // the phase is −n·45° (low-pass) and +n·45° (high-pass) (Butterworth 1930; the poles sit
+        // symmetrically about the negative real axis).
+        for n in 1..=4u8 {
+            let lp = Channel {
+                lowpass_hz: 20.0,
+                lowpass_order: n,
+                ..Channel::default()
+            };
+            let hp = Channel {
+                highpass_hz: 0.5,
+                highpass_order: n,
+                ..Channel::default()
+            };
+            let e = 2.0 * f64::from(n);
+            for f in [0.1, 0.5, 3.0, 20.0, 55.0] {
+                let want = 1.0 / (1.0 + (f / 20.0f64).powf(e)).sqrt();
+                let got = lp.response(f).norm();
+                assert!(
+                    (got - want).abs() < 1e-12 * want.max(1e-3),
+                    "lp n={n} f={f}"
+                );
+                let want = 1.0 / (1.0 + (0.5 / f).powf(e)).sqrt();
+                let got = hp.response(f).norm();
+                assert!(
+                    (got - want).abs() < 1e-12 * want.max(1e-3),
+                    "hp n={n} f={f}"
+                );
+            }
+            let corner = 45.0 * f64::from(n);
+            let wrap = |a: f64| (a + 540.0).rem_euclid(360.0) - 180.0;
+            assert!((wrap(lp.response(20.0).arg().to_degrees() + corner)).abs() < 1e-9);
+            assert!((wrap(hp.response(0.5).arg().to_degrees() - corner)).abs() < 1e-9);
+        }
+    }
+
+    #[test]
+    fn rc_stages_are_3_db_down_at_their_corner_with_the_stages_own_magnitude() {
+        // n stages at f_s: |H| = (1 + (f_s/f)²)^(−n/2), 1/√2 at the −3 dB corner f_c, f_s =
+        // f_c·√(2^(1/n) − 1); the phase is n·atan(f_s/f).
+        for n in 1..=4u8 {
+            let ch = Channel {
+                highpass_hz: 0.8,
+                highpass_order: n,
+                highpass_rc: true,
+                ..Channel::default()
+            };
+            let fs = 0.8 * (2f64.powf(1.0 / f64::from(n)) - 1.0).sqrt();
+            assert!((ch.response(0.8).norm() - 0.5f64.sqrt()).abs() < 1e-12);
+            for f in [0.2, 1.5, 6.0] {
+                let h = ch.response(f);
+                let want = (1.0 + (fs / f).powi(2)).powf(-f64::from(n) / 2.0);
+                assert!(
+                    (h.norm() - want).abs() < 1e-12,
+                    "n={n} f={f}: {} vs {want}",
+                    h.norm()
+                );
+                let phase = f64::from(n) * (fs / f).atan();
+                let d = (h.arg() - phase).rem_euclid(2.0 * PI);
+                assert!(
+                    d.min(2.0 * PI - d) < 1e-9,
+                    "n={n} f={f}: {} vs {phase}",
+                    h.arg()
+                );
+            }
+        }
     }
 }

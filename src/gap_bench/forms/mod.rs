@@ -123,6 +123,10 @@ pub enum Form {
     Delay,
     /// Accelerometer anti-alias low-pass (4-pole Butterworth or Bessel) on one channel.
     LowPass,
+    /// A charge amplifier's or conditioner's two-pole high-pass on one accelerometer: two RC
+    /// stages (a real double pole) or one section of damping 0.5–0.9, not the candidates'
+    /// Butterworth.
+    HighPass,
     /// Sensor mount resonance on one channel.
     Mount,
     /// Calibration gain error on one channel.
@@ -154,7 +158,7 @@ pub enum Form {
 
 impl Form {
     /// Every form, in report order.
-    pub const ALL: [Form; 24] = [
+    pub const ALL: [Form; 25] = [
         Form::Sls,
         Form::Maxwell2,
         Form::Fractional,
@@ -168,6 +172,7 @@ impl Form {
         Form::Scheduled,
         Form::Delay,
         Form::LowPass,
+        Form::HighPass,
         Form::Mount,
         Form::Gain,
         Form::LoggerOffset,
@@ -192,6 +197,7 @@ impl Form {
             Form::Tanh | Form::Bilinear | Form::Scheduled => Family::Softening,
             Form::Delay
             | Form::LowPass
+            | Form::HighPass
             | Form::Mount
             | Form::Gain
             | Form::LoggerOffset
@@ -235,6 +241,7 @@ impl Form {
             Form::Scheduled => "scheduled",
             Form::Delay => "delay",
             Form::LowPass => "low-pass",
+            Form::HighPass => "high-pass",
             Form::Mount => "mount",
             Form::Gain => "gain",
             Form::LoggerOffset => "logger-offset",
@@ -257,6 +264,9 @@ pub enum Sensor {
     Delay(f64),
     /// 4-pole low-pass at `fc_hz`; Bessel when `bessel`, else Butterworth.
     LowPass { fc_hz: f64, bessel: bool },
+    /// Two-pole high-pass s²/(s² + 2ζω_c s + ω_c²) at `fc_hz` Hz (ω_c = 2π·fc) with damping ratio
+    /// `zeta` (1: two identical RC stages).
+    HighPass { fc_hz: f64, zeta: f64 },
     /// Base-excited mount resonance (absolute transmissibility) at `f_hz` with damping ratio `zeta`.
     Mount { f_hz: f64, zeta: f64 },
     /// Gain factor (1 = calibrated).
@@ -380,6 +390,27 @@ pub fn plant(
                     let sign = if rng.random::<f64>() < 0.5 { -1.0 } else { 1.0 };
                     Sensor::Gain(1.0 + sign * (0.03 + 0.07 * u))
                 }
+            };
+            let d = format!("{s:?} on {ch}");
+            planted.sensors.push((ch.into(), s));
+            d
+        }
+        Form::HighPass => {
+            // AC coupling sits on accelerometers (a force plate's charge amplifier is set to
+            // long time constants to keep the static weight's decay out of the band).
+            let ch = match rng.random::<f64>() {
+                r if r < 0.45 => "a_seat_z",
+                r if r < 0.85 => "a_head_z",
+                _ => "a_base_z",
+            };
+            let zeta = if rng.random::<f64>() < 0.5 {
+                1.0
+            } else {
+                uniform(rng, 0.5, 0.9)
+            };
+            let s = Sensor::HighPass {
+                fc_hz: 0.4 * 4f64.powf(u),
+                zeta,
             };
             let d = format!("{s:?} on {ch}");
             planted.sensors.push((ch.into(), s));

@@ -54,6 +54,23 @@ impl OccupantTest {
     pub fn label(&self) -> &'static str {
         self.occupant.map_or("measured", |p| p.name())
     }
+    /// The body mass as a table cell: kg to 0.1, `-` for a lab's runs.
+    pub fn mass_cell(&self) -> String {
+        self.body_mass_kg.map_or("-".into(), |m| format!("{m:.1}"))
+    }
+    /// Whether the platform's PSD kept the standard's tolerance, as a table cell: `yes`, `NO`
+    /// (capitals: it voids the test), `-` when not checked.
+    pub fn psd_cell(&self) -> &'static str {
+        match self.psd_within_tolerance {
+            Some(true) => "yes",
+            Some(false) => "NO",
+            None => "-",
+        }
+    }
+    /// The end-stop contacts as a table cell: the count, `-` when not simulated.
+    pub fn contacts_cell(&self) -> String {
+        self.end_stop_contacts.map_or("-".into(), |c| c.to_string())
+    }
 }
 
 /// Acceptance values from the application standard; either may be absent.

@@ -1,0 +1,194 @@
+//! The gap diagnosis on effects in forms outside its catalogue, simulated without wbv code
+//! (tools/blind-gap/gen.py, numpy + scipy; `tools/input-fixtures/run DIR` writes them and
+//! `tools/test` runs this test with `WBV_INPUT_FIXTURES=DIR`):
+//! - a conditioner's high-pass of two to four poles (three RC stages, a Bessel, a Butterworth) on
+//!   one accelerometer, and a low-pass of two poles (two RC stages, a Bessel): the measuring chain
+//!   is named, with a filter whose −3 dB corner is the truth's and, for a Butterworth or RC
+//!   truth, its order and design;
+//! - a body that stiffens between runs (its resonance rises with magnitude): never named a
+//!   softening, whatever else the diagnosis says.
+
+mod common;
+use std::path::{Path, PathBuf};
+
+fn read_json(p: &Path) -> serde_json::Value {
+    serde_json::from_str(&std::fs::read_to_string(p).unwrap()).unwrap()
+}
+
+/// Every case directory under `dir` with its truth and `wbv gap --json` document.
+fn diagnosed(dir: &Path) -> Vec<(PathBuf, serde_json::Value, serde_json::Value)> {
+    let mut cases: Vec<PathBuf> = std::fs::read_dir(dir)
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .filter(|p| p.join("truth.json").is_file())
+        .collect();
+    cases.sort();
+    assert!(!cases.is_empty(), "no cases in {}", dir.display());
+    cases
+        .into_iter()
+        .map(|case| {
+            let out = common::gap_case(&case);
+            assert!(
+                out.status.success(),
+                "{}: {}",
+                case.display(),
+                String::from_utf8_lossy(&out.stderr)
+            );
+            let doc: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+            (case.clone(), read_json(&case.join("truth.json")), doc)
+        })
+        .collect()
+}
+
+/// The fitted value of parameter `name` of candidate `id` in a gap document.
+fn fitted(doc: &serde_json::Value, id: &str, name: &str) -> f64 {
+    let c = doc["candidates"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|c| c["id"] == id)
+        .unwrap_or_else(|| panic!("{id} not among the candidates"));
+    c["params"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|p| p["name"] == name)
+        .unwrap_or_else(|| panic!("{id} has no {name}"))["value"]
+        .as_f64()
+        .unwrap()
+}
+
+/// The −3 dB corner (Hz) of the planted filter, from its design (the generator's `f_hz` is each
+/// RC stage's corner; its Bessel is normalised to −3 dB at `f_hz`, as a Butterworth is): n equal
+/// first-order stages are 3 dB down where (1 + r²)^n = 2, r = f_c/f for a high-pass and f/f_c for
+/// a low-pass.
+fn corner_3db(truth: &serde_json::Value) -> f64 {
+    let p = &truth["params"];
+    let f = p["f_hz"].as_f64().unwrap();
+    if p["design"] != "rc" {
+        return f;
+    }
+    let n = p["order"].as_f64().unwrap();
+    let r = (2f64.powf(1.0 / n) - 1.0).sqrt();
+    if truth["form"] == "highpass-multi" {
+        f / r
+    } else {
+        f * r
+    }
+}
+
+/// The generator's channel name as the candidate's parameter suffix.
+fn place(truth: &serde_json::Value) -> &'static str {
+    match truth["params"]["channel"].as_str().unwrap() {
+        "a_base_z" => "base",
+        "a_seat_z" => "seat",
+        "a_head_z" => "head",
+        other => panic!("unexpected channel {other}"),
+    }
+}
+
+#[test]
+fn a_conditioners_multi_pole_high_pass_is_named_with_its_corner_and_order() {
+    let Some(dir) = common::input_fixtures() else {
+        return;
+    };
+    for (case, truth, doc) in diagnosed(&dir.join("conditioner-highpass")) {
+        let order = truth["params"]["order"].as_f64().unwrap();
+        assert!(
+            order >= 2.0,
+            "{}: the set plants two to four poles",
+            case.display()
+        );
+        assert_eq!(
+            doc["verdict"],
+            "sensor-highpass",
+            "{}: {}",
+            case.display(),
+            doc["verdict_text"]
+        );
+        let want = corner_3db(&truth);
+        let got = fitted(
+            &doc,
+            "sensor-highpass",
+            &format!("highpass_{}_hz", place(&truth)),
+        );
+        assert!(
+            (got / want - 1.0).abs() < 0.2,
+            "{}: corner {got:.3} Hz against the truth's −3 dB corner {want:.3} Hz",
+            case.display()
+        );
+        // A design the candidate has (Butterworth poles, identical RC stages) is named with its
+        // order; a Bessel lies between them and is named by the nearer.
+        let rc = match truth["params"]["design"].as_str().unwrap() {
+            "butter" => Some(0.0),
+            "rc" => Some(1.0),
+            _ => None,
+        };
+        if let Some(rc) = rc {
+            assert_eq!(
+                fitted(&doc, "sensor-highpass", "highpass_order"),
+                order,
+                "{}",
+                case.display()
+            );
+            assert_eq!(
+                fitted(&doc, "sensor-highpass", "highpass_rc_stages"),
+                rc,
+                "{}",
+                case.display()
+            );
+        }
+    }
+}
+
+#[test]
+fn a_conditioners_low_pass_of_other_orders_is_named_a_low_pass() {
+    let Some(dir) = common::input_fixtures() else {
+        return;
+    };
+    for (case, truth, doc) in diagnosed(&dir.join("conditioner-lowpass")) {
+        assert_eq!(
+            doc["verdict"],
+            "sensor-lowpass",
+            "{} ({} of order {}): {}",
+            case.display(),
+            truth["params"]["design"],
+            truth["params"]["order"],
+            doc["verdict_text"]
+        );
+        let want = corner_3db(&truth);
+        let got = fitted(
+            &doc,
+            "sensor-lowpass",
+            &format!("lowpass_{}_hz", place(&truth)),
+        );
+        // A Butterworth's corner stands in for another design's: same −3 dB point within the
+        // phase and roll-off the designs differ by.
+        assert!(
+            (got / want - 1.0).abs() < 0.5,
+            "{}: corner {got:.1} Hz against the truth's −3 dB corner {want:.1} Hz",
+            case.display()
+        );
+    }
+}
+
+#[test]
+fn a_body_stiffening_between_runs_is_never_named_a_softening() {
+    let Some(dir) = common::input_fixtures() else {
+        return;
+    };
+    for (case, _, doc) in diagnosed(&dir.join("body-stiffening")) {
+        let named: Vec<String> = doc["named"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|n| n.as_str().unwrap().to_string())
+            .collect();
+        assert!(
+            named.iter().all(|n| !n.starts_with("body-softening")),
+            "{}: {named:?}: {}",
+            case.display(),
+            doc["verdict_text"]
+        );
+    }
+}
