@@ -73,6 +73,16 @@ pub fn mean_and_fluctuation(x: &[f64]) -> (f64, f64) {
     (mean, var.sqrt())
 }
 
+/// The statement beside every verdict that rests on an assumed unit: `names` (channels) had no
+/// declared unit and were read as m/s², and a record in g read so is 9.81 × too low.
+pub fn undeclared(names: &str) -> String {
+    format!(
+        "no unit was declared for {names}; data in g would read 9.81 × too low and the verdicts \
+         be several classes or zones too mild: give --units (m/s2, g, mg or mm/s2, or \
+         CHANNEL=UNIT)"
+    )
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -86,14 +96,4 @@ mod tests {
         assert_eq!(looks_like(9.81, 0.5), None);
         assert_eq!(looks_like(1.0, 0.9), None);
     }
-}
-
-/// The statement beside every verdict that rests on an assumed unit: `names` (channels) had no
-/// declared unit and were read as m/s², and a record in g read so is 9.81 × too low.
-pub fn undeclared(names: &str) -> String {
-    format!(
-        "no unit was declared for {names}; data in g would read 9.81 × too low and the verdicts \
-         be several classes or zones too mild: give --units (m/s2, g, mg or mm/s2, or \
-         CHANNEL=UNIT)"
-    )
 }
