@@ -15,7 +15,7 @@ pub struct Exposure {
     /// The day’s figures and operations ([`crate::analysis::exposure::Day`]), at the top level.
     #[serde(flatten)]
     pub day: Day,
-    /// The unit of every numeric key (`m/s²`, `m/s^1.75`, `h`, `MPa`, …).
+    /// The unit of every numeric key, by its dotted path (`a8`: `m/s^2`, `vdv_day`: `m/s^1.75`, …).
     pub units: BTreeMap<String, String>,
 }
 
