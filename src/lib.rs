@@ -4,6 +4,8 @@
 //! Frequency-domain responses of a model live in [`response`]. Units are SI throughout (m, s, kg, N);
 //! frequencies are in Hz unless a name says `omega` (rad/s).
 
+#![warn(missing_docs)]
+
 pub mod analysis;
 pub mod diagnosis;
 pub mod error;

@@ -43,11 +43,13 @@ pub struct AxisFigures {
 /// One operation of the day: what was measured on the seat and how long it lasts a day.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct Operation {
+    /// The operation's name as the user gave it (e.g. `loading`), labelling its row of the day.
     pub name: String,
     /// Daily duration T_i, h.
     pub hours: f64,
     /// Duration of the measurement T_m,i, s.
     pub measured_s: f64,
+    /// The seat axes measured (x, y and/or z) with their a_w and VDV.
     pub axes: Vec<AxisFigures>,
     /// Weighted crest factor of the seat's z axis, when measured.
     pub crest_factor_z: Option<f64>,
@@ -100,6 +102,7 @@ impl Operation {
 /// One operation's row of the day.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct OperationRow {
+    /// The operation's name, as in [`Operation::name`].
     pub name: String,
     /// Daily duration, h.
     pub hours: f64,
@@ -111,8 +114,11 @@ pub struct OperationRow {
     pub a8_share: f64,
     /// This operation's share of the day's VDV⁴ on the day's VDV axis (0–1).
     pub vdv_share: f64,
-    /// Hours a day of this operation alone that reach the A(8) action and limit values.
+    /// Hours a day of this operation alone that reach the A(8) exposure action value, 0.5 m/s²
+    /// (2002/44/EC art. 3).
     pub hours_to_a8_action: f64,
+    /// Hours a day of this operation alone that reach the A(8) exposure limit value, 1.15 m/s²
+    /// (2002/44/EC art. 3).
     pub hours_to_a8_limit: f64,
     /// Weighted crest factor of the seat's z axis.
     pub crest_factor_z: Option<f64>,
@@ -143,7 +149,10 @@ impl OperationRow {
 /// One axis of one operation.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct AxisRow {
+    /// `x`, `y` or `z` (seat axes, ISO 2631-1 fig. 1).
     pub axis: String,
+    /// Multiplying factor k of the axis for health on the seat: 1.4 for x and y, 1 for z
+    /// (ISO 2631-1 7.2.3); dimensionless.
     pub k: f64,
     /// Weighted r.m.s., m/s².
     pub a_w: f64,
@@ -156,7 +165,10 @@ pub struct AxisRow {
 /// One axis of the day.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct DayAxis {
+    /// `x`, `y` or `z` (seat axes, ISO 2631-1 fig. 1).
     pub axis: String,
+    /// Multiplying factor k of the axis for health on the seat: 1.4 for x and y, 1 for z
+    /// (ISO 2631-1 7.2.3); dimensionless.
     pub k: f64,
     /// k [Σ a_w,i² T_i / 8 h]^½, m/s².
     pub a8: f64,
@@ -169,23 +181,37 @@ pub struct DayAxis {
 pub struct Day {
     /// Σ T_i, h.
     pub hours: f64,
+    /// The day's operations, each with its durations, per-axis figures and share of the dose.
     pub operations: Vec<OperationRow>,
+    /// Per seat axis: k, A(8) in m/s² and VDV in m/s^1.75 over the day (ISO 2631-1 7.2.3, B.3.2).
     pub axes: Vec<DayAxis>,
     /// Daily exposure A(8): the highest of the axes' k-weighted A(8), m/s², and its axis.
     pub a8: f64,
+    /// The axis (`x`, `y` or `z`) whose k-weighted A(8) is the day's A(8).
     pub a8_axis: String,
+    /// A(8) against the exposure action (0.5 m/s²) and limit (1.15 m/s²) values of 2002/44/EC art. 3.
     pub a8_status: DirectiveStatus,
     /// The day's VDV: the highest of the axes' k-weighted VDV, m/s^1.75, and its axis.
     pub vdv_day: f64,
+    /// The axis (`x`, `y` or `z`) whose k-weighted VDV is the day's VDV.
     pub vdv_axis: String,
+    /// The day's VDV against the exposure action (9.1 m/s^1.75) and limit (21 m/s^1.75) values of
+    /// 2002/44/EC art. 3.
     pub vdv_status: DirectiveStatus,
     /// The worse of `a8_status` and `vdv_status` (a member state uses one of the two; the worse is
     /// the answer that holds for both).
     pub zone: DirectiveStatus,
-    /// Hours of this day's mix of operations that reach each value.
+    /// Hours of this day's mix of operations (in its proportions) that reach the A(8) exposure
+    /// action value, 0.5 m/s² (2002/44/EC art. 3).
     pub hours_to_a8_action: f64,
+    /// Hours of this day's mix of operations that reach the A(8) exposure limit value, 1.15 m/s²
+    /// (2002/44/EC art. 3).
     pub hours_to_a8_limit: f64,
+    /// Hours of this day's mix of operations that reach the VDV exposure action value,
+    /// 9.1 m/s^1.75 (2002/44/EC art. 3).
     pub hours_to_vdv_action: f64,
+    /// Hours of this day's mix of operations that reach the VDV exposure limit value,
+    /// 21 m/s^1.75 (2002/44/EC art. 3).
     pub hours_to_vdv_limit: f64,
     /// ISO 2631-5:2018 over the day (Formula 5), when an operation's crest factor exceeds 9 or it
     /// was asked for.

@@ -117,7 +117,9 @@ pub struct ExcitationArgs {
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 #[cfg_attr(feature = "cli", derive(clap::ValueEnum))]
 pub enum LawArg {
+    /// Frequency linear in time: f(t) = f0 + (f1 − f0)·t/T.
     Linear,
+    /// Frequency exponential in time: f(t) = f0·(f1/f0)^(t/T), constant time per octave.
     Log,
 }
 

@@ -56,7 +56,9 @@ impl Standard {
 /// A Butterworth filter: corner in Hz and order (1, 2, 4 or 8).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub struct Butterworth {
+    /// Corner (−3 dB) frequency f_c in Hz **[S]** (HVLab `hvtestspectrum.m`).
     pub corner_hz: f64,
+    /// Filter order n (1, 2, 4 or 8): the asymptotic slope is 6·n dB per octave.
     pub order: u32,
 }
 
@@ -92,10 +94,13 @@ pub struct InputClass {
     pub name: &'static str,
     /// The class as the standard names it, e.g. `EM3`.
     pub code: &'static str,
+    /// The application standard that defines the class (ISO 7096, EN 13490 or ISO 5007).
     pub standard: Standard,
     /// The machines the class stands for **[U]** (not read in the standard; see module doc).
     pub machine: &'static str,
+    /// High-pass Butterworth filter H_hp of the target PSD `G_s·|H_hp·H_lp|²` **[S]**.
     pub high_pass: Butterworth,
+    /// Low-pass Butterworth filter H_lp of the target PSD `G_s·|H_hp·H_lp|²` **[S]**.
     pub low_pass: Butterworth,
     /// Spectral level G_s in (m/s²)²/Hz **[S]**.
     pub gs_m2_s4_hz: f64,

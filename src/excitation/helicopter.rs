@@ -12,7 +12,10 @@ use serde::Deserialize;
 #[derive(Debug, Clone, Copy, PartialEq, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Line {
+    /// Harmonic order per revolution of its rotor (1 = 1P, N = blade passage N·P; MIL-STD-810H
+    /// Method 514.8 Annex D); the line's frequency is `order × rpm/60` Hz.
     pub order: f64,
+    /// Peak amplitude of the sinusoidal line in m/s².
     pub amplitude_m_s2: f64,
 }
 

@@ -18,8 +18,11 @@ pub const BASE_CHANNEL: &str = "a_base_z";
 /// Base acceleration samples (m/s²) at a uniform rate, with their source.
 #[derive(Debug, Clone)]
 pub struct Record {
+    /// Base vertical acceleration samples in m/s², uniformly spaced in time.
     pub samples: Vec<f64>,
+    /// Sampling rate of `samples` in Hz.
     pub sample_rate_hz: f64,
+    /// Where the samples were read (the file path as displayed), named in descriptions and errors.
     pub source: String,
 }
 

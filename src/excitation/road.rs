@@ -121,6 +121,7 @@ pub struct Road {
     pub gd_n0_m3: f64,
     /// Vehicle speed in m/s.
     pub speed_m_s: f64,
+    /// Quarter car through which the road profile reaches the cab floor (masses, suspension and tyre).
     pub vehicle: QuarterCar,
 }
 

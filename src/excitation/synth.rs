@@ -29,10 +29,15 @@ pub enum SweepLaw {
 /// A swept sine of constant amplitude from `from_hz` to `to_hz` over `duration_s`, then zero.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Sweep {
+    /// Start frequency f0 in Hz.
     pub from_hz: f64,
+    /// End frequency f1 in Hz, reached at `duration_s`.
     pub to_hz: f64,
+    /// Sweep duration T in s; the output is zero after it.
     pub duration_s: f64,
+    /// Constant peak acceleration amplitude in m/s².
     pub amplitude_m_s2: f64,
+    /// How the instantaneous frequency moves from f0 to f1 (linear or logarithmic in time).
     pub law: SweepLaw,
 }
 

@@ -78,29 +78,40 @@ pub enum Axis {
 /// A labelled reference line (a limit, a boundary, a marked time).
 #[derive(Debug, Clone, PartialEq)]
 pub struct Rule {
+    /// Whether the line is vertical (at an x value) or horizontal (at a y value).
     pub axis: Axis,
-    /// Position in axis units.
+    /// Position in axis units; a line outside the axis range is not drawn.
     pub at: f64,
+    /// Text placed beside the line where no curve passes.
     pub label: String,
+    /// Colour of the dashed line and its label.
     pub colour: Rgb,
 }
 
 /// A labelled shaded range (a comfort class, a zone).
 #[derive(Debug, Clone, PartialEq)]
 pub struct Span {
+    /// Whether the band is a range of x (vertical band) or of y (horizontal band).
     pub axis: Axis,
-    /// Range in axis units.
+    /// Lower end of the range in axis units.
     pub from: f64,
+    /// Upper end of the range in axis units; a band with `to ≤ from` after clipping to the axes
+    /// is not drawn.
     pub to: f64,
+    /// Text placed inside the band where no curve passes.
     pub label: String,
+    /// Colour of the band (drawn at 16 % opacity) and of its label.
     pub colour: Rgb,
 }
 
 /// A text placed at data coordinates.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Note {
+    /// Abscissa of the marked point, in x-axis units.
     pub x: f64,
+    /// Ordinate of the marked point, in y-axis units.
     pub y: f64,
+    /// The text shown beside the point.
     pub text: String,
     /// Pixel offset of the text's top below the point (negative: above).
     pub dy: i32,

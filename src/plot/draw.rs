@@ -654,7 +654,9 @@ pub trait Figure {
 
 /// Panels laid out `cols` to a row.
 pub struct Panels<'a> {
+    /// The panels, in reading order (left to right, then down).
     pub charts: &'a [Chart],
+    /// Panels per row (clamped to 1 ..= the number of panels).
     pub cols: usize,
 }
 

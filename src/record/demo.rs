@@ -25,13 +25,22 @@ pub fn layout(fs: f64, steps: u64) -> Layout {
 /// The owned state of step `index` (time `index · dt`).
 #[derive(Debug, Clone, PartialEq)]
 pub struct State {
+    /// Step index, 0 for the initial state.
     pub index: u64,
+    /// Time of the step, s (`index · dt`).
     pub t: f64,
+    /// Base motion `[acceleration m/s², velocity m/s, displacement m]`: a 1 mm, 4 Hz sine.
     pub base: [f64; 3],
+    /// Displacement of each of the 5 masses relative to the base, m.
     pub x: Vec<f64>,
+    /// Velocity of each mass relative to the base, m/s.
     pub v: Vec<f64>,
+    /// Acceleration of each mass relative to the base, m/s².
     pub a: Vec<f64>,
+    /// Deflection `x_upper − x_lower` of each of the 5 links, m (extension positive; the lowest
+    /// link's lower node is the base).
     pub deflection: Vec<f64>,
+    /// Tension of each link, N: a linear 8·10⁴ N/m spring on its deflection, not the model's.
     pub force: Vec<f64>,
 }
 

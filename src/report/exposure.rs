@@ -12,7 +12,9 @@ use std::path::PathBuf;
 /// One operation as given on the command line: a measurement or run, and its hours a day.
 #[derive(Debug, Clone, PartialEq)]
 pub struct OperationSpec {
+    /// The measurement (CSV, MCAP run, …) or run of the operation, as given.
     pub path: PathBuf,
+    /// Its exposure in hours a working day (2002/44/EC: the daily exposure A(8) and VDV).
     pub hours: f64,
 }
 

@@ -68,8 +68,11 @@ impl Default for Settings {
 #[cfg(feature = "plot")]
 #[derive(Debug, Clone)]
 pub struct Built {
+    /// The HTML page, complete and self-contained.
     pub html: String,
+    /// The ISO 2631-1 analysis the page shows.
     pub report: Report,
+    /// The health assessment (ISO 2631-1 clause 7 and Annex B), when the exposure allows one.
     pub health: Option<Health>,
     /// The gap section's verdict, when the page has one.
     pub gap: Option<gap::Summary>,

@@ -39,18 +39,30 @@ pub enum TimeDomainReason {
     /// `--time-domain` was given.
     Requested,
     /// The model has links with nonlinear laws (named): no frequency response describes it.
-    Nonlinear { links: Vec<String> },
+    Nonlinear {
+        /// Names of the links that carry a nonlinear law.
+        links: Vec<String>,
+    },
     /// The excitation is not stationary (a sweep): its PSD changes with time.
-    NonStationary { kind: &'static str },
+    NonStationary {
+        /// The excitation kind's name (`sweep`).
+        kind: &'static str,
+    },
 }
 
 /// How a study computes its ISO 2631-1 figures.
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub enum Path {
     /// In the frequency domain, from the excitation's spectrum and the model's FRF.
-    Spectral { reason: SpectralReason },
+    Spectral {
+        /// Which spectrum the excitation gives (stated PSD, steady sine or Welch estimate).
+        reason: SpectralReason,
+    },
     /// By simulating every point (batched) and analysing it as it runs.
-    TimeDomain { reason: TimeDomainReason },
+    TimeDomain {
+        /// Why no frequency-domain path applies (requested, nonlinear, non-stationary).
+        reason: TimeDomainReason,
+    },
 }
 
 /// Figure columns the spectral path computes (the others need a time history).

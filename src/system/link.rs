@@ -12,12 +12,29 @@ use num_complex::Complex64;
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum Element {
     /// Spring `k` (N/m) in parallel with dashpot `c` (N·s/m): `f = k·d + c·v`.
-    KelvinVoigt { k: f64, c: f64 },
+    KelvinVoigt {
+        /// Parallel spring stiffness, N/m.
+        k: f64,
+        /// Parallel dashpot coefficient, N·s/m.
+        c: f64,
+    },
     /// Spring `k` (N/m) in series with dashpot `c` (N·s/m): `ḟ = k·(v − f/c)`; no static stiffness.
-    Maxwell { k: f64, c: f64 },
+    Maxwell {
+        /// Stiffness of the spring in series with the dashpot, N/m.
+        k: f64,
+        /// Coefficient of the dashpot in series with the spring, N·s/m.
+        c: f64,
+    },
     /// Standard linear solid: spring `k` (N/m) in parallel with a Maxwell arm (`k_m` N/m in series
     /// with `c_m` N·s/m): `f = k·d + q`, `q̇ = k_m·(v − q/c_m)`.
-    Zener { k: f64, k_m: f64, c_m: f64 },
+    Zener {
+        /// Equilibrium (static) spring stiffness in parallel with the Maxwell arm, N/m.
+        k: f64,
+        /// Stiffness of the Maxwell arm's spring, N/m.
+        k_m: f64,
+        /// Coefficient of the Maxwell arm's dashpot, N·s/m.
+        c_m: f64,
+    },
 }
 
 impl Element {
@@ -89,39 +106,79 @@ impl Element {
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub enum Law {
     /// Hardening spring: extra force `k3·d³`, `k3` in N/m³ (foam that stiffens as it is compressed).
-    Cubic { k3: f64 },
+    Cubic {
+        /// Cubic stiffness coefficient of the hardening term `k3·d³`, N/m³.
+        k3: f64,
+    },
     /// Saturating (softening) spring: the linear spring force `k·d` becomes `k·d_ref·tanh(d/d_ref)`,
     /// `d_ref` in m; the stiffness falls as amplitude grows.
-    Softening { d_ref: f64 },
+    Softening {
+        /// Reference deflection of the `tanh` saturation, m; the force saturates at `k·d_ref`.
+        d_ref: f64,
+    },
     /// Smoothed Coulomb friction: extra force `f_c·tanh(v/v_ref)`, `f_c` in N, `v_ref` in m/s.
-    Friction { f_c: f64, v_ref: f64 },
+    Friction {
+        /// Coulomb (sliding) friction force amplitude, N.
+        f_c: f64,
+        /// Smoothing rate of the `tanh` regularisation, m/s; the tangent at rest is `f_c/v_ref` N·s/m.
+        v_ref: f64,
+    },
     /// End stop: beyond a free travel `gap` (m) either way a contact spring `k_stop` (N/m) engages:
     /// extra force `k_stop·(|d| − gap)·sign(d)` for `|d| > gap`.
-    EndStop { gap: f64, k_stop: f64 },
+    EndStop {
+        /// Free travel either side of the static equilibrium before the stop engages, m.
+        gap: f64,
+        /// Contact stiffness of the stop once engaged, N/m.
+        k_stop: f64,
+    },
     /// Quadratic contact stiffening: the spring force `k·d` becomes `k·d·(1 + |d|/d0)`, `d0` in m
     /// (foam whose contact area grows with deflection). Used by the gap bench's truth forms.
-    Contact { d0: f64 },
+    Contact {
+        /// Deflection at which the contact stiffening doubles the spring force, m.
+        d0: f64,
+    },
     /// Exponential stiffening: the spring force `k·d` becomes `k·d0·sinh(d/d0)`, `d0` in m (tangent
     /// `k·cosh(d/d0)`). Used by the gap bench's truth forms.
-    Exponential { d0: f64 },
+    Exponential {
+        /// Characteristic deflection of the `sinh` stiffening, m.
+        d0: f64,
+    },
     /// Bilinear softening: stiffness `k` for `|d| ≤ d_knee` (m), `ratio·k` beyond. Used by the gap
     /// bench's truth forms.
-    Bilinear { d_knee: f64, ratio: f64 },
+    Bilinear {
+        /// Deflection magnitude at the knee where the stiffness changes, m.
+        d_knee: f64,
+        /// Stiffness beyond the knee as a fraction of `k` (dimensionless; < 1 softens).
+        ratio: f64,
+    },
     /// Bottoming (compression-only stop): past a free travel `gap` (m) of compression beyond the
     /// static equilibrium a second, stiffer layer `k_stop` (N/m) touches: extra force
     /// `k_stop·(d + gap)` for `d < −gap`, none in extension. A seat foam that bottoms out on its
     /// pan or a denser layer under the occupant's preload stiffens on one side only (docs/gap.md §5).
-    Bottoming { gap: f64, k_stop: f64 },
+    Bottoming {
+        /// Free compression travel past the static equilibrium before the second layer touches, m.
+        gap: f64,
+        /// Stiffness of the second (bottoming) layer once touched, N/m.
+        k_stop: f64,
+    },
     /// A denser layer touching `gap` (m) of compression past the static equilibrium, with
     /// Hertzian contact: extra force `−k_h·(−d − gap)^(3/2)` for `d < −gap` (`k_h` in N/m^1.5),
     /// none in extension. A foam bottoming on a second layer, smooth where `Bottoming`'s stop
     /// steps (Johnson, *Contact Mechanics*, 1985, eq. 4.23). Used by the gap bench's truth forms.
-    HertzStop { gap: f64, k_h: f64 },
+    HertzStop {
+        /// Free compression travel past the static equilibrium before the denser layer touches, m.
+        gap: f64,
+        /// Hertzian contact coefficient of the `(−d − gap)^(3/2)` force, N/m^1.5 (Johnson 1985, eq. 4.23).
+        k_h: f64,
+    },
     /// Preloaded exponential foam about its static sag: the spring force `k·d` becomes
     /// `k·d_e·(1 − e^(−d/d_e))`, `d_e` in m (tangent `k·e^(−d/d_e)`): the deviation about the sag of
     /// a foam force `F₀(e^(D/d_e) − 1)` in the total compression D (Deng, Davies & Bajaj 2003
     /// [W13]), stiffer in compression, softer in extension. Used by the gap bench's truth forms.
-    PreloadExp { d_e: f64 },
+    PreloadExp {
+        /// Characteristic compression of the exponential foam law, m (Deng, Davies & Bajaj 2003 [W13]).
+        d_e: f64,
+    },
 }
 
 impl Law {

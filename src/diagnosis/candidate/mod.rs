@@ -136,7 +136,12 @@ pub enum Magnitude {
     /// all runs together. `distortion_grows` when the incoherent power it makes grows with the
     /// magnitude, so the distortion trend can place it (Coulomb friction's share of the force
     /// falls as the magnitude rises: its distortion does not grow).
-    Dependent { at: Place, distortion_grows: bool },
+    Dependent {
+        /// Where the effect sits: in the support (cushion, suspension) or in the body.
+        at: Place,
+        /// Whether the incoherent (distortion) power it makes grows with the run's magnitude.
+        distortion_grows: bool,
+    },
 }
 
 /// How a timing candidate retimes the transducers off the base accelerometer's logger

@@ -47,10 +47,13 @@ pub enum Kind {
     /// Gaussian random shaped to a PSD table: inline `points` [[Hz, (m/s²)²/Hz], …] or a CSV
     /// `freq_hz,psd` file (path relative to the TOML file).
     Psd {
+        /// Inline PSD breakpoints `[frequency in Hz, PSD in (m/s²)²/Hz]`, ascending in frequency.
         #[serde(default)]
         points: Vec<[f64; 2]>,
+        /// CSV file of `freq_hz,psd` rows ((m/s²)²/Hz), relative to the TOML file; instead of `points`.
         #[serde(default)]
         csv: Option<PathBuf>,
+        /// The validated PSD table built from `points` or `csv` (filled by validation, not read).
         #[serde(skip)]
         table: Option<PsdTable>,
     },
@@ -74,31 +77,46 @@ pub enum Kind {
     /// resampled to the step. The key is `csv` for compatibility; `input` holds command-line read
     /// options.
     Recorded {
+        /// Path of the measurement file (any supported format despite the key's name).
         csv: PathBuf,
+        /// Read options from the command line (rate, channel mapping, units), not read from TOML.
         #[serde(skip)]
         input: crate::io::input::Options,
     },
     /// A sine `amplitude sin(2π f t + phase)`.
     Sine {
+        /// Frequency f in Hz.
         frequency_hz: f64,
+        /// Peak acceleration amplitude in m/s².
         amplitude_m_s2: f64,
+        /// Phase at t = 0 in degrees (default 0).
         #[serde(default)]
         phase_deg: f64,
+        /// Raised-cosine fade-in time T_f in s: gain ½(1 − cos(π t/T_f)) for t < T_f (default 0).
         #[serde(default)]
         fade_in_s: f64,
     },
     /// An input spectral class of the laboratory seat tests ([`super::classes`]): Gaussian random
     /// platform acceleration with the class's target PSD, `class` its name (`iso7096-em3`).
     #[serde(rename = "input-class")]
-    InputClass { class: String },
+    InputClass {
+        /// Built-in class name, e.g. `iso7096-em3` (ISO 7096, EN 13490 or ISO 5007 class).
+        class: String,
+    },
     /// A swept sine, linear or logarithmic, over `duration_s` (default: the whole run), then zero.
     Sweep {
+        /// Start frequency f0 in Hz.
         from_hz: f64,
+        /// End frequency f1 in Hz.
         to_hz: f64,
+        /// Constant peak acceleration amplitude in m/s².
         amplitude_m_s2: f64,
+        /// Frequency law, linear or logarithmic in time.
         law: SweepLaw,
+        /// Sweep duration T in s (default: the whole run); zero after it.
         #[serde(default)]
         duration_s: Option<f64>,
+        /// Raised-cosine fade-in time T_f in s: gain ½(1 − cos(π t/T_f)) for t < T_f (default 0).
         #[serde(default)]
         fade_in_s: f64,
     },
@@ -122,6 +140,7 @@ pub struct ExcitationSpec {
     pub description: String,
     /// Where the numbers come from.
     pub source: Option<String>,
+    /// The excitation itself: its kind and parameters.
     pub kind: Kind,
 }
 

@@ -263,21 +263,47 @@ pub enum Sensor {
     /// Pure delay in s.
     Delay(f64),
     /// 4-pole low-pass at `fc_hz`; Bessel when `bessel`, else Butterworth.
-    LowPass { fc_hz: f64, bessel: bool },
-    /// Two-pole high-pass s²/(s² + 2ζω_c s + ω_c²) at `fc_hz` Hz (ω_c = 2π·fc) with damping ratio
-    /// `zeta` (1: two identical RC stages).
-    HighPass { fc_hz: f64, zeta: f64 },
+    LowPass {
+        /// Corner frequency of the anti-alias/sensor low-pass, Hz.
+        fc_hz: f64,
+        /// Bessel (linear-phase) alignment when true, Butterworth (maximally flat) when false.
+        bessel: bool,
+    },
+    /// Two-pole high-pass s²/(s² + 2ζω_c s + ω_c²) (a charge amplifier's or conditioner's).
+    HighPass {
+        /// Natural frequency f_c of the section, Hz (ω_c = 2π·f_c).
+        fc_hz: f64,
+        /// Damping ratio ζ of the section (1: two identical RC stages at f_c).
+        zeta: f64,
+    },
     /// Base-excited mount resonance (absolute transmissibility) at `f_hz` with damping ratio `zeta`.
-    Mount { f_hz: f64, zeta: f64 },
+    Mount {
+        /// Natural frequency of the sensor on its mount, Hz.
+        f_hz: f64,
+        /// Damping ratio of the mount resonance, dimensionless (fraction of critical).
+        zeta: f64,
+    },
     /// Gain factor (1 = calibrated).
     Gain(f64),
     /// The channel's logger clock against the base's: the lag is `offset_s + drift·t` at `t` s
     /// into the run (drift in s per s).
-    Clock { offset_s: f64, drift: f64 },
+    Clock {
+        /// Constant lag of the channel's clock behind the base's at t = 0, s.
+        offset_s: f64,
+        /// Clock drift, s per s (dimensionless): the lag grows by `drift·t`.
+        drift: f64,
+    },
     /// A force plate (on `f_seat_z` only): its top plate of `m_kg` (uncancelled; negative:
     /// over-cancelled) moves with the seat surface, and the load cells under it resonate at `f_hz`
     /// with damping ratio `zeta`: F_meas = T_mount·(F + m·a_seat).
-    Plate { m_kg: f64, f_hz: f64, zeta: f64 },
+    Plate {
+        /// Uncancelled top-plate mass, kg (negative: over-cancelled tare).
+        m_kg: f64,
+        /// Natural frequency of the load cells under the plate, Hz.
+        f_hz: f64,
+        /// Damping ratio of the load-cell resonance, dimensionless (fraction of critical).
+        zeta: f64,
+    },
 }
 
 /// Body stiffness and damping that change with the run's r.m.s. — linear within a run, softer

@@ -26,15 +26,21 @@ use std::f64::consts::PI;
 pub enum Law {
     /// Stated values: normal and tangential stiffness (N/m) and damping (N·s/m).
     Given {
+        /// Normal (compressive) stiffness of the contact, N/m.
         k_n: f64,
+        /// Tangential (shear) stiffness of the contact, N/m.
         k_t: f64,
+        /// Normal damping coefficient of the contact, N·s/m.
         c_n: f64,
+        /// Tangential damping coefficient of the contact, N·s/m.
         c_t: f64,
     },
     /// A share of the seat cushion: the foam under `area_fraction` of the cushion area in series
     /// with tissue `tissue_thickness` (m) thick.
     Cushion {
+        /// Share of the seat cushion's contact area under this contact, dimensionless (0–1).
         area_fraction: f64,
+        /// Thickness of the soft tissue in series with the foam, m.
         tissue_thickness: f64,
     },
 }

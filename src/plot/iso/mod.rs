@@ -68,7 +68,9 @@ pub struct RunFigure {
     pub name: &'static str,
     /// What it shows, for the report.
     pub caption: String,
+    /// The panels, in reading order (left to right, then down).
     pub charts: Vec<Chart>,
+    /// Panels per row (clamped to 1 ..= the number of panels when drawn).
     pub cols: usize,
 }
 

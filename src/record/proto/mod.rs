@@ -31,20 +31,29 @@ pub const WBV_PROTO: &str = include_str!("../../../proto/wbv.proto");
 /// `wbv.Measured` of `proto/wbv.proto`.
 #[derive(Clone, PartialEq, Message)]
 pub struct Measured {
+    /// Simulation time, s (= the message's log time).
     #[prost(double, optional, tag = "1")]
     pub t: Option<f64>,
+    /// Seat-base (input) vertical acceleration, m/s².
     #[prost(double, optional, tag = "2")]
     pub a_base_z: Option<f64>,
+    /// Absolute vertical acceleration at the occupant–cushion interface, m/s².
     #[prost(double, optional, tag = "3")]
     pub a_seat_z: Option<f64>,
+    /// Absolute vertical head acceleration, m/s².
     #[prost(double, optional, tag = "4")]
     pub a_head_z: Option<f64>,
+    /// Dynamic seat-surface force on the body, N (compression positive, static weight removed).
     #[prost(double, optional, tag = "5")]
     pub f_seat_z: Option<f64>,
+    /// Fore-and-aft acceleration at the occupant–cushion interface, m/s²; planar models only.
     #[prost(double, optional, tag = "6")]
     pub a_seat_x: Option<f64>,
+    /// Absolute fore-and-aft head acceleration, m/s²; planar models only.
     #[prost(double, optional, tag = "7")]
     pub a_head_x: Option<f64>,
+    /// Vertical backrest force on the body, N (up positive, static load removed); models with a
+    /// backrest link only.
     #[prost(double, optional, tag = "8")]
     pub f_back_z: Option<f64>,
 }
@@ -52,16 +61,22 @@ pub struct Measured {
 /// `wbv.MassState` of `proto/wbv.proto`.
 #[derive(Clone, PartialEq, Message)]
 pub struct MassState {
+    /// Displacement relative to the base, m.
     #[prost(double, optional, tag = "1")]
     pub x: Option<f64>,
+    /// Velocity relative to the base, m/s.
     #[prost(double, optional, tag = "2")]
     pub v: Option<f64>,
+    /// Acceleration relative to the base, m/s².
     #[prost(double, optional, tag = "3")]
     pub a: Option<f64>,
+    /// Absolute displacement, m.
     #[prost(double, optional, tag = "4")]
     pub x_abs: Option<f64>,
+    /// Absolute velocity, m/s.
     #[prost(double, optional, tag = "5")]
     pub v_abs: Option<f64>,
+    /// Absolute acceleration, m/s².
     #[prost(double, optional, tag = "6")]
     pub a_abs: Option<f64>,
 }
@@ -69,8 +84,11 @@ pub struct MassState {
 /// `wbv.LinkState` of `proto/wbv.proto`.
 #[derive(Clone, PartialEq, Message)]
 pub struct LinkState {
+    /// Deflection `x_upper − x_lower`, m (extension positive); cushion, suspension and planar
+    /// contact links only.
     #[prost(double, optional, tag = "1")]
     pub deflection: Option<f64>,
+    /// Tension, N (positive pulls the two nodes together).
     #[prost(double, optional, tag = "2")]
     pub force: Option<f64>,
 }

@@ -23,6 +23,7 @@ pub struct ProtoTable {
     root: Vec<(u32, Node)>,
     /// Field paths, in descriptor order.
     pub names: Vec<Vec<String>>,
+    /// One column per entry of `names`, one value per sample read, in the field's SI unit.
     pub columns: Vec<Vec<f64>>,
     /// Columns in the order their fields come in the first message.
     first: Vec<usize>,

@@ -23,22 +23,28 @@ const SIGNAL_TOPICS: [&str; 4] = ["/wbv/measured", "/wbv/state", "/wbv/links", "
 /// One channel of the file.
 #[derive(Debug, Clone, PartialEq)]
 pub struct TopicSummary {
+    /// Topic name, e.g. `/wbv/measured`.
     pub topic: String,
     /// Schema name, e.g. `wbv.State` or `foxglove.SceneUpdate`.
     pub schema: String,
+    /// MCAP message encoding: `protobuf` or `json` for wbv's own topics.
     pub message_encoding: String,
+    /// Messages on the channel, from the statistics record (0 if it lists none).
     pub messages: u64,
 }
 
 /// What [`inspect`] finds in a run without decoding its messages.
 #[derive(Debug, Clone, PartialEq)]
 pub struct RunSummary {
+    /// The file that was read.
     pub path: PathBuf,
     /// Writer library from the MCAP header.
     pub library: String,
+    /// Channels in channel-id order.
     pub topics: Vec<TopicSummary>,
-    /// First and last message log time, ns.
+    /// Log time of the first message, ns.
     pub start_ns: u64,
+    /// Log time of the last message, ns.
     pub end_ns: u64,
     /// Metadata records by name.
     pub metadata: BTreeMap<String, Map>,
@@ -52,9 +58,12 @@ pub struct RecordedRun {
     /// Measured-run channels (`a_base_z`, `a_seat_z`, `a_head_z`, `f_seat_z`) and state channels
     /// named like their plot paths without `/wbv/` (`state.head.a_abs`, `links.k1.force`, `base.a`).
     pub signals: Signals,
+    /// How the run was made (model, excitation, integrator, step, seed, wbv version), from the
+    /// file's metadata.
     pub provenance: Provenance,
     /// Results stored with `attach_results`, by name.
     pub results: BTreeMap<String, serde_json::Value>,
+    /// What [`inspect`] reports for the same file.
     pub summary: RunSummary,
 }
 

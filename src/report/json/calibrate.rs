@@ -27,6 +27,7 @@ impl Goodness {
 /// A fitted parameter.
 #[derive(Debug, Clone, Serialize)]
 pub struct Fitted {
+    /// The parameter path (`--param`), e.g. `links.k4.k`.
     pub param: String,
     /// Fitted value (SI unit of the parameter).
     pub value: f64,
@@ -37,20 +38,28 @@ pub struct Fitted {
 /// One method of `wbv calibrate`.
 #[derive(Debug, Clone, Serialize)]
 pub struct Calibration {
+    /// The fit method: `lm` (Levenberg–Marquardt), `ga` (genetic algorithm) or `surrogate`.
     pub method: &'static str,
+    /// Model evaluations (frequency-response computations) the fit used.
     pub evaluations: usize,
     /// Wall-clock time of the fit, s.
     pub seconds: f64,
+    /// The fitted parameters, in `--param` order.
     pub params: Vec<Fitted>,
+    /// Goodness of the model as given against the target response.
     pub original: Goodness,
+    /// Goodness of the fitted model against the target response.
     pub fitted: Goodness,
 }
 
 /// `wbv calibrate`: one entry per method.
 #[derive(Debug, Clone, Serialize)]
 pub struct Calibrated {
+    /// The model calibrated (catalogue name or file).
     pub model: String,
+    /// The response fitted (`stht`, `seat`, `apms`, `dpmi`, …), as `wbv frf` names it.
     pub response: String,
+    /// One entry per method run, in the order given.
     pub fits: Vec<Calibration>,
 }
 

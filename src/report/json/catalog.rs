@@ -9,11 +9,13 @@ use serde_json::{Value, json};
 /// One entry of `wbv models`.
 #[derive(Debug, Clone, Serialize)]
 pub struct ModelEntry {
+    /// The name `--model` takes.
     pub name: String,
     /// The model's kind ([`crate::model::Kind::as_str`]).
     pub kind: &'static str,
     /// Degrees of freedom (generalized coordinates).
     pub dof: usize,
+    /// What the model is, with its source (paper and configuration).
     pub description: String,
     /// Parameter paths for `--param` (sweeps, sensitivity, calibration).
     pub params: Vec<String>,
@@ -22,6 +24,7 @@ pub struct ModelEntry {
 /// `wbv models`.
 #[derive(Debug, Clone, Serialize)]
 pub struct Models {
+    /// Every built-in model, in catalogue order.
     pub models: Vec<ModelEntry>,
 }
 
@@ -44,8 +47,11 @@ pub fn models(models: &[crate::model::Model]) -> Result<Document> {
 /// One entry of `wbv excitations`.
 #[derive(Debug, Clone, Serialize)]
 pub struct ExcitationEntry {
+    /// The name `--excitation` takes.
     pub name: String,
+    /// What the excitation is (content, band, magnitude).
     pub description: String,
+    /// Where its specification came from: the built-in name, a file path or `command line`.
     pub origin: String,
     /// Steady-state r.m.s., m/s² (`null` for a recording).
     pub rms_m_s2: Option<f64>,
@@ -60,6 +66,7 @@ pub struct ExcitationEntry {
 /// `wbv excitations`.
 #[derive(Debug, Clone, Serialize)]
 pub struct Excitations {
+    /// Every built-in excitation, in catalogue order.
     pub excitations: Vec<ExcitationEntry>,
 }
 
@@ -113,15 +120,22 @@ pub struct FrfResponse {
 /// `wbv frf`.
 #[derive(Debug, Clone, Serialize)]
 pub struct Frf {
+    /// The model whose responses these are.
     pub model: String,
     /// The frequency grid in Hz (only without `--out`).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub freq_hz: Option<Vec<f64>>,
+    /// Lowest frequency of the grid, Hz.
     pub from_hz: f64,
+    /// Highest frequency of the grid, Hz.
     pub to_hz: f64,
+    /// Number of frequencies on the grid.
     pub points: usize,
+    /// Whether the grid is spaced logarithmically (else linearly).
     pub log_spacing: bool,
+    /// Each response’s peak (and its curve without `--out`).
     pub responses: Vec<FrfResponse>,
+    /// The CSV files written (`--out`), empty otherwise.
     pub written: Vec<Written>,
 }
 

@@ -12,8 +12,10 @@ use std::collections::BTreeMap;
 /// Hours that a day never reaches are `null`.
 #[derive(Debug, Clone, Serialize)]
 pub struct Exposure {
+    /// The day’s figures and operations ([`crate::analysis::exposure::Day`]), at the top level.
     #[serde(flatten)]
     pub day: Day,
+    /// The unit of every numeric key, by its dotted path (`a8`: `m/s^2`, `vdv_day`: `m/s^1.75`, …).
     pub units: BTreeMap<String, String>,
 }
 

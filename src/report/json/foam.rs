@@ -12,6 +12,7 @@ pub struct IsoFigures {
     pub total_value_m_s2: Option<f64>,
     /// SEAT, % (ISO 10326-1).
     pub seat_percent: Option<f64>,
+    /// ISO 2631-1 Annex C comfort class of the total value.
     pub comfort: crate::analysis::Comfort,
 }
 
@@ -29,21 +30,28 @@ impl IsoFigures {
 /// The paper's row of a foam thickness (paper 000 Table 4).
 #[derive(Debug, Clone, Serialize)]
 pub struct FoamPaper {
+    /// Frequency of the v-v transmissibility peak, Hz, as the paper gives it.
     pub peak_freq_hz: f64,
+    /// The paper’s v-v transmissibility peak (1).
     pub peak: f64,
+    /// The paper’s SEAT, % (ISO 10326-1).
     pub seat_percent: f64,
+    /// The paper’s vibration total value a_v, m/s² (ISO 2631-1 eq. 10).
     pub total_value_m_s2: f64,
+    /// The paper’s comfort class (ISO 2631-1 Annex C).
     pub comfort: crate::analysis::Comfort,
 }
 
 /// One thickness of `wbv foam`.
 #[derive(Debug, Clone, Serialize)]
 pub struct FoamRow {
+    /// Foam thickness, m.
     pub thickness_m: f64,
     /// Cushion stiffness from the hyperfoam at this thickness, N/m.
     pub k_n_per_m: f64,
     /// Cushion damping, N·s/m.
     pub c_ns_per_m: f64,
+    /// Frequency of the v-v transmissibility peak, Hz (`null` when the response has none in the band).
     pub peak_freq_hz: Option<f64>,
     /// Peak of the v-v transmissibility (1).
     pub peak: Option<f64>,
@@ -56,12 +64,17 @@ pub struct FoamRow {
 /// `wbv foam`.
 #[derive(Debug, Clone, Serialize)]
 pub struct Foam {
+    /// The model whose cushion the foam replaces.
     pub model: String,
+    /// Effective contact area of the foam, m² (an assumption, not in paper 000).
     pub area_m2: f64,
+    /// Loss factor η of the foam (1) at `f_ref_hz` (an assumption, not in paper 000).
     pub loss_factor: f64,
+    /// Frequency at which the cushion’s viscous damping matches the loss factor, Hz: c = η·k/(2π·f_ref).
     pub f_ref_hz: f64,
     /// The time-domain run (`null` with `--no-time-domain`).
     pub time_domain: Option<String>,
+    /// One row per thickness, in the order studied.
     pub points: Vec<FoamRow>,
 }
 

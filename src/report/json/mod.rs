@@ -132,15 +132,19 @@ fn units(pairs: &[(&str, &str)]) -> BTreeMap<String, String> {
 /// A library result plus the files the command wrote beside it (plots).
 #[derive(Debug, Clone, Serialize)]
 pub struct WithFiles<T: Serialize> {
+    /// The command’s own result, its keys at the top level.
     #[serde(flatten)]
     pub result: T,
+    /// The files the command wrote (plots), empty when none.
     pub written: Vec<Written>,
 }
 
 /// A command that only writes files: what it wrote, plus figures of its own.
 #[derive(Debug, Clone, Serialize)]
 pub struct Files {
+    /// The files the command wrote.
     pub written: Vec<Written>,
+    /// The command’s own figures, at the top level beside `written`.
     #[serde(flatten)]
     pub details: BTreeMap<String, Value>,
 }

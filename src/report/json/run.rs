@@ -57,12 +57,17 @@ impl Written {
 /// `wbv simulate` and the simulation part of `wbv run`.
 #[derive(Debug, Clone, Serialize)]
 pub struct Simulated {
+    /// The model simulated (catalogue name or file).
     pub model: String,
     /// The excitation, one line with units.
     pub excitation: String,
+    /// The integrator in words, with its parameters (`newmark (average acceleration, γ=1/2, β=1/4)`).
     pub integrator: String,
+    /// Integration time step, s.
     pub dt_s: f64,
+    /// Simulated duration, s.
     pub duration_s: f64,
+    /// Seed of the excitation’s random generator: the same seed gives the same run, byte for byte.
     pub seed: u64,
     /// Wall-clock time of simulation, recording and analysis, s.
     pub elapsed_s: f64,
@@ -109,36 +114,48 @@ impl Simulated {
 /// One channel (topic) of a recorded run.
 #[derive(Debug, Clone, Serialize)]
 pub struct Topic {
+    /// The MCAP topic (one channel or a state stream).
     pub topic: String,
+    /// Its schema name (a Foxglove or wbv protobuf message, or a JSON schema).
     pub schema: String,
+    /// Message encoding (`protobuf` or `json`).
     pub message_encoding: String,
+    /// Messages on the topic.
     pub messages: u64,
 }
 
 /// One attachment of a recorded run.
 #[derive(Debug, Clone, Serialize)]
 pub struct Attachment {
+    /// Attachment name (the model TOML, the excitation, …).
     pub name: String,
+    /// Its media type.
     pub media_type: String,
+    /// Its size, bytes.
     pub bytes: u64,
 }
 
 /// `wbv inspect`.
 #[derive(Debug, Clone, Serialize)]
 pub struct Inspected {
+    /// The run file inspected.
     pub path: String,
     /// Writer library from the MCAP header.
     pub library: String,
     /// Last minus first message log time, s.
     pub duration_s: f64,
+    /// MCAP log time of the first message, ns.
     pub start_ns: u64,
+    /// MCAP log time of the last message, ns.
     pub end_ns: u64,
+    /// Every topic with its schema and message count.
     pub topics: Vec<Topic>,
     /// The `wbv.run` metadata (model, excitation, integrator, step, seed, command line, …) except
     /// the model TOML, which is an attachment.
     pub provenance: BTreeMap<String, String>,
     /// Names of the stored results (`analysis`, …).
     pub results: Vec<String>,
+    /// The attachments, in file order.
     pub attachments: Vec<Attachment>,
 }
 
@@ -191,17 +208,22 @@ impl Inspected {
 /// One channel of a replay compared with the figures stored at simulation time.
 #[derive(Debug, Clone, Serialize)]
 pub struct ReplayDifference {
+    /// The channel compared (`a_seat_z`, …).
     pub channel: String,
     /// Replayed over stored, minus 1, %.
     pub a_w_percent: Option<f64>,
+    /// Replayed over stored VDV (ISO 2631-1 §6.3.2), minus 1, %.
     pub vdv_percent: Option<f64>,
+    /// Replayed over stored MTVV (ISO 2631-1 §6.3.1), minus 1, %.
     pub mtvv_percent: Option<f64>,
 }
 
 /// `wbv replay`: the re-run analysis and how it compares with the stored one.
 #[derive(Debug, Clone, Serialize)]
 pub struct Replay {
+    /// The run replayed.
     pub run: String,
+    /// The ISO 2631-1 analysis computed again from the recorded time histories.
     pub analysis: crate::analysis::Report,
     /// `equal` (every figure equal), `compared` (a decimated recording: close, not equal) or
     /// `none` (no stored analysis).
@@ -273,15 +295,20 @@ impl Replay {
 #[cfg(feature = "plot")]
 #[derive(Debug, Clone, Serialize)]
 pub struct ReportSummary {
+    /// The HTML report written.
     pub report_html: String,
+    /// Its size, bytes.
     pub bytes: u64,
     /// Vibration total value a_v, m/s².
     pub total_value: f64,
+    /// Comfort class of the total value (ISO 2631-1 Annex C).
     pub comfort: crate::analysis::Comfort,
+    /// Health assessment (ISO 2631-1 clause 7 and Annex B), when the exposure allows one.
     pub health: Option<crate::analysis::health::Health>,
     /// Whether the figures and verdicts assume m/s² for a channel without a declared unit
     /// ([`crate::analysis::Report::unit_assumed`]), and which channels.
     pub unit_assumed: bool,
+    /// The channels whose unit was assumed (m/s²).
     pub unit_assumed_channels: Vec<String>,
     /// The gap section's verdict and named effects, when the report has one.
     pub gap: Option<crate::report::gap::Summary>,
@@ -291,6 +318,7 @@ pub struct ReportSummary {
     /// The working day of `--operation`s (the body of `wbv exposure --json`), when given.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub exposure: Option<super::Exposure>,
+    /// The unit of every numeric key, by its dotted path.
     pub units: BTreeMap<String, String>,
 }
 
@@ -323,11 +351,15 @@ impl ReportSummary {
 /// `wbv run`: the simulation, its health assessment and the report.
 #[derive(Debug, Clone, Serialize)]
 pub struct Run {
+    /// The run directory (MCAP file and its companions).
     pub run_dir: String,
+    /// The simulation’s figures, at the top level.
     #[serde(flatten)]
     pub simulated: Simulated,
     /// Daily exposure assumed for the health assessment, h.
     pub exposure_hours: f64,
+    /// Health assessment of the run at `exposure_hours` (ISO 2631-1 clause 7 and Annex B).
     pub health: Option<crate::analysis::health::Health>,
+    /// The HTML report written.
     pub report_html: String,
 }

@@ -9,12 +9,15 @@ use std::collections::BTreeMap;
 /// One row of `wbv reproduce`.
 #[derive(Debug, Clone, Serialize)]
 pub struct ReproductionRow {
+    /// The paper and place of the value (table, figure or equation).
     pub source: String,
+    /// What the value is (a peak frequency, a SEAT, …).
     pub quantity: String,
     /// The paper's value (`null` when the paper gives none).
     pub paper: Option<f64>,
     /// wbv's value for the stated model.
     pub wbv: Option<f64>,
+    /// Unit of `paper` and `wbv`.
     pub unit: String,
     /// Why it differs, or how it was computed.
     pub note: String,
@@ -25,12 +28,15 @@ pub struct ReproductionRow {
 /// `wbv reproduce`.
 #[derive(Debug, Clone, Serialize)]
 pub struct Reproduction {
+    /// One row per reproduced value.
     pub rows: Vec<ReproductionRow>,
     /// Rows reproduced within the tolerance.
     pub reproduced: usize,
+    /// Rows in the table.
     pub total: usize,
     /// Relative tolerance of a reproduced row, %.
     pub tolerance_percent: f64,
+    /// The files written (the table as CSV and Markdown).
     pub written: Vec<Written>,
 }
 
@@ -72,9 +78,11 @@ fn figure(name: &str, v: f64) -> Value {
 /// One point of `wbv sweep`.
 #[derive(Debug, Clone, Serialize)]
 pub struct SweepPoint {
+    /// Index of the point in the sweep, from 0.
     pub point: usize,
     /// Parameter value by parameter spec (SI units of the parameter).
     pub values: BTreeMap<String, f64>,
+    /// Frequency of the response’s peak, Hz (`null` when it has none in the band).
     pub peak_freq_hz: Option<f64>,
     /// Peak magnitude in the response's unit.
     pub peak_mag: Option<f64>,
@@ -87,12 +95,17 @@ pub struct SweepPoint {
 /// `wbv sweep`.
 #[derive(Debug, Clone, Serialize)]
 pub struct Sweep {
+    /// The model swept.
     pub model: String,
+    /// The response whose peak is tabled (`stht`, `seat`, `apms`, …).
     pub response: String,
     /// Unit of the response magnitude.
     pub response_unit: String,
+    /// The parameter paths swept (`--param`).
     pub params: Vec<String>,
+    /// One row per point, in sweep order.
     pub points: Vec<SweepPoint>,
+    /// The files written (CSV, plots).
     pub written: Vec<Written>,
     /// How the ISO figures were computed, with an excitation.
     #[serde(skip_serializing_if = "Option::is_none")]
@@ -203,12 +216,15 @@ pub fn sweep(
 /// One row of `wbv sensitivity`.
 #[derive(Debug, Clone, Serialize)]
 pub struct SensitivityRow {
+    /// Index of the row, from 0.
     pub point: usize,
+    /// The parameter varied (path as `--param`).
     pub param: String,
     /// Level in % of the model's value.
     pub level_pct: f64,
     /// Parameter value at this level (SI unit of the parameter).
     pub value: f64,
+    /// Frequency of the response’s peak at this level, Hz.
     pub peak_freq_hz: Option<f64>,
     /// Peak magnitude in the response's unit.
     pub peak_mag: Option<f64>,
@@ -217,6 +233,7 @@ pub struct SensitivityRow {
 /// One influence weight of `wbv sensitivity` (paper 000 eq. 10).
 #[derive(Debug, Clone, Serialize)]
 pub struct InfluenceWeight {
+    /// The parameter (path as `--param`).
     pub param: String,
     /// Range of the peak frequency over the levels, % of the nominal.
     pub peak_freq_range_pct: Option<f64>,
@@ -229,11 +246,15 @@ pub struct InfluenceWeight {
 /// `wbv sensitivity`.
 #[derive(Debug, Clone, Serialize)]
 pub struct Sensitivity {
+    /// The model studied.
     pub model: String,
+    /// The response whose peak is studied (`stht`, `seat`, `apms`, …).
     pub response: String,
+    /// One row per parameter and level.
     pub rows: Vec<SensitivityRow>,
     /// Empty for a shard (merge the shards first).
     pub influence: Vec<InfluenceWeight>,
+    /// The files written (CSV, plots).
     pub written: Vec<Written>,
 }
 

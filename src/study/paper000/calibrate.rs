@@ -92,8 +92,9 @@ pub struct Calibration {
     pub model: Model,
     /// `(path, start, fitted)` per parameter.
     pub values: Vec<(String, f64, f64)>,
-    /// Sum of squared relative errors before and after.
+    /// Sum of squared relative errors of the targets before calibration (dimensionless).
     pub se_before: f64,
+    /// Sum of squared relative errors of the targets after calibration (dimensionless).
     pub se_after: f64,
     /// Model evaluations used.
     pub evaluations: usize,

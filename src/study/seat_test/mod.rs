@@ -103,7 +103,9 @@ impl Limits {
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
 #[serde(rename_all = "lowercase")]
 pub enum Verdict {
+    /// Every limit given is met (SEAT and damping-test transmissibility at or below their limits).
     Pass,
+    /// At least one limit given is exceeded.
     Fail,
 }
 
@@ -205,6 +207,7 @@ pub struct OccupantTest {
     pub psd_within_tolerance: Option<bool>,
     /// End-stop contacts over the runs used.
     pub end_stop_contacts: Option<usize>,
+    /// The averaged platform and seat PSDs, (m/s²)²/Hz, for the report's plots (not serialised).
     #[serde(skip)]
     pub spectra: Spectra,
 }
@@ -255,17 +258,27 @@ pub struct SeatTest {
     pub occupants: Vec<OccupantTest>,
     /// The test person with the highest SEAT; the keys below are theirs.
     pub governing_occupant: Option<Occupant>,
+    /// The governing test person's runs, in order.
     pub runs: Vec<Run>,
+    /// The governing test person's mean Wk-weighted platform r.m.s. a_wP, m/s² (ISO 10326-1 10.2.1).
     pub a_wp: f64,
+    /// The governing test person's mean Wk-weighted seat r.m.s. a_wS, m/s² (ISO 10326-1 10.2.1).
     pub a_ws: f64,
+    /// The governing SEAT value a_wS/a_wP, dimensionless (ISO 10326-1 10.2.2).
     pub seat: f64,
+    /// SEAT · a*_wP: the governing seat value at the class's intended input, m/s²
+    /// (ISO 10326-1 10.2.3).
     pub a_ws_corrected: f64,
+    /// Whether every test person's averaged platform PSD is within the class's ±10 %-of-peak
+    /// tolerance (`null` when any test person's PSD was not checked).
     pub psd_within_tolerance: Option<bool>,
     /// End-stop contacts over every test person's runs used.
     pub end_stop_contacts: Option<usize>,
     /// The damping test (`null` when not run; see `damping_skipped`).
     pub damping: Option<DampingTest>,
+    /// Why the damping test (ISO 10326-1 10.3) was not run, when it was not.
     pub damping_skipped: Option<String>,
+    /// The application standard's acceptance values the verdict is judged against.
     pub limits: Limits,
     /// `pass`, `fail`, or `null` without limits.
     pub verdict: Option<Verdict>,
@@ -275,6 +288,7 @@ pub struct SeatTest {
     pub notes: Vec<String>,
     /// The numbers this test rests on that are not verified against the standards' text.
     pub unverified: Vec<String>,
+    /// Unit of each numeric key of the document (`a_wp` → `m/s^2`, `seat` → `1`, …).
     pub units: BTreeMap<String, String>,
 }
 
