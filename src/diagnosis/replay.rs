@@ -200,3 +200,59 @@ pub fn responses(
     }
     Ok(out)
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::diagnosis::gapmap::Weighted;
+
+    /// The reference model's response to a random base, 120 s at 256 Hz, and its spectra.
+    fn measured() -> (crate::model::Model, RunSpectra) {
+        use rand::SeedableRng;
+        use rand_distr::Distribution;
+        let model = crate::model::catalog::resolve("reference").unwrap();
+        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(11);
+        let base: Vec<f64> = (0..256 * 120)
+            .map(|_| rand_distr::StandardNormal.sample(&mut rng))
+            .collect();
+        let sim = replay(model.system(), &base, 256.0, "run.csv").unwrap();
+        let run = measure::estimate(&sim, &[]).unwrap();
+        (model, run)
+    }
+
+    #[test]
+    fn a_linear_structure_replayed_is_its_own_measurement() {
+        let (model, run) = measured();
+        let v = Variant::plain(model.system().clone());
+        // The same realisation through the same estimator: H1 of every path and the seat PSD
+        // are the measured ones (the base floor's share of a noise-free run is ~1).
+        let zero: Vec<Vec<num_complex::Complex64>> = run
+            .paths
+            .iter()
+            .map(|_| vec![Default::default(); run.freq_hz.len()])
+            .collect();
+        let h = responses(&v, &run, &zero).unwrap();
+        for (pe, hp) in run.paths.iter().zip(&h) {
+            for (a, b) in pe.h1.iter().zip(hp) {
+                assert!((a - b).norm() <= 1e-3 * a.norm().max(1e-9), "{:?}", pe.path);
+            }
+        }
+        let psd = seat_psd(&v, &run).unwrap();
+        let w = Weighted::replayed(&run, &psd, ReplayCalibration::NONE);
+        assert!(
+            w.replayed && w.aw_gap_percent.abs() < 0.05,
+            "{}",
+            w.aw_gap_percent
+        );
+        // Against the exact linear figure the replay errs by the estimate alone: tenths of a
+        // percent, divided out by the calibration.
+        let exact = Weighted::of(
+            &run,
+            &crate::diagnosis::predict::seat_response(&v, &run, None).unwrap(),
+        );
+        let cal = ReplayCalibration::of(&v, &run, exact.aw_seat_model).unwrap();
+        assert!((cal.aw_ratio - 1.0).abs() < 0.01, "{cal:?}");
+        let calibrated = Weighted::replayed(&run, &psd, cal);
+        assert!((calibrated.aw_seat_model / exact.aw_seat_model - 1.0).abs() < 1e-9);
+    }
+}
