@@ -1,6 +1,8 @@
 //! Speed of one gap diagnosis (issue 15: ≤ 10 s): three 120 s runs at 500 Hz with the seat force,
 //! a viscoelastic cushion planted (so candidates, statistical linearisation and the forward
-//! selection all run), diagnosed against the nominal `reference` model.
+//! selection all run), diagnosed against the nominal `reference` model; and the same with an
+//! exponentially stiffening cushion, so the named effect's law is refined by replays and its ISO
+//! figures come from a replay of the check run (issue 55, point 3).
 
 use criterion::{Criterion, criterion_group, criterion_main};
 use std::time::Duration;
@@ -9,12 +11,13 @@ use wbv::gap_bench::case::{CaseOptions, make_case_with};
 use wbv::gap_bench::forms::Form;
 use wbv::model::catalog;
 
-fn gap(c: &mut Criterion) {
-    let case = make_case_with(
+/// Three 120 s runs at 500 Hz with the seat force and `form` planted at `strength`.
+fn case(form: Form, strength: f64) -> wbv::gap_bench::case::Case {
+    make_case_with(
         1,
         1,
         &CaseOptions {
-            effects: Some(vec![(Form::Sls, 0.6)]),
+            effects: Some(vec![(form, strength)]),
             spectrum: Some("white"),
             fs_hz: Some(500.0),
             duration_s: Some(120.0),
@@ -23,13 +26,26 @@ fn gap(c: &mut Criterion) {
             ..CaseOptions::default()
         },
     )
-    .expect("case");
+    .expect("case")
+}
+
+fn gap(c: &mut Criterion) {
     let model = catalog::resolve("reference").expect("reference model");
     let mut g = c.benchmark_group("gap");
     g.sample_size(10).measurement_time(Duration::from_secs(60));
-    g.bench_function("diagnose 3 × 120 s at 500 Hz", |b| {
-        b.iter(|| diagnose(&model, &case.train, &case.check).expect("diagnosis"))
-    });
+    for (name, form, strength) in [
+        ("diagnose 3 × 120 s at 500 Hz", Form::Sls, 0.6),
+        (
+            "diagnose 3 × 120 s at 500 Hz, stiffening cushion (replays)",
+            Form::Exponential,
+            0.8,
+        ),
+    ] {
+        let case = case(form, strength);
+        g.bench_function(name, |b| {
+            b.iter(|| diagnose(&model, &case.train, &case.check).expect("diagnosis"))
+        });
+    }
     g.finish();
 }
 

@@ -18,11 +18,31 @@ pub struct Args {
     /// Print only the summary as a Markdown table (docs/gap-validation.md's).
     #[arg(long, conflicts_with = "json")]
     markdown: bool,
+    /// Run only these cases of the bench (comma-separated indices, each below --cases): the same
+    /// cases as in the full bench, to re-run those a row or a note names. The summary then covers
+    /// these cases only.
+    #[arg(long, value_delimiter = ',')]
+    only: Vec<usize>,
 }
 
 pub fn run(args: Args) -> wbv::Result<()> {
+    if let Some(i) = args.only.iter().find(|&&i| i >= args.cases) {
+        return Err(wbv::Error::parameter(
+            "--only",
+            format!(
+                "case {i} is not in a bench of --cases {}; expected indices 0 to {}",
+                args.cases,
+                args.cases.saturating_sub(1)
+            ),
+        ));
+    }
+    let indices: Vec<usize> = if args.only.is_empty() {
+        (0..args.cases).collect()
+    } else {
+        args.only.clone()
+    };
     let t0 = std::time::Instant::now();
-    let scores = (0..args.cases)
+    let scores = indices
         .into_par_iter()
         .map(|i| run_case(i, args.seed))
         .collect::<wbv::Result<Vec<_>>>()?;

@@ -149,6 +149,125 @@ pub fn trend(runs: &[(&Signals, &[Range<usize>])]) -> Result<Option<ClockTrend>>
     }))
 }
 
+/// The lag of the occupant's channels behind the base's, read from the runs without a model
+/// (docs/gap.md §7, timing rule). Any passive structure with a static stiffness moves with the base
+/// at low frequency: the absolute response to base motion is T(s) = 1 − s²·K⁻¹M·1 + s³·… , so its
+/// phase has no term linear in ω (the first is ω³), whatever the masses, springs, dampers and
+/// viscoelastic or fractional laws; a lag τ between the loggers adds −ωτ. The lag is the linear
+/// coefficient of the phase of base→seat (and base→head) fitted as −ωτ + bω³ below
+/// [`LAG_BAND`] of the path's first resonance. A low-pass filter's group delay is such a lag too;
+/// a material's frequency-dependent phase is not.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct LowFrequencyLag {
+    /// Lag of the occupant's channels behind the base, s (positive: late), the runs' inverse-variance mean.
+    pub lag_s: f64,
+    /// Its 1-σ error, s: each run's least-squares error inflated by its fit's reduced χ² when
+    /// above 1, and the mean's by the runs' scatter about it when above their errors.
+    pub sigma_s: f64,
+    /// How many runs it was taken from.
+    pub runs: usize,
+}
+
+impl LowFrequencyLag {
+    /// Whether the runs show a lag: |τ| > [`SIGNIFICANT_SIGMA`] σ and ≥ [`MIN_LAG_S`].
+    pub fn significant(&self) -> bool {
+        self.lag_s.abs() > SIGNIFICANT_SIGMA * self.sigma_s && self.lag_s.abs() >= MIN_LAG_S
+    }
+
+    /// Whether a fitted lag `fitted_s` (a timing candidate's mean lag, s) is the one the runs
+    /// show: same sign and within a factor of two, or within 2σ.
+    pub fn supports(&self, fitted_s: f64) -> bool {
+        self.significant()
+            && (fitted_s * self.lag_s > 0.0 && (0.5..=2.0).contains(&(fitted_s / self.lag_s))
+                || (fitted_s - self.lag_s).abs() <= 2.0 * self.sigma_s)
+    }
+}
+
+/// Least lag read as the loggers': a quarter of a millisecond, below a sample at the rates a rig
+/// records at (≤ 2 kHz), is an estimate's noise rather than a trigger offset.
+pub const MIN_LAG_S: f64 = 2.5e-4;
+
+/// The low-frequency band the lag is read on, as a share of the path's first resonance (the
+/// largest |H| from 1.5 to 12 Hz): the ω³ term of T then dominates the higher ones (at 0.4 of a
+/// resonance of damping 0.3 the ω⁵ term is a tenth of it).
+pub const LAG_BAND: f64 = 0.4;
+
+/// The lag of one run's path `p` from the phase of its H1 on coherent bins below [`LAG_BAND`] of
+/// its first resonance: weighted least squares of φ = −ωτ + bω³ (weights from H1's phase error,
+/// Bendat & Piersol §9.2.4), σ inflated by the reduced χ² when above 1. `None` with fewer than
+/// three such bins.
+fn path_lag(run: &measure::RunSpectra, p: Path) -> Option<(f64, f64)> {
+    let e = run.path(p)?;
+    let peak = super::gapmap::peak_hz(run, p)?;
+    let bins: Vec<(f64, f64, f64)> = (run.freq_hz.iter().enumerate())
+        .filter(|&(i, &f)| f <= LAG_BAND * peak && e.coherence[i] >= measure::MIN_COHERENCE)
+        .map(|(i, &f)| {
+            let s = h1_sigma(e.coherence[i], run.segments);
+            (2.0 * PI * f, e.h1[i].arg(), 1.0 / (s * s))
+        })
+        .collect();
+    if bins.len() < 3 {
+        return None;
+    }
+    // Normal equations of φ = a·ω + b·ω³ (a = −τ).
+    let (mut s11, mut s13, mut s33, mut y1, mut y3) = (0.0, 0.0, 0.0, 0.0, 0.0);
+    for &(w, ph, wt) in &bins {
+        let (x1, x3) = (w, w * w * w);
+        s11 += wt * x1 * x1;
+        s13 += wt * x1 * x3;
+        s33 += wt * x3 * x3;
+        y1 += wt * x1 * ph;
+        y3 += wt * x3 * ph;
+    }
+    let det = s11 * s33 - s13 * s13;
+    if det <= 0.0 {
+        return None;
+    }
+    let a = (y1 * s33 - y3 * s13) / det;
+    let b = (s11 * y3 - s13 * y1) / det;
+    let chi2: f64 = bins
+        .iter()
+        .map(|&(w, ph, wt)| wt * (ph - a * w - b * w * w * w).powi(2))
+        .sum();
+    let nu = (bins.len() - 2).max(1) as f64;
+    let var = s33 / det * (chi2 / nu).max(1.0);
+    Some((-a, var.sqrt()))
+}
+
+/// The lag of the occupant's channels behind the base over `runs` ([`LowFrequencyLag`]): each
+/// run's base→seat and base→head estimates (the better path's error kept, as both share the base
+/// channel's noise), combined by inverse variance; `None` when no run has three coherent bins in
+/// the band.
+pub fn low_frequency_lag(runs: &[&measure::RunSpectra]) -> Option<LowFrequencyLag> {
+    let per_run: Vec<(f64, f64)> = runs
+        .iter()
+        .filter_map(|r| {
+            let (mut n, mut d, mut best) = (0.0, 0.0, f64::INFINITY);
+            for p in PATHS {
+                if let Some((t, s)) = path_lag(r, p) {
+                    n += t / (s * s);
+                    d += 1.0 / (s * s);
+                    best = best.min(s);
+                }
+            }
+            (d > 0.0).then(|| (n / d, best))
+        })
+        .collect();
+    if per_run.is_empty() {
+        return None;
+    }
+    let w: f64 = per_run.iter().map(|(_, s)| 1.0 / (s * s)).sum();
+    let lag_s = per_run.iter().map(|(t, s)| t / (s * s)).sum::<f64>() / w;
+    // Between runs: a scatter beyond the runs' own errors widens the mean's error (Birge ratio).
+    let chi2: f64 = per_run.iter().map(|(t, s)| ((t - lag_s) / s).powi(2)).sum();
+    let birge = (chi2 / (per_run.len() - 1).max(1) as f64).max(1.0);
+    Some(LowFrequencyLag {
+        lag_s,
+        sigma_s: (birge / w).sqrt(),
+        runs: per_run.len(),
+    })
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -165,5 +284,93 @@ mod tests {
         // Within the noise, or a sub-ppm reading however sharp.
         assert!(!t(7.0, 2.0).significant());
         assert!(!t(0.5, 0.01).significant());
+    }
+
+    use crate::diagnosis::measure::{PathEstimate, RunSpectra};
+    use num_complex::Complex64;
+
+    /// A run whose base→seat H1 is `h` on 0.25 Hz bins from 0.5 to 35 Hz, coherence 0.999 over
+    /// 59 segments (a 120 s run).
+    fn run_with(h: impl Fn(f64) -> Complex64) -> RunSpectra {
+        let freq_hz: Vec<f64> = (2..=140).map(|i| 0.25 * i as f64).collect();
+        RunSpectra {
+            source: "closed form".into(),
+            fs: 500.0,
+            df_hz: 0.25,
+            duration_s: 120.0,
+            segments: 59,
+            base_psd: (Vec::new(), Vec::new()),
+            seat_psd: vec![1.0; freq_hz.len()],
+            head_psd: None,
+            base_rms: 1.0,
+            offset_notes: Vec::new(),
+            excluded: Vec::new(),
+            base_floor_psd: 0.0,
+            base_motion: Vec::new(),
+            base_fluctuation: Vec::new().into(),
+            paths: vec![PathEstimate {
+                path: Path::BaseSeat,
+                h1: freq_hz.iter().map(|&f| h(f)).collect(),
+                coherence: vec![0.999; freq_hz.len()],
+                quadrature: Vec::new(),
+            }],
+            freq_hz,
+        }
+    }
+
+    /// Absolute transmissibility of a mass on a spring k and dashpot c to its base, with a
+    /// Maxwell arm (k2 in series with c2) beside them: (k + cs + G)/(ms² + k + cs + G),
+    /// G = k2·c2·s/(k2 + c2·s) relaxing at 8 Hz, the standard linear solid (a viscoelastic foam),
+    /// m = 1 kg.
+    fn foam(f: f64, fn_hz: f64, zeta: f64, arm: f64) -> Complex64 {
+        let s = Complex64::new(0.0, 2.0 * PI * f);
+        let k = (2.0 * PI * fn_hz).powi(2);
+        let c = 2.0 * zeta * (2.0 * PI * fn_hz);
+        let (k2, c2) = (arm * k, arm * k / (2.0 * PI * 8.0));
+        let g = if arm > 0.0 {
+            k2 * c2 * s / (k2 + c2 * s)
+        } else {
+            Complex64::new(0.0, 0.0)
+        };
+        let n = k + c * s + g;
+        n / (s * s + n)
+    }
+
+    #[test]
+    fn a_lag_is_read_from_the_low_frequency_phase_whatever_the_structure() {
+        for (fn_hz, zeta, arm) in [(4.0, 0.3, 0.0), (4.5, 0.2, 0.5), (5.0, 0.45, 1.0)] {
+            for tau in [0.0, 0.003, -0.004, 0.008] {
+                let r = run_with(|f| {
+                    foam(f, fn_hz, zeta, arm) * Complex64::from_polar(1.0, -2.0 * PI * f * tau)
+                });
+                let l = low_frequency_lag(&[&r]).expect("coherent low-frequency bins");
+                // The ω⁵ term a heavily damped foam leaves reads as up to half a millisecond.
+                assert!(
+                    (l.lag_s - tau).abs() < 6e-4,
+                    "{fn_hz} Hz, ζ {zeta}, arm {arm}: {} s for {tau} s",
+                    l.lag_s
+                );
+                // A foam's phase alone is no lag; 3 ms and more is one at this coherence.
+                assert_eq!(l.significant(), tau != 0.0, "{l:?} for {tau}");
+                assert!(tau == 0.0 || l.supports(tau) && !l.supports(-tau));
+            }
+        }
+    }
+
+    #[test]
+    fn runs_that_disagree_widen_the_lag_error() {
+        let at = |tau: f64| {
+            run_with(move |f| {
+                foam(f, 4.0, 0.3, 0.0) * Complex64::from_polar(1.0, -2.0 * PI * f * tau)
+            })
+        };
+        let (a, b) = (at(0.004), at(-0.004));
+        let one = low_frequency_lag(&[&a]).unwrap();
+        let both = low_frequency_lag(&[&a, &b]).unwrap();
+        assert!(
+            both.lag_s.abs() < 5e-4 && both.sigma_s > 5.0 * one.sigma_s,
+            "{both:?}"
+        );
+        assert!(!both.significant());
     }
 }

@@ -348,6 +348,7 @@ mod tests {
             excluded: Vec::new(),
             base_floor_psd: 0.0,
             base_motion: Vec::new(),
+            base_fluctuation: Vec::new().into(),
             paths: coh
                 .iter()
                 .map(|&(path, g, deg)| PathEstimate {

@@ -7,13 +7,15 @@
 //! evidence stage to score ([`super::score::run_residuals`], [`super::evidence::stage`]).
 
 use super::acquisition::OffBase;
+use super::candidate::Retiming;
 use super::candidate::{BASE_BOUND, Candidate, Param, Prior, base_params, prior_sigma, scaled};
-use super::clock::ClockTrend;
+use super::clock::{ClockTrend, LowFrequencyLag};
 use super::evidence;
 use super::gapmap::Weighted;
 use super::measure::RunSpectra;
 use super::outcome::{Estimate, IsoSigma, Stage};
 use super::predict::{self, Variant};
+use super::replay::ReplayCalibration;
 use super::score;
 use crate::error::Result;
 use crate::model::{Model, Quantity};
@@ -46,6 +48,11 @@ pub(super) struct Base<'a> {
     /// The drift of the lag measured on the runs' halves, when significant: a Gaussian prior on
     /// the drift rate of a candidate whose definition takes it ([`drift_prior`]).
     clock: Option<ClockTrend>,
+    /// The lag of the occupant's channels read from the runs' low-frequency phase, without a
+    /// model ([`super::clock::low_frequency_lag`]): the evidence a logger offset must have.
+    lag: Option<LowFrequencyLag>,
+    /// The check run's replay error, divided out of a nonlinear model's replayed figures.
+    replay_calibration: ReplayCalibration,
 }
 
 impl<'a> Base<'a> {
@@ -55,7 +62,29 @@ impl<'a> Base<'a> {
             params: base_params(model),
             off_base,
             clock: None,
+            lag: None,
+            replay_calibration: ReplayCalibration::NONE,
         }
+    }
+
+    /// The check run's replay error ([`ReplayCalibration`]).
+    pub(super) fn replay_calibration(&self) -> ReplayCalibration {
+        self.replay_calibration
+    }
+
+    /// The same base with the check run's replay error measured on a linear model
+    /// ([`ReplayCalibration`]).
+    pub(super) fn with_replay_calibration(self, replay_calibration: ReplayCalibration) -> Self {
+        Base {
+            replay_calibration,
+            ..self
+        }
+    }
+
+    /// The same base with the runs' model-free lag, the evidence a timing candidate is checked
+    /// against ([`contradicts`]).
+    pub(super) fn with_lag(self, lag: Option<LowFrequencyLag>) -> Self {
+        Base { lag, ..self }
     }
 
     /// The same base with the runs' clock trend as a prior on a drift rate, when it is
@@ -79,7 +108,12 @@ fn drift_prior(trend: &ClockTrend, drift_ppm: f64) -> f64 {
 }
 
 /// Whether the fitted parameter vector `u` (base parameters, then each candidate's) contradicts
-/// one of the stack `cands`' effects (its definition's `contradicted_by`).
+/// one of the stack `cands`' effects (its definition's `contradicted_by`), or times the loggers
+/// without the runs showing it (the timing rule, docs/gap.md §7): a logger offset is kept only
+/// where the lag the runs show without a model ([`LowFrequencyLag::supports`]) is the fitted
+/// one, a drift only where the runs' halves show it ([`ClockTrend::significant`]). A material's
+/// or a filter's frequency-dependent phase can buy a timing candidate's fit; it cannot make the
+/// low-frequency phase linear in ω or the halves' lag differ.
 pub(super) fn contradicts(base: &Base, cands: &[Candidate], u: &[f64]) -> bool {
     let mut at = base.params.len();
     for c in cands {
@@ -87,6 +121,14 @@ pub(super) fn contradicts(base: &Base, cands: &[Candidate], u: &[f64]) -> bool {
         let values: Vec<f64> = ps.iter().zip(&u[at..]).map(|(p, u)| p.value(*u)).collect();
         at += ps.len();
         if c.contradicted_by.is_some_and(|wrong| wrong(&values)) {
+            return true;
+        }
+        let unsupported = match c.retiming {
+            Some(Retiming::Offset) => !base.lag.is_some_and(|l| l.supports(values[0])),
+            Some(Retiming::Drift) => base.clock.is_none(),
+            None => false,
+        };
+        if unsupported {
             return true;
         }
     }
@@ -148,13 +190,7 @@ pub(super) fn fit_candidate(
         .map(|(_, _, q)| prior_sigma(*q))
         .collect();
     let eff: Vec<Param> = effect_params(cands).concat();
-    // Geometric mean of the training magnitudes: a magnitude schedule's reference.
-    let rms_ref = (train
-        .iter()
-        .map(|r| r.base_rms.max(1e-12).ln())
-        .sum::<f64>()
-        / train.len().max(1) as f64)
-        .exp();
+    let rms_ref = reference_rms(train);
     // Where a drift rate sits in `u`, when the runs' halves measured one: the first candidate of
     // the stack whose definition takes the clock trend as its prior.
     let drift_at: Option<(usize, &Param, &ClockTrend)> = base.clock.as_ref().and_then(|t| {
@@ -210,7 +246,7 @@ pub(super) fn fit_candidate(
     }
     let mut fit: Option<fit::Fit> = None;
     for starts in &choices {
-        let ft = multistart(&f, starts, &lo, &hi, &pinned)?;
+        let ft = multistart(&f, starts, &lo, &hi, &pinned, FIT_ITERATIONS)?;
         if fit.as_ref().is_none_or(|b| ft.cost < b.cost) {
             fit = Some(ft);
         }
@@ -224,6 +260,57 @@ pub(super) fn fit_candidate(
     })
 }
 
+/// The geometric mean of the training runs' base r.m.s. (m/s²): a magnitude schedule's reference.
+pub(super) fn reference_rms(train: &[RunSpectra]) -> f64 {
+    (train
+        .iter()
+        .map(|r| r.base_rms.max(1e-12).ln())
+        .sum::<f64>()
+        / train.len().max(1) as f64)
+        .exp()
+}
+
+/// Iterations of the replay refinement ([`refine_by_replay`]): each evaluates one time-domain
+/// replay per training run and parameter, about 0.1 s each at 120 s and 500 Hz.
+pub(super) const REFINE_ITERATIONS: usize = 4;
+
+/// The effect parameters of the fit `u` of `cands` on `train` refined so that the model's
+/// replayed best linear approximation ([`super::replay::responses`]) matches the measured H1,
+/// the base parameters held: the law was fitted through its statistical linearisation
+/// ([`predict::predict`]), which matches the response's second moments for a Gaussian input,
+/// not the H1 a run measures of a nonlinear structure, so the law's strength comes out biased
+/// (docs/gap.md §6.2). Levenberg–Marquardt from the linearised fit's values, at most
+/// [`REFINE_ITERATIONS`] iterations; a structural choice stays pinned.
+pub(super) fn refine_by_replay(
+    base: &Base,
+    cands: &[Candidate],
+    u: &[f64],
+    train: &[RunSpectra],
+) -> Result<Vec<f64>> {
+    let nb = base.params.len();
+    let rms_ref = reference_rms(train);
+    let (lo, hi) = bounds(base, cands);
+    let v0 = build(base, cands, u, rms_ref)?;
+    // The paths a replay does not yield (a backrest force) keep the linearised prediction.
+    let fallback: Vec<Vec<Vec<num_complex::Complex64>>> = train
+        .iter()
+        .map(|run| Ok(predict::predict(&v0, run)?.as_estimated))
+        .collect::<Result<_>>()?;
+    let f = |u: &[f64]| -> Result<Vec<f64>> {
+        let v = build(base, cands, u, rms_ref)?;
+        let mut r = Vec::new();
+        for (run, fb) in train.iter().zip(&fallback) {
+            score::run_residuals(run, &super::replay::responses(&v, run, fb)?, &mut r);
+        }
+        Ok(r)
+    };
+    let eff = effect_params(cands).concat();
+    let pinned: Vec<usize> = (0..nb)
+        .chain((nb..u.len()).filter(|&i| eff[i - nb].discrete))
+        .collect();
+    Ok(multistart(&f, &[u.to_vec()], &lo, &hi, &pinned, REFINE_ITERATIONS)?.u)
+}
+
 /// Levenberg–Marquardt from the best of `starts` (each scouted briefly when there are several,
 /// then the best carried to convergence), with the parameters at `pinned` held at the starts'
 /// values: they are left out of the solved vector, so the covariance is the free parameters' and
@@ -234,6 +321,7 @@ fn multistart<F>(
     lo: &[f64],
     hi: &[f64],
     pinned: &[usize],
+    max_iter: usize,
 ) -> Result<fit::Fit>
 where
     F: Fn(&[f64]) -> Result<Vec<f64>> + Sync,
@@ -252,7 +340,7 @@ where
     let (lo, hi) = (take(lo), take(hi));
     let starts: Vec<Vec<f64>> = starts.iter().map(|s| take(s)).collect();
     let ft = if starts.len() == 1 {
-        fit::levenberg_marquardt(&g, &starts[0], &lo, &hi, &settings(FIT_ITERATIONS))?
+        fit::levenberg_marquardt(&g, &starts[0], &lo, &hi, &settings(max_iter))?
     } else {
         // Scout every start briefly, then carry the best one to convergence.
         let scouts: Vec<fit::Fit> = starts
@@ -266,7 +354,7 @@ where
             }
         }
         let scout = best.expect("at least one start");
-        fit::levenberg_marquardt(&g, &scout.u, &lo, &hi, &settings(FIT_ITERATIONS))?
+        fit::levenberg_marquardt(&g, &scout.u, &lo, &hi, &settings(max_iter))?
     };
     let p = full.len();
     let mut sigma_u = vec![0.0; p];
@@ -485,6 +573,13 @@ pub(super) fn fitted_stage(
     let mut st = stage(&ft.variant, check)?;
     if st.chi2_red <= super::thresholds::EXPLAINED_CHI2 {
         st.iso_sigma = iso_sigma(base, cands, ft, check, &st.weighted)?;
+    }
+    // An amplitude-dependent effect's a_w and SEAT are the simulator's: the check run's measured
+    // base replayed through the fitted nonlinear model, whose seat PSD holds the distortion power
+    // the equivalent linear system lacks. The standard errors stay the linear prediction's.
+    if cands.iter().any(|c| c.amplitude_dependent()) {
+        let psd = super::replay::seat_psd(&ft.variant, check)?;
+        st.weighted = Weighted::replayed(check, &psd, base.replay_calibration);
     }
     Ok(st)
 }

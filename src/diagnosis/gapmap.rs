@@ -137,6 +137,10 @@ pub struct Weighted {
     /// Bands contributing most to the a_w² gap: (band Hz, share of |Δa_w²| in %).
     #[serde(deserialize_with = "super::json::f64_pairs")]
     pub driving_bands: Vec<(f64, f64)>,
+    /// Whether the model's figures come from a time-domain replay of the run's measured base
+    /// through the nonlinear model ([`Weighted::replayed`]) rather than from its linear response.
+    #[serde(default)]
+    pub replayed: bool,
 }
 
 impl Weighted {
@@ -152,10 +156,38 @@ impl Weighted {
     /// prediction carries the base floor's bias b of H1 ([`super::input_noise`]); the seat moves
     /// with the base's motion alone, |H|²·G_uu = |H·b|²·G_xx / b.
     pub fn of(run: &RunSpectra, bs: &[Complex64]) -> Weighted {
-        let gb = run.base_psd_on_bins();
         let wk = Stationary::new(Weighting::Wk, run.freq_hz.iter().map(|&f| (f, run.df_hz)));
+        let gb = run.base_psd_on_bins();
+        let predicted: Vec<f64> = wk
+            .response_terms(bs.iter().copied(), gb.iter().copied(), &run.base_motion)
+            .collect();
+        Self::of_terms(run, &wk, predicted, false)
+    }
+
+    /// The figures of `run` with the model's seat PSD `seat_psd` ((m/s²)²/Hz on the run's bins)
+    /// from a time-domain replay of a nonlinear model ([`crate::diagnosis::replay::seat_psd`]),
+    /// weighted as the measured PSD is, the replay's own error on the run divided out
+    /// (`calibration`, [`crate::diagnosis::replay::ReplayCalibration`]).
+    pub fn replayed(
+        run: &RunSpectra,
+        seat_psd: &[f64],
+        calibration: crate::diagnosis::replay::ReplayCalibration,
+    ) -> Weighted {
+        let wk = Stationary::new(Weighting::Wk, run.freq_hz.iter().map(|&f| (f, run.df_hz)));
+        let power = calibration.aw_ratio * calibration.aw_ratio;
+        let predicted: Vec<f64> = wk.psd_terms(seat_psd.iter().map(|g| g * power)).collect();
+        Self::of_terms(run, &wk, predicted, true)
+    }
+
+    /// The figures from the model's weighted seat terms `predicted` on `run`'s bins.
+    fn of_terms(
+        run: &RunSpectra,
+        wk: &Stationary,
+        predicted: Vec<f64>,
+        replayed: bool,
+    ) -> Weighted {
+        let gb = run.base_psd_on_bins();
         let measured = wk.psd_terms(run.seat_psd.iter().copied());
-        let predicted = wk.response_terms(bs.iter().copied(), gb.iter().copied(), &run.base_motion);
         let mut bands = vec![0.0; (BAND_N.1 - BAND_N.0 + 1) as usize];
         let (mut meas, mut model) = (Vec::new(), Vec::new());
         for ((dm, dp), &f) in measured.zip(predicted).zip(&run.freq_hz) {
@@ -184,6 +216,7 @@ impl Weighted {
             seat_meas: seat_percent(am, ab).unwrap_or(f64::NAN),
             seat_model: seat_percent(ap, ab).unwrap_or(f64::NAN),
             driving_bands: drive,
+            replayed,
         }
     }
 }

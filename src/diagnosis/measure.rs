@@ -139,6 +139,10 @@ pub struct RunSpectra {
     /// Share of the base PSD that is motion on each analysis bin, G_uu/G_xx: the factor by which
     /// the floor biases H1 of every path from the base ([`super::input_noise`]).
     pub base_motion: Vec<f64>,
+    /// The measured base acceleration less its mean, sample by sample, m/s²: the input a
+    /// nonlinear model is replayed with ([`super::replay::seat_psd`]). Shared, not copied, by the
+    /// fits that read the run.
+    pub base_fluctuation: std::sync::Arc<[f64]>,
 }
 
 impl RunSpectra {
@@ -291,6 +295,10 @@ pub fn estimate(signals: &Signals, excluded: &[Range<usize>]) -> Result<RunSpect
         excluded: excluded.to_vec(),
         base_floor_psd,
         base_motion,
+        base_fluctuation: {
+            let m = mean(base);
+            base.iter().map(|x| x - m).collect()
+        },
     })
 }
 

@@ -113,7 +113,15 @@ pub fn diagnose_with(
     let loggers = force_logger::infer(model, loggers, tr, (&null_fit, n), force_measured)?;
     let off_base = loggers.off_base();
     let recorded = loggers.recording(prepared.check_signals().names.iter().map(String::as_str));
-    let base = Base::of(model, off_base).with_clock(prepared.clock.as_ref());
+    let lag = clock::low_frequency_lag(&tr.iter().chain(std::iter::once(ck)).collect::<Vec<_>>());
+    let base = Base::of(model, off_base)
+        .with_clock(prepared.clock.as_ref())
+        .with_lag(lag)
+        .with_replay_calibration(replay::ReplayCalibration::of(
+            &Variant::plain(system.clone()),
+            ck,
+            nominal.weighted.aw_seat_model,
+        )?);
     let applicable: Vec<Candidate> = candidate::all()
         .filter(|c| c.applies_to(system) && (force_measured || !c.reads_force_only))
         .filter(|c| off_base.any() || c.retiming.is_none())
@@ -148,6 +156,21 @@ pub fn diagnose_with(
         evidence.second =
             select::second_effect(&base, (&evidence.cands, &ranking.fits), first, tr, ck, n)?;
     }
+    // An amplitude-dependent nominee named on its own: its figures from its law refined by the
+    // replayed best linear approximation.
+    if let Some(first) =
+        verdict::nominee(&evidence).filter(|c| c.amplitude_dependent() && evidence.second.is_none())
+    {
+        select::replay_refined(
+            &base,
+            &evidence.null,
+            &mut evidence.cands,
+            &ranking.fits,
+            first,
+            tr,
+            ck,
+        )?;
+    }
     let decision = verdict::decide(&evidence);
     let partial = match &decision.verdict {
         Verdict::Partial { best, second, .. } => outcome::partial_effects(
@@ -159,7 +182,7 @@ pub fn diagnose_with(
     };
     let verdict_text = text::render(&decision, &evidence, &nominal, &partial);
     let mut warnings = prepared.warnings;
-    warnings.extend(decision.caveat.as_ref().map(text::equivalent_linear_iso));
+    warnings.extend(decision.caveat.as_ref().map(text::replayed_iso));
     let second = evidence.second.map(|s| s.pair);
     Ok(Diagnosis {
         verdict: decision.verdict.id(),
@@ -172,6 +195,7 @@ pub fn diagnose_with(
         data_faults: prepared.data_faults,
         loggers: Some(recorded),
         clock: evidence.clock,
+        lag,
         bands: located.bands,
         warnings,
         runs: located.runs,

@@ -374,6 +374,11 @@ pub struct Diagnosis {
     /// drifting logger clock ([`super::clock`]).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub clock: Option<super::clock::ClockTrend>,
+    /// The lag of the seat and head behind the base read from the runs' low-frequency phase
+    /// without a model ([`super::clock::LowFrequencyLag`]): a logger offset is named only where
+    /// it shows one.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub lag: Option<super::clock::LowFrequencyLag>,
     /// Per path, the one-third-octave bands judged (coherent on the check run) and those that
     /// could not be.
     pub bands: Vec<BandCoverage>,

@@ -160,3 +160,34 @@ pub(super) fn second_effect(
     }
     Ok(second)
 }
+
+/// The figures of the amplitude-dependent effect `first` the rules name, on its own (forward
+/// selection added nothing), from the check run `ck` replayed through its law refined on the
+/// training runs `tr` by the replayed best linear approximation ([`fitting::refine_by_replay`]):
+/// its entry among `cands` gets the seat a_w and SEAT of that replay, and its sizes against the
+/// null entry are taken again ([`evidence::sizes`]). `fits` are the ranked candidates' fitted
+/// parameter vectors on `tr`.
+pub(super) fn replay_refined(
+    base: &Base,
+    null: &Ranked,
+    cands: &mut [Ranked],
+    fits: &[(Candidate, Vec<f64>)],
+    first: Candidate,
+    tr: &[RunSpectra],
+    ck: &RunSpectra,
+) -> Result<()> {
+    let (Some(entry), Some((_, u))) = (
+        cands.iter_mut().find(|r| r.id == Effects::One(first)),
+        fits.iter().find(|(c, _)| *c == first),
+    ) else {
+        return Ok(());
+    };
+    let refined = fitting::refine_by_replay(base, &[first], u, tr)?;
+    let v = fitting::build(base, &[first], &refined, fitting::reference_rms(tr))?;
+    let psd = super::replay::seat_psd(&v, ck)?;
+    entry.check.weighted = super::gapmap::Weighted::replayed(ck, &psd, base.replay_calibration());
+    let (aw, seat, _) = evidence::sizes(&entry.check, &null.check);
+    entry.aw_change_percent = aw;
+    entry.seat_change_points = seat;
+    Ok(())
+}

@@ -406,15 +406,15 @@ pub(super) fn partial(
 }
 
 /// The warning when amplitude-dependent effect(s) move the check run's ISO figures away
-/// ([`Shortfall::decides`]): their equivalent linear model omits the distortion power.
-pub(super) fn equivalent_linear_iso(s: &Shortfall) -> String {
+/// ([`Shortfall::decides`]): their law was fitted through its statistical linearisation.
+pub(super) fn replayed_iso(s: &Shortfall) -> String {
     match *s {
         Shortfall::IsoAway {
             aw_gap_percent: (a0, a1),
             seat_gap_points: (s0, s1),
             ..
         } => format!(
-            "the named effect fits the frequency responses but its equivalent linear model moves the check run's ISO figures away from the measurement (seat a_w gap {a0:+.1} % → {a1:+.1} %, SEAT gap {s0:+.1} → {s1:+.1} points): a nonlinearity's distortion power is in the measured a_w and not in the linearised prediction, so take a_w and SEAT from the re-fitted model"
+            "the named effect fits the frequency responses but the check run replayed through its fitted nonlinear model moves the ISO figures away from the measurement (seat a_w gap {a0:+.1} % → {a1:+.1} %, SEAT gap {s0:+.1} → {s1:+.1} points): its law was fitted through its statistical linearisation, which matches second moments rather than the response a run measures, so take a_w and SEAT from the re-fitted model"
         ),
         Shortfall::FarAboveNoise { chi2_red } => {
             format!("the named effect leaves the check run's reduced χ² at {chi2_red:.1}")

@@ -67,10 +67,10 @@ pub struct IsoGaps {
     /// Standard errors of the third model's a_w gap (%) and SEAT (points) from its fitted
     /// parameters' covariance, when within reach of the noise ([`crate::diagnosis::IsoSigma`]).
     pub sigma: Option<[f64; 2]>,
-    /// Whether a named effect is amplitude-dependent, so that the third model's a_w and SEAT are
-    /// those of its statistically linearised system, without the distortion power the
-    /// measurement holds ([`crate::diagnosis::Shortfall::decides`]).
-    pub equivalent_linear: bool,
+    /// Whether a named effect is amplitude-dependent, so that the third model's a_w and SEAT come
+    /// from a time-domain replay of the check run's measured base through the fitted nonlinear
+    /// model ([`crate::diagnosis::replay::seat_psd`]).
+    pub amplitude_dependent: bool,
 }
 
 impl IsoGaps {
@@ -84,7 +84,7 @@ impl IsoGaps {
             aw_percent: stages.map(|s| s.weighted.aw_gap_percent),
             seat_points: stages.map(|s| s.weighted.seat_gap_points()),
             sigma: stages[2].iso_sigma.map(|s| [s.aw_percent, s.seat_points]),
-            equivalent_linear: d.named.iter().any(|c| c.amplitude_dependent()),
+            amplitude_dependent: d.named.iter().any(|c| c.amplitude_dependent()),
         }
     }
 }

@@ -87,7 +87,7 @@ pub struct IsoToward {
     /// `toward` against the re-fitted model.
     pub linear: (usize, usize),
     /// Of the named verdicts, those naming an amplitude-dependent effect (their a_w and SEAT are
-    /// the equivalent linear system's, [`super::IsoGaps::equivalent_linear`]), and how many of
+    /// replayed through the fitted nonlinear model, [`super::IsoGaps::amplitude_dependent`]), and how many of
     /// them are `toward` against the re-fitted model.
     pub amplitude_dependent: (usize, usize),
     /// Median remaining |a_w gap| with the named effect(s), %.
@@ -127,9 +127,9 @@ fn toward_of(named: &[&IsoGaps]) -> IsoToward {
         within(1, &rounding),
         within(1, &|_| crate::diagnosis::ISO_AWAY),
     );
-    let split = |equivalent_linear: bool| {
+    let split = |amplitude_dependent: bool| {
         let of: Vec<&&IsoGaps> = (named.iter())
-            .filter(|g| g.equivalent_linear == equivalent_linear)
+            .filter(|g| g.amplitude_dependent == amplitude_dependent)
             .collect();
         let toward = of.iter().filter(|g| moves_toward(g, 1, (TIE, TIE))).count();
         (of.len(), toward)
@@ -451,7 +451,7 @@ impl Summary {
         );
         let t = &self.iso_toward;
         out += &format!(
-            "Named verdicts moving the check run's seat a_w and SEAT toward the measurement (neither gap growing by more than {TIE}) against the model as given: {} of {} ({}); against the re-fitted base model: {} ({}), or {} ({}) where a growth within twice the named model's own standard error (from its fitted parameters' covariance) counts as a tie; neither growing against the re-fitted model by the diagnosis's practical size ({} % a_w, {} SEAT point): {} ({}); median remaining |a_w gap| {} %, |SEAT gap| {} points. Against the re-fitted model by the kind of effect named: linear effects {} of {} ({}); amplitude-dependent effects, whose a_w and SEAT are their equivalent linear system's and miss the distortion power the measurement holds, {} of {} ({}).\n\n",
+            "Named verdicts moving the check run's seat a_w and SEAT toward the measurement (neither gap growing by more than {TIE}) against the model as given: {} of {} ({}); against the re-fitted base model: {} ({}), or {} ({}) where a growth within twice the named model's own standard error (from its fitted parameters' covariance) counts as a tie; neither growing against the re-fitted model by the diagnosis's practical size ({} % a_w, {} SEAT point): {} ({}); median remaining |a_w gap| {} %, |SEAT gap| {} points. Against the re-fitted model by the kind of effect named: linear effects {} of {} ({}); amplitude-dependent effects, whose a_w and SEAT come from a replay of the check run's measured base through the fitted nonlinear model, {} of {} ({}).\n\n",
             t.toward_nominal,
             t.named,
             f(share(t.toward_nominal, t.named)),
@@ -525,12 +525,12 @@ impl Summary {
 mod tests {
     use super::*;
 
-    fn gaps(aw: [f64; 3], equivalent_linear: bool) -> IsoGaps {
+    fn gaps(aw: [f64; 3], amplitude_dependent: bool) -> IsoGaps {
         IsoGaps {
             aw_percent: aw,
             seat_points: [0.0; 3],
             sigma: None,
-            equivalent_linear,
+            amplitude_dependent,
         }
     }
 

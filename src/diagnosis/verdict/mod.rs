@@ -86,10 +86,11 @@ pub enum Shortfall {
 impl Shortfall {
     /// Whether this shortfall makes the verdict `unexplained` for named effect(s) that are all
     /// `linear` (or not). A residual far above the noise always does. The ISO figures only for
-    /// linear effects: an amplitude-dependent effect is predicted by its equivalent linear model
-    /// (statistical linearisation), whose seat PSD omits the distortion power the nonlinearity
-    /// adds, so its a_w and SEAT are biased by exactly what the effect is; for it the shift is a
-    /// warning.
+    /// linear effects: an amplitude-dependent effect's figures come from replaying the check run
+    /// through its fitted nonlinear model ([`crate::diagnosis::replay::seat_psd`]), whose law was
+    /// fitted through its statistical linearisation, which matches second moments rather than
+    /// the best linear approximation H1 measures; its a_w and SEAT carry that law's bias (a few
+    /// tenths of a percent on the bench), so for it the shift is a warning.
     pub fn decides(&self, linear: bool) -> bool {
         matches!(self, Shortfall::FarAboveNoise { .. }) || linear
     }
@@ -245,7 +246,7 @@ pub struct Decision {
     /// A detected candidate the rules set aside because it closes too little of the gap (or of a
     /// residue below the structural threshold), for the text to mention.
     pub set_aside: Option<Candidate>,
-    /// An amplitude-dependent named effect whose equivalent linear model moves the check run's
+    /// An amplitude-dependent named effect whose replayed nonlinear model moves the check run's
     /// ISO figures away ([`Shortfall::decides`]): a warning, not the verdict.
     pub caveat: Option<Shortfall>,
     /// The calibration candidate when a channel's calibration error was found, named after a

@@ -46,6 +46,7 @@ fn ranked(id: &str, train: f64, check: f64, dbic: f64, dbic_all: f64, closed: f6
                 seat_meas: 80.0,
                 seat_model: 80.0,
                 driving_bands: Vec::new(),
+                replayed: false,
             },
             cells: Vec::new(),
         },
