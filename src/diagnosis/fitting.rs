@@ -579,7 +579,7 @@ pub(super) fn fitted_stage(
     // the equivalent linear system lacks. The standard errors stay the linear prediction's.
     if cands.iter().any(|c| c.amplitude_dependent()) {
         let psd = super::replay::seat_psd(&ft.variant, check)?;
-        st.weighted = Weighted::replayed(check, &psd, base.replay_calibration);
+        st.weighted = Weighted::replayed(check, &psd, base.replay_calibration.aw_ratio);
     }
     Ok(st)
 }

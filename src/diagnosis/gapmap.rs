@@ -166,15 +166,11 @@ impl Weighted {
 
     /// The figures of `run` with the model's seat PSD `seat_psd` ((m/s²)²/Hz on the run's bins)
     /// from a time-domain replay of a nonlinear model ([`crate::diagnosis::replay::seat_psd`]),
-    /// weighted as the measured PSD is, the replay's own error on the run divided out
-    /// (`calibration`, [`crate::diagnosis::replay::ReplayCalibration`]).
-    pub fn replayed(
-        run: &RunSpectra,
-        seat_psd: &[f64],
-        calibration: crate::diagnosis::replay::ReplayCalibration,
-    ) -> Weighted {
+    /// weighted as the measured PSD is, its a_w multiplied by `aw_ratio` (the replay's own error
+    /// on the run divided out: [`crate::diagnosis::replay::ReplayCalibration::aw_ratio`]).
+    pub fn replayed(run: &RunSpectra, seat_psd: &[f64], aw_ratio: f64) -> Weighted {
         let wk = Stationary::new(Weighting::Wk, run.freq_hz.iter().map(|&f| (f, run.df_hz)));
-        let power = calibration.aw_ratio * calibration.aw_ratio;
+        let power = aw_ratio * aw_ratio;
         let predicted: Vec<f64> = wk.psd_terms(seat_psd.iter().map(|g| g * power)).collect();
         Self::of_terms(run, &wk, predicted, true)
     }

@@ -119,7 +119,7 @@ impl ReplayCalibration {
         if v.system.is_nonlinear() {
             return Ok(Self::NONE);
         }
-        let replayed = super::gapmap::Weighted::replayed(run, &seat_psd(v, run)?, Self::NONE);
+        let replayed = super::gapmap::Weighted::replayed(run, &seat_psd(v, run)?, 1.0);
         let r = exact_aw / replayed.aw_seat_model;
         Ok(if r.is_finite() && r > 0.0 {
             ReplayCalibration { aw_ratio: r }
@@ -238,7 +238,7 @@ mod tests {
             }
         }
         let psd = seat_psd(&v, &run).unwrap();
-        let w = Weighted::replayed(&run, &psd, ReplayCalibration::NONE);
+        let w = Weighted::replayed(&run, &psd, 1.0);
         assert!(
             w.replayed && w.aw_gap_percent.abs() < 0.05,
             "{}",
@@ -252,7 +252,7 @@ mod tests {
         );
         let cal = ReplayCalibration::of(&v, &run, exact.aw_seat_model).unwrap();
         assert!((cal.aw_ratio - 1.0).abs() < 0.01, "{cal:?}");
-        let calibrated = Weighted::replayed(&run, &psd, cal);
+        let calibrated = Weighted::replayed(&run, &psd, cal.aw_ratio);
         assert!((calibrated.aw_seat_model / exact.aw_seat_model - 1.0).abs() < 1e-9);
     }
 }
