@@ -39,6 +39,29 @@ pub(super) fn effect_params(cands: &[Candidate]) -> Vec<Vec<Param>> {
     cands.iter().map(|c| c.params()).collect()
 }
 
+/// The stack's effect parameters, concatenated, with a timing candidate's offset (its first
+/// parameter, [`Retiming`]) also started at the lag the runs show without a model when that lag
+/// is significant ([`LowFrequencyLag::significant`]). A lag τ turns each path's phase by −2πfτ,
+/// which wraps above f = 1/(2τ): for offsets of more than a few milliseconds the cost in τ has
+/// minima one wrap apart, and a fit started at 0 settles in the wrong one (a 16.7 ms base delay
+/// fitted from 0 never reached it). The measured lag is a start, not a prior: the fit still
+/// decides, and [`contradicts`] still checks the result against the same evidence.
+fn started_from_evidence(base: &Base, cands: &[Candidate]) -> Vec<Param> {
+    let lag = base.lag.filter(|l| l.significant()).map(|l| l.lag_s);
+    cands
+        .iter()
+        .flat_map(|c| {
+            let mut ps = c.params();
+            if let (Some(_), Some(lag_s), Some(offset)) = (c.retiming, lag, ps.first_mut()) {
+                if (offset.bounds.0..=offset.bounds.1).contains(&lag_s) {
+                    offset.starts.push(lag_s);
+                }
+            }
+            ps
+        })
+        .collect()
+}
+
 /// The model under diagnosis and its re-fitted base parameters, found once.
 pub(super) struct Base<'a> {
     model: &'a Model,
@@ -189,7 +212,7 @@ pub(super) fn fit_candidate(
         .iter()
         .map(|(_, _, q)| prior_sigma(*q))
         .collect();
-    let eff: Vec<Param> = effect_params(cands).concat();
+    let eff: Vec<Param> = started_from_evidence(base, cands);
     let rms_ref = reference_rms(train);
     // Where a drift rate sits in `u`, when the runs' halves measured one: the first candidate of
     // the stack whose definition takes the clock trend as its prior.

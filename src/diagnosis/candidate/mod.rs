@@ -145,7 +145,8 @@ pub enum Magnitude {
 }
 
 /// How a timing candidate retimes the transducers off the base accelerometer's logger
-/// ([`crate::diagnosis::acquisition`]): such a candidate applies only when some are.
+/// ([`crate::diagnosis::acquisition`]): such a candidate applies only when some are. Its first
+/// parameter is the loggers' offset, s (the one the runs' model-free lag can start).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Retiming {
     /// A constant trigger offset between the loggers (the one the force plate's logger is
@@ -403,6 +404,10 @@ mod tests {
             // A prior names one of the candidate's own parameters.
             if let Some(Prior::ClockDrift { param }) = c.prior {
                 assert!(param < c.params().len(), "{}", c.id);
+            }
+            // A timing candidate's first parameter is the loggers' offset.
+            if c.retiming.is_some() {
+                assert_eq!(c.params()[0].name, "offset_s", "{}", c.id);
             }
         }
         // Magnitude-dependent effects are the ones the distortion trend can place.
