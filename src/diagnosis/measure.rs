@@ -152,11 +152,17 @@ impl RunSpectra {
         self.freq_hz
             .iter()
             .map(|&f| {
-                let i = ((f / self.df_hz).round() as usize).min(bp.len() - 1);
+                let i = self.bin(f, bp.len());
                 debug_assert!((bf[i] - f).abs() < 1e-6);
                 bp[i]
             })
             .collect()
+    }
+
+    /// The index of analysis frequency `f` (Hz) in a one-sided spectrum of `len` bins estimated
+    /// with the run's Welch segments (bin spacing [`Self::df_hz`]).
+    pub fn bin(&self, f: f64, len: usize) -> usize {
+        ((f / self.df_hz).round() as usize).min(len.saturating_sub(1))
     }
 
     /// The estimate of `path`, if the run has its channels.

@@ -5,6 +5,7 @@
 
 use super::measure::{self, RunSpectra};
 use super::predict::Variant;
+use crate::analysis::spectrum::{CrossSpectra, Welch};
 use crate::error::Result;
 use crate::excitation::Excitation;
 use crate::integrator::Method;
@@ -76,23 +77,67 @@ pub fn replay(system: &System, base: &[f64], fs: f64, source: &str) -> Result<Si
 /// distortion power a nonlinearity moves between frequencies is in it as it is in the measured
 /// seat PSD, which the equivalent linear system's |H|²·G_uu lacks (docs/gap.md §7).
 pub fn seat_psd(v: &Variant, run: &RunSpectra) -> Result<Vec<f64>> {
-    let scheduled = v.schedule.map(|s| s.at(&v.system, run.base_rms));
-    let system = scheduled.as_ref().unwrap_or(&v.system);
-    let sim = replay(system, &run.base_fluctuation, run.fs, "replay")?;
-    let seat = sim.require("a_seat_z")?;
-    let mut w = measure::welch(run.fs, run.duration_s)?;
-    let all = w.cross_excluding(&run.base_fluctuation, seat, &run.excluded)?;
+    let all = Replayed::of(v, run)?.cross("a_base_z", "a_seat_z")?;
     let chain = &v.chain;
     Ok(run
         .freq_hz
         .iter()
         .zip(&run.base_motion)
         .map(|(&f, &b)| {
-            let i = ((f / run.df_hz).round() as usize).min(all.gyy.len() - 1);
             let read = (chain.seat.response(f) / chain.base.response(f)).norm_sqr();
-            all.gyy[i] * read * b
+            all.gyy[run.bin(f, all.gyy.len())] * read * b
         })
         .collect())
+}
+
+/// Variant `v` simulated in `run` ([`replay`]): its system as it is at the run's magnitude (the
+/// schedule applied, every nonlinear law kept) driven by the run's measured base fluctuation,
+/// and the run's own Welch estimator, so a replayed spectrum is estimated from the same segments
+/// as the measured one (the excluded stretches left out alike).
+struct Replayed<'r> {
+    run: &'r RunSpectra,
+    sim: Signals,
+    welch: Welch,
+}
+
+impl<'r> Replayed<'r> {
+    fn of(v: &Variant, run: &'r RunSpectra) -> Result<Self> {
+        let scheduled = v.schedule.map(|s| s.at(&v.system, run.base_rms));
+        let system = scheduled.as_ref().unwrap_or(&v.system);
+        Ok(Replayed {
+            run,
+            sim: replay(system, &run.base_fluctuation, run.fs, "replay")?,
+            welch: measure::welch(run.fs, run.duration_s)?,
+        })
+    }
+
+    /// The replayed channel `name`; the base is the measured fluctuation itself. `None` when the
+    /// model has no such channel.
+    fn channel<'a>(sim: &'a Signals, run: &'a RunSpectra, name: &str) -> Option<&'a [f64]> {
+        if name == "a_base_z" {
+            Some(&run.base_fluctuation[..])
+        } else {
+            sim.get(name)
+        }
+    }
+
+    /// Whether the replay yields channel `name`.
+    fn has(&self, name: &str) -> bool {
+        Self::channel(&self.sim, self.run, name).is_some()
+    }
+
+    /// The cross spectra of channels `x` → `y` over the run's clean segments.
+    fn cross(&mut self, x: &str, y: &str) -> Result<CrossSpectra> {
+        let xs = Self::channel(&self.sim, self.run, x);
+        let ys = Self::channel(&self.sim, self.run, y);
+        let (Some(xs), Some(ys)) = (xs, ys) else {
+            return Err(crate::error::Error::parameter(
+                "replay",
+                format!("the model yields no `{x}` → `{y}` path"),
+            ));
+        };
+        self.welch.cross_excluding(xs, ys, &self.run.excluded)
+    }
 }
 
 /// The replay's own error on one run, measured on a linear model whose exact figure is known:
@@ -144,37 +189,23 @@ pub fn responses(
     fallback: &[Vec<num_complex::Complex64>],
 ) -> Result<Vec<Vec<num_complex::Complex64>>> {
     use super::measure::Path;
-    let scheduled = v.schedule.map(|s| s.at(&v.system, run.base_rms));
-    let system = scheduled.as_ref().unwrap_or(&v.system);
-    let sim = replay(system, &run.base_fluctuation, run.fs, "replay")?;
-    let mut w = measure::welch(run.fs, run.duration_s)?;
+    let mut replayed = Replayed::of(v, run)?;
     let chain = &v.chain;
     let mut out = Vec::with_capacity(run.paths.len());
     for (pe, fb) in run.paths.iter().zip(fallback) {
         let (x, y) = pe.path.channels();
-        let (Some(xs), Some(ys)) = (
-            if x == "a_base_z" {
-                Some(&run.base_fluctuation[..])
-            } else {
-                sim.get(x)
-            },
-            sim.get(y),
-        ) else {
-            out.push(fb.clone());
-            continue;
-        };
-        if pe.path == Path::BackrestMass {
+        if pe.path == Path::BackrestMass || !replayed.has(x) || !replayed.has(y) {
             out.push(fb.clone());
             continue;
         }
-        let h1 = w.cross_excluding(xs, ys, &run.excluded)?.h1();
+        let h1 = replayed.cross(x, y)?.h1();
         let from_base = x == "a_base_z";
         out.push(
             run.freq_hz
                 .iter()
                 .enumerate()
                 .map(|(b, &f)| {
-                    let h = h1[((f / run.df_hz).round() as usize).min(h1.len() - 1)];
+                    let h = h1[run.bin(f, h1.len())];
                     let (lb, ls, lh) = (
                         chain.base.response(f),
                         chain.seat.response(f),
