@@ -6,7 +6,9 @@
 //!   is named, with a filter whose −3 dB corner is the truth's and, for a Butterworth or RC
 //!   truth, its order and design;
 //! - a body that stiffens between runs (its resonance rises with magnitude): never named a
-//!   softening, whatever else the diagnosis says.
+//!   softening, whatever else the diagnosis says;
+//! - a base accelerometer 16.7 ms late on a field run (phase wrapping above 30 Hz): named a
+//!   logger offset, read within a millisecond.
 
 mod common;
 use std::path::{Path, PathBuf};
@@ -189,6 +191,32 @@ fn a_body_stiffening_between_runs_is_never_named_a_softening() {
             "{}: {named:?}: {}",
             case.display(),
             doc["verdict_text"]
+        );
+    }
+}
+
+#[test]
+fn a_base_accelerometer_delay_of_many_milliseconds_is_named_timing_with_its_lag() {
+    let Some(dir) = common::input_fixtures() else {
+        return;
+    };
+    for (case, truth, doc) in diagnosed(&dir.join("base-delay")) {
+        assert_eq!(truth["params"]["channel"], "a_base_z", "{}", case.display());
+        let delay = truth["params"]["delay_s"].as_f64().unwrap();
+        // A late base accelerometer is an early occupant logger: the offset is −delay. Above
+        // 1/(2·delay) the paths' phase wraps, so a fit started at zero lag misses it.
+        assert_eq!(
+            doc["verdict"],
+            "logger-offset",
+            "{}: {}",
+            case.display(),
+            doc["verdict_text"]
+        );
+        let got = fitted(&doc, "logger-offset", "offset_s");
+        assert!(
+            (got + delay).abs() < 1e-3,
+            "{}: offset {got:.4} s against a base delay of {delay:.4} s",
+            case.display()
         );
     }
 }
