@@ -293,29 +293,13 @@ mod tests {
     /// 59 segments (a 120 s run).
     fn run_with(h: impl Fn(f64) -> Complex64) -> RunSpectra {
         let freq_hz: Vec<f64> = (2..=140).map(|i| 0.25 * i as f64).collect();
-        RunSpectra {
-            source: "closed form".into(),
-            fs: 500.0,
-            df_hz: 0.25,
-            duration_s: 120.0,
-            segments: 59,
-            base_psd: (Vec::new(), Vec::new()),
-            seat_psd: vec![1.0; freq_hz.len()],
-            head_psd: None,
-            base_rms: 1.0,
-            offset_notes: Vec::new(),
-            excluded: Vec::new(),
-            base_floor_psd: 0.0,
-            base_motion: Vec::new(),
-            base_fluctuation: Vec::new().into(),
-            paths: vec![PathEstimate {
-                path: Path::BaseSeat,
-                h1: freq_hz.iter().map(|&f| h(f)).collect(),
-                coherence: vec![0.999; freq_hz.len()],
-                quadrature: Vec::new(),
-            }],
-            freq_hz,
-        }
+        let paths = vec![PathEstimate {
+            path: Path::BaseSeat,
+            h1: freq_hz.iter().map(|&f| h(f)).collect(),
+            coherence: vec![0.999; freq_hz.len()],
+            quadrature: Vec::new(),
+        }];
+        RunSpectra::closed_form("closed form", freq_hz, 1.0, paths)
     }
 
     /// Absolute transmissibility of a mass on a spring k and dashpot c to its base, with a

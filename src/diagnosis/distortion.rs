@@ -334,32 +334,16 @@ mod tests {
     /// As [`run`], each path's H1 a unit phasor at the given phase (degrees) on every bin.
     fn phased(rms: f64, coh: &[(Path, f64, f64)]) -> RunSpectra {
         let freq_hz: Vec<f64> = (2..=200).map(|i| 0.25 * i as f64).collect();
-        RunSpectra {
-            source: format!("run at {rms}"),
-            fs: 500.0,
-            df_hz: 0.25,
-            duration_s: 120.0,
-            segments: 59,
-            base_psd: (Vec::new(), Vec::new()),
-            seat_psd: vec![1.0; freq_hz.len()],
-            head_psd: None,
-            base_rms: rms,
-            offset_notes: Vec::new(),
-            excluded: Vec::new(),
-            base_floor_psd: 0.0,
-            base_motion: Vec::new(),
-            base_fluctuation: Vec::new().into(),
-            paths: coh
-                .iter()
-                .map(|&(path, g, deg)| PathEstimate {
-                    path,
-                    h1: vec![Complex64::from_polar(1.0, deg.to_radians()); freq_hz.len()],
-                    coherence: vec![g; freq_hz.len()],
-                    quadrature: Vec::new(),
-                })
-                .collect(),
-            freq_hz,
-        }
+        let paths = coh
+            .iter()
+            .map(|&(path, g, deg)| PathEstimate {
+                path,
+                h1: vec![Complex64::from_polar(1.0, deg.to_radians()); freq_hz.len()],
+                coherence: vec![g; freq_hz.len()],
+                quadrature: Vec::new(),
+            })
+            .collect();
+        RunSpectra::closed_form(&format!("run at {rms}"), freq_hz, rms, paths)
     }
 
     /// NSR for a coherence γ²: (1 − γ²)/γ²; the coherence that gives `nsr`.

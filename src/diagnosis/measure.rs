@@ -165,6 +165,36 @@ impl RunSpectra {
         ((f / self.df_hz).round() as usize).min(len.saturating_sub(1))
     }
 
+    /// A test run of 120 s at 500 Hz (59 segments, 0.25 Hz bins) whose estimates are `paths` on
+    /// the bins `freq_hz`, of base r.m.s. `base_rms`: the closed forms the rules are tested on,
+    /// with no time series behind them.
+    #[cfg(test)]
+    pub(crate) fn closed_form(
+        source: &str,
+        freq_hz: Vec<f64>,
+        base_rms: f64,
+        paths: Vec<PathEstimate>,
+    ) -> RunSpectra {
+        RunSpectra {
+            source: source.into(),
+            fs: 500.0,
+            df_hz: 0.25,
+            duration_s: 120.0,
+            segments: 59,
+            base_psd: (Vec::new(), Vec::new()),
+            seat_psd: vec![1.0; freq_hz.len()],
+            head_psd: None,
+            base_rms,
+            offset_notes: Vec::new(),
+            excluded: Vec::new(),
+            base_floor_psd: 0.0,
+            base_motion: Vec::new(),
+            base_fluctuation: Vec::new().into(),
+            paths,
+            freq_hz,
+        }
+    }
+
     /// The estimate of `path`, if the run has its channels.
     pub fn path(&self, path: Path) -> Option<&PathEstimate> {
         self.paths.iter().find(|p| p.path == path)
