@@ -52,7 +52,13 @@ impl AllRuns {
         check: &RunSpectra,
         ranking: &mut Ranking,
     ) -> Result<()> {
-        let st = fitting::fitted_stage(base, &[self.candidate], fitted, check)?;
+        let st = fitting::fitted_stage(
+            base,
+            &[self.candidate],
+            fitted,
+            check,
+            fitting::IsoFigures::Replayed,
+        )?;
         let (aw, seat, db) = sizes(&st, &ranking.null.check);
         if let Some(r) = ranking
             .cands

@@ -52,10 +52,10 @@ fn started_from_evidence(base: &Base, cands: &[Candidate]) -> Vec<Param> {
         .iter()
         .flat_map(|c| {
             let mut ps = c.params();
-            if let (Some(_), Some(lag_s), Some(offset)) = (c.retiming, lag, ps.first_mut()) {
-                if (offset.bounds.0..=offset.bounds.1).contains(&lag_s) {
-                    offset.starts.push(lag_s);
-                }
+            if let (Some(_), Some(lag_s), Some(offset)) = (c.retiming, lag, ps.first_mut())
+                && (offset.bounds.0..=offset.bounds.1).contains(&lag_s)
+            {
+                offset.starts.push(lag_s);
             }
             ps
         })
@@ -438,7 +438,7 @@ pub(super) fn refine_null(
         },
     );
     if let Some(check) = check {
-        best.stage = Some(fitted_stage(base, &[], &best, check)?);
+        best.stage = Some(fitted_stage(base, &[], &best, check, IsoFigures::Replayed)?);
     }
     Ok(best)
 }
@@ -453,7 +453,13 @@ pub(super) fn fit_ranked(
     check: &RunSpectra,
     null: Fitted,
 ) -> Result<(Fitted, Vec<Fitted>)> {
-    let fitted = fit_each(base, stacks, train, &null.fit.u, Some(check))?;
+    let fitted = fit_each(
+        base,
+        stacks,
+        train,
+        &null.fit.u,
+        Some((check, IsoFigures::Replayed)),
+    )?;
     let null = refine_null(base, train, null, &fitted, Some(check))?;
     Ok((null, fitted))
 }
@@ -583,45 +589,74 @@ fn iso_sigma(
     }))
 }
 
+/// Where an amplitude-dependent stack's check-run a_w and SEAT come from when it is staged.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(super) enum IsoFigures {
+    /// From the check run replayed through the fitted nonlinear model ([`replay_figures`]).
+    Replayed,
+    /// The equivalent linear system's, for stacks of which at most one is reported (forward
+    /// selection's pairs): the one kept is replayed then, not each (a replay of a 120 s run costs
+    /// 0.1–0.3 s).
+    Linearised,
+}
+
 /// The stage on `check` of the fit `ft` of `cands`, with the standard errors of its ISO figures
 /// when its residual is within reach of the noise: beyond [`super::thresholds::EXPLAINED_CHI2`]
 /// the covariance s²(JᵀJ)⁻¹ no longer describes the parameters' scatter, the figures being off by
-/// the form, not the fit.
+/// the form, not the fit. An amplitude-dependent stack's a_w and SEAT are taken as `figures` says.
 pub(super) fn fitted_stage(
     base: &Base,
     cands: &[Candidate],
     ft: &Fitted,
     check: &RunSpectra,
+    figures: IsoFigures,
 ) -> Result<Stage> {
     let mut st = stage(&ft.variant, check)?;
     if st.chi2_red <= super::thresholds::EXPLAINED_CHI2 {
         st.iso_sigma = iso_sigma(base, cands, ft, check, &st.weighted)?;
     }
-    // An amplitude-dependent effect's a_w and SEAT are the simulator's: the check run's measured
-    // base replayed through the fitted nonlinear model, whose seat PSD holds the distortion power
-    // the equivalent linear system lacks. The standard errors stay the linear prediction's.
-    if cands.iter().any(|c| c.amplitude_dependent()) {
-        let psd = super::replay::seat_psd(&ft.variant, check)?;
-        st.weighted = Weighted::replayed(check, &psd, base.replay_calibration.aw_ratio);
+    if figures == IsoFigures::Replayed {
+        replay_figures(base, cands, &ft.variant, check, &mut st)?;
     }
     Ok(st)
 }
 
+/// An amplitude-dependent stack's a_w and SEAT in `st` taken from the simulator: the check run's
+/// measured base replayed through the fitted nonlinear model `v` ([`super::replay::seat_psd`]),
+/// whose seat PSD holds the distortion power the equivalent linear system lacks, divided by the
+/// replay's own error ([`ReplayCalibration`]). The standard errors stay the linear prediction's.
+/// A linear stack's figures are exact already and are left as they are.
+pub(super) fn replay_figures(
+    base: &Base,
+    cands: &[Candidate],
+    v: &Variant,
+    check: &RunSpectra,
+    st: &mut Stage,
+) -> Result<()> {
+    if cands.iter().any(|c| c.amplitude_dependent()) {
+        let psd = super::replay::seat_psd(v, check)?;
+        st.weighted = Weighted::replayed(check, &psd, base.replay_calibration.aw_ratio);
+    }
+    Ok(())
+}
+
 /// Fits every stack of `stacks` jointly with the base parameters on `runs` from `warm`, in
-/// parallel (the fits are independent), and evaluates each on `check` when given; results in the
-/// order of `stacks`.
+/// parallel (the fits are independent), and stages each on `check` when given, its ISO figures
+/// taken as the [`IsoFigures`] says; results in the order of `stacks`.
 pub(super) fn fit_each(
     base: &Base,
     stacks: &[Vec<Candidate>],
     runs: &[RunSpectra],
     warm: &[f64],
-    check: Option<&RunSpectra>,
+    check: Option<(&RunSpectra, IsoFigures)>,
 ) -> Result<Vec<Fitted>> {
     stacks
         .par_iter()
         .map(|s| {
             let mut ft = fit_candidate(base, s, runs, warm)?;
-            ft.stage = check.map(|c| fitted_stage(base, s, &ft, c)).transpose()?;
+            ft.stage = check
+                .map(|(c, figures)| fitted_stage(base, s, &ft, c, figures))
+                .transpose()?;
             Ok(ft)
         })
         .collect()

@@ -131,34 +131,59 @@ pub(super) fn second_effect(
         }));
     }
     let stacks: Vec<Vec<Candidate>> = others.iter().map(|&o| vec![bc, o]).collect();
-    let pairs = fitting::fit_each(base, &stacks, tr, warm, Some(ck))?;
-    let mut second: Option<Second> = None;
-    for (pair, ft) in stacks.iter().zip(pairs) {
+    // Only the pair kept is reported, so only its figures are replayed.
+    let pairs = fitting::fit_each(
+        base,
+        &stacks,
+        tr,
+        warm,
+        Some((ck, fitting::IsoFigures::Linearised)),
+    )?;
+    let mut second: Option<(usize, Second)> = None;
+    for (i, (pair, ft)) in stacks.iter().zip(&pairs).enumerate() {
         if fitting::contradicts(base, pair, &ft.fit.u) {
             continue;
         }
-        let trial = Trial {
-            effects: Effects::Pair(bc, pair[1]),
-            extra: pair[1].params().len(),
-            cost: ft.fit.cost,
-            params: ft.params,
-            stage: ft.stage.expect("evaluated on the check run"),
-        };
-        let r = evidence::against(best, warm.len(), trial, n);
+        let r = evidence::against(best, warm.len(), pair_trial(pair, ft), n);
         if r.delta_bic <= ACCEPT_DELTA_BIC
             && r.fraction_closed >= MIN_CLOSED
             && second
                 .as_ref()
-                .is_none_or(|s| r.delta_bic < s.pair.delta_bic)
+                .is_none_or(|(_, s)| r.delta_bic < s.pair.delta_bic)
         {
-            second = Some(Second {
-                first: bc,
-                added: pair[1],
-                pair: r,
-            });
+            second = Some((
+                i,
+                Second {
+                    first: bc,
+                    added: pair[1],
+                    pair: r,
+                },
+            ));
         }
     }
-    Ok(second)
+    let Some((i, second)) = second else {
+        return Ok(None);
+    };
+    // The kept pair's figures from the simulator, its entry scored again with them.
+    let (pair, ft) = (&stacks[i], &pairs[i]);
+    let mut t = pair_trial(pair, ft);
+    fitting::replay_figures(base, pair, &ft.variant, ck, &mut t.stage)?;
+    Ok(Some(Second {
+        pair: evidence::against(best, warm.len(), t, n),
+        ..second
+    }))
+}
+
+/// The pair `pair`'s fit `ft` as a trial against the named effect alone: the pair's second
+/// effect adds its parameters.
+fn pair_trial(pair: &[Candidate], ft: &fitting::Fitted) -> Trial {
+    Trial {
+        effects: Effects::Pair(pair[0], pair[1]),
+        extra: pair[1].params().len(),
+        cost: ft.fit.cost,
+        params: ft.params.clone(),
+        stage: ft.stage.clone().expect("evaluated on the check run"),
+    }
 }
 
 /// The figures of the amplitude-dependent effect `first` the rules name, on its own (forward
