@@ -258,6 +258,91 @@ fn model_html(out: &mut String, p: &Provenance) -> Result<()> {
     Ok(())
 }
 
+/// The report's verdicts: comfort (ISO 2631-1 Annex C), health (clause 7, Annex B), shocks
+/// (ISO 2631-5), the working day's exposure when operations were given, SEAT and the notes of the
+/// analysis and of the inputs (`day_notes` of the operations' files, `input_notes` of the run's).
+#[cfg(feature = "plot")]
+fn verdicts_html(
+    out: &mut String,
+    report: &Report,
+    day: Option<&crate::analysis::exposure::Day>,
+    day_notes: &[String],
+    input_notes: &[String],
+) {
+    out.push_str("<h2>Verdict</h2>\n");
+    // Inside every verdict box when a channel's unit was assumed: the verdict assumes m/s².
+    let assumes = report
+        .unit_assumption()
+        .map(|a| {
+            format!(
+                "<span class=\"assumed\"><b>Assumes m/s²</b>: {}</span>",
+                esc(a.trim_start_matches("assumes m/s²: "))
+            )
+        })
+        .unwrap_or_default();
+    let _ = writeln!(
+        out,
+        "<p class=\"verdict\">Comfort (ISO 2631-1 Annex C, public transport): the vibration total \
+         value over the {} is a<sub>v</sub> = {:.3} m/s², <b>{}</b> (Annex C: {}).{}{assumes}</p>",
+        esc(&report.comfort_place),
+        report.total_value,
+        report.comfort,
+        esc(&crate::analysis::comfort::overlap_ranges(
+            report.total_value
+        )),
+        if report.verdict_doubtful {
+            " <b>Doubtful</b>: it rests on a channel whose unit looks wrong (warning above)."
+        } else {
+            ""
+        }
+    );
+    match &report.health {
+        Some(h) => {
+            let doubtful = if report.verdict_doubtful {
+                "<li><b>Doubtful</b>: it rests on a channel whose unit looks wrong (warning \
+                 above).</li>"
+            } else {
+                ""
+            };
+            statement_html(out, &h.statement(), &format!("{doubtful}</ul>{assumes}"));
+        }
+        None => out.push_str("<p>No seat channel: no health assessment.</p>\n"),
+    }
+    if let Some(s) = &report.iso2631_5 {
+        statement_html(out, &s.statement(), "</ul>");
+    }
+    if let Some(d) = day {
+        exposure::section(out, d);
+    }
+    for n in day_notes {
+        let _ = writeln!(out, "<p>Input: {}</p>", esc(n));
+    }
+    if let Some(s) = report.seat_percent {
+        let _ = writeln!(
+            out,
+            "<p>SEAT (ISO 10326-1, a_w seat z / a_w base z, Wk): {s:.1} %.</p>"
+        );
+    }
+    for n in &report.notes {
+        let _ = writeln!(out, "<p>Note: {}</p>", esc(n));
+    }
+    for n in input_notes {
+        let _ = writeln!(out, "<p>Input: {}</p>", esc(n));
+    }
+}
+
+/// A verdict box: a statement's first line as its sentence, the rest as a list, then `close`
+/// (which ends the list, with any items it adds before).
+#[cfg(feature = "plot")]
+fn statement_html(out: &mut String, lines: &[String], close: &str) {
+    let _ = write!(out, "<div class=\"verdict\"><p>{}</p><ul>", esc(&lines[0]));
+    for l in &lines[1..] {
+        let _ = write!(out, "<li>{}</li>", esc(l.trim()));
+    }
+    out.push_str(close);
+    out.push_str("</div>\n");
+}
+
 /// Builds the report page of the run at `run` (an MCAP run, a run directory or a measured-run CSV).
 #[cfg(feature = "plot")]
 pub fn build(run: &Path, settings: &Settings) -> Result<Built> {
@@ -333,78 +418,7 @@ pub fn build(run: &Path, settings: &Settings) -> Result<Built> {
     for w in &report.warnings {
         let _ = writeln!(out, "<p class=\"warning\"><b>Warning:</b> {}</p>", esc(w));
     }
-    out.push_str("<h2>Verdict</h2>\n");
-    // Inside every verdict box when a channel's unit was assumed: the verdict assumes m/s².
-    let assumes = report
-        .unit_assumption()
-        .map(|a| {
-            format!(
-                "<span class=\"assumed\"><b>Assumes m/s²</b>: {}</span>",
-                esc(a.trim_start_matches("assumes m/s²: "))
-            )
-        })
-        .unwrap_or_default();
-    let _ = writeln!(
-        out,
-        "<p class=\"verdict\">Comfort (ISO 2631-1 Annex C, public transport): the vibration total \
-         value over the {} is a<sub>v</sub> = {:.3} m/s², <b>{}</b> (Annex C: {}).{}{assumes}</p>",
-        esc(&report.comfort_place),
-        report.total_value,
-        report.comfort,
-        esc(&crate::analysis::comfort::overlap_ranges(
-            report.total_value
-        )),
-        if report.verdict_doubtful {
-            " <b>Doubtful</b>: it rests on a channel whose unit looks wrong (warning above)."
-        } else {
-            ""
-        }
-    );
-    match &report.health {
-        Some(h) => {
-            let lines = h.statement();
-            let _ = write!(out, "<div class=\"verdict\"><p>{}</p><ul>", esc(&lines[0]));
-            for l in &lines[1..] {
-                let _ = write!(out, "<li>{}</li>", esc(l.trim()));
-            }
-            if report.verdict_doubtful {
-                out.push_str(
-                    "<li><b>Doubtful</b>: it rests on a channel whose unit looks wrong (warning \
-                     above).</li>",
-                );
-            }
-            out.push_str("</ul>");
-            out.push_str(&assumes);
-            out.push_str("</div>\n");
-        }
-        None => out.push_str("<p>No seat channel: no health assessment.</p>\n"),
-    }
-    if let Some(s) = &report.iso2631_5 {
-        let lines = s.statement();
-        let _ = write!(out, "<div class=\"verdict\"><p>{}</p><ul>", esc(&lines[0]));
-        for l in &lines[1..] {
-            let _ = write!(out, "<li>{}</li>", esc(l.trim()));
-        }
-        out.push_str("</ul></div>\n");
-    }
-    if let Some(d) = &day {
-        exposure::section(&mut out, d);
-    }
-    for n in &day_notes {
-        let _ = writeln!(out, "<p>Input: {}</p>", esc(n));
-    }
-    if let Some(s) = report.seat_percent {
-        let _ = writeln!(
-            out,
-            "<p>SEAT (ISO 10326-1, a_w seat z / a_w base z, Wk): {s:.1} %.</p>"
-        );
-    }
-    for n in &report.notes {
-        let _ = writeln!(out, "<p>Note: {}</p>", esc(n));
-    }
-    for n in &input.notes {
-        let _ = writeln!(out, "<p>Input: {}</p>", esc(n));
-    }
+    verdicts_html(&mut out, &report, day.as_ref(), &day_notes, &input.notes);
     // The gap verdict belongs with the run's verdicts, before the details.
     let gap = match (&diagnosis, &gap_file) {
         (Some(d), Some(p)) => Some(gap::section(&mut out, d, &p.display().to_string())?),
