@@ -218,4 +218,18 @@ fn the_readme_says_how_to_get_wbv_and_declares_units() {
         .find(|l| l.trim_start().starts_with("wbv analyze "))
         .unwrap();
     assert!(first.contains("--units"), "{first}");
+    // The command table is one table: a line between its rows ends it, and the rows after it
+    // render as a paragraph of pipes.
+    let rows: Vec<usize> = readme
+        .lines()
+        .enumerate()
+        .filter(|(_, l)| l.starts_with("| `wbv "))
+        .map(|(i, _)| i)
+        .collect();
+    assert!(rows.len() > 10, "the command table");
+    assert!(
+        rows.windows(2).all(|w| w[1] == w[0] + 1),
+        "the command table is broken at README line {:?}",
+        rows.windows(2).find(|w| w[1] != w[0] + 1).map(|w| w[0] + 2)
+    );
 }
