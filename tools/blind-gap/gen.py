@@ -268,7 +268,7 @@ FAMILIES = {
 # Forms reached only by a study set (--form): the random rotation above stays as it was, so the
 # cases of earlier seeds are drawn the same.
 STUDY_FORMS = {"missing-dof": ["rocking-frame"], "sensor": ["highpass-multi", "lowpass-multi"],
-               "body-stiffening": ["magnitude-stiffening"]}
+               "body-stiffening": ["magnitude-stiffening"], "support-path": ["harness"]}
 
 
 def prony_fractional(kf, alpha, f0, rng_lo=0.2, rng_hi=100.0, n=8):
@@ -342,6 +342,12 @@ def draw_effect(rng, family, form, strength):
                  "k_grip_N_per_m": rng.uniform(60e3, 200e3), "c_grip_Ns_per_m": rng.uniform(150, 500),
                  "m_wheel_kg": rng.uniform(2.0, 5.0), "f_column_hz": rng.uniform(25, 45),
                  "zeta_column": rng.uniform(0.03, 0.1)}
+        elif form == "harness":
+            # a pilot's shoulder harness from the seat back over the shoulders: webbing that pulls
+            # the upper torso down only in tension, once the torso has risen past the strap's
+            # slack (a one-sided path, unlike the candidates' two-sided spring-dampers)
+            p = {"k_N_per_m": rng.uniform(15e3, 60e3) * strength,
+                 "slack_over_sigma": max(0.0, rng.uniform(0.0, 1.0) / strength)}
         else:
             p = {"k_N_per_m": rng.uniform(20e3, 60e3) * strength, "c_Ns_per_m": rng.uniform(300, 1500) * strength}
     elif family == "missing-dof":
@@ -505,6 +511,13 @@ def build_plant(subject, family, form, p, A_rms, sigma):
         links["shoulder"] = ("upper_torso", "arms", p["k_shoulder_N_per_m"], p["c_shoulder_Ns_per_m"])
         links["grip"] = ("arms", "wheel", p["k_grip_N_per_m"], p["c_grip_Ns_per_m"])
         links["column"] = ("wheel", None, kc, 2 * p["zeta_column"] * math.sqrt(kc * p["m_wheel_kg"]))
+    elif family == "support-path" and form == "harness":
+        # tension only: force on the torso -k (e - slack) for a rise e past the slack, else none;
+        # no tangent at rest, so the whole force is the residual fed back
+        slack = p["slack_over_sigma"] * sigma["torso"]
+        kh = p["k_N_per_m"]
+        nonlinear = ("upper_torso", None, lambda e, kh=kh, slack=slack: -kh * max(0.0, e - slack))
+        p = dict(p, slack_m=slack)
     elif family == "support-path":
         node = "upper_torso" if form == "backrest" else "pelvis"
         links["extra"] = (node, None, p["k_N_per_m"], p["c_Ns_per_m"])
@@ -872,7 +885,8 @@ DAQ_NAMES = {"a_base_z": ["CH1 Floor Z", "Base Acc Z", "Acc Z base", "Plattform 
 def outputs_for(plant, force, back=False):
     out = {"a_seat_z": ("acc", "cushion"), "a_head_z": ("acc", "head"),
            "defl_cushion": ("lin", plant.deflection_row("cushion", plant.links["cushion"][1]), 0.0),
-           "defl_k4": ("lin", plant.deflection_row("pelvis", "cushion"), 0.0)}
+           "defl_k4": ("lin", plant.deflection_row("pelvis", "cushion"), 0.0),
+           "defl_torso": ("lin", plant.deflection_row("upper_torso", None), 0.0)}
     if force:
         _, _, k4, c4 = plant.links["k4"]
         row = -k4 * plant.deflection_row("pelvis", "cushion") - c4 * plant.rate_row("pelvis", "cushion")
@@ -1063,7 +1077,8 @@ def make_case(case_dir, seed, index, override=None, model="reference"):
     twin_plant = Plant(*subject)
     twins_fine = [simulate(twin_plant, u, 1 / ffs, outputs_for(twin_plant, force)) for u in bases]
     sigma = {"cushion": float(np.std(twins_fine[1]["defl_cushion"][pre:])),
-             "k4": float(np.std(twins_fine[1]["defl_k4"][pre:]))}
+             "k4": float(np.std(twins_fine[1]["defl_k4"][pre:])),
+             "torso": float(np.std(twins_fine[1]["defl_torso"][pre:]))}
     if model != "reference":
         sigma["susp_high"] = float(np.std(twins_fine[1]["defl_susp"][pre:]))
         sigma["susp_rate_high"] = float(np.std(twins_fine[1]["defl_susp_rate"][pre:]))
