@@ -7,6 +7,8 @@
 //!   truth, its order and design;
 //! - a body that stiffens between runs (its resonance rises with magnitude): never named a
 //!   softening, whatever else the diagnosis says;
+//! - a pilot's harness (straps pulling the upper torso down only past their slack): named the
+//!   one-sided support path;
 //! - a base accelerometer 16.7 ms late on a field run (phase wrapping above 30 Hz): named a
 //!   logger offset, read within a millisecond.
 
@@ -217,6 +219,24 @@ fn a_base_accelerometer_delay_of_many_milliseconds_is_named_timing_with_its_lag(
             (got + delay).abs() < 1e-3,
             "{}: offset {got:.4} s against a base delay of {delay:.4} s",
             case.display()
+        );
+    }
+}
+
+#[test]
+fn a_pilots_harness_is_named_the_one_sided_support_path() {
+    let Some(dir) = common::input_fixtures() else {
+        return;
+    };
+    for (case, truth, doc) in diagnosed(&dir.join("harness")) {
+        assert_eq!(truth["form"], "harness", "{}", case.display());
+        // Every two-sided path fits it worse: the strap's share grows with the magnitude.
+        assert_eq!(
+            doc["verdict"],
+            "harness",
+            "{}: {}",
+            case.display(),
+            doc["verdict_text"]
         );
     }
 }

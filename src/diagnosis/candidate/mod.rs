@@ -191,6 +191,9 @@ pub enum Look {
     BodyMode,
     /// A load path onto the upper torso from the seat frame.
     UpperTorso,
+    /// A load path that acts on one side only (a strap in tension past its slack), so its share
+    /// of the load grows with the run's magnitude.
+    OneSided,
     /// A load path through the arms onto the shoulders.
     Shoulders,
     /// A load path from the floor through the thighs onto the pelvis.

@@ -27,7 +27,7 @@ fn when(applies: bool, m: &'static str) -> Option<&'static str> {
 }
 
 /// The pair rules, most specific first: the first that applies names the measurement.
-const SEPARATIONS: [Separation; 11] = [
+const SEPARATIONS: [Separation; 12] = [
     |a, b| {
         when(
             pair(a, b, Look::GrowsWithMagnitude, Look::SameAtEveryMagnitude),
@@ -62,6 +62,12 @@ const SEPARATIONS: [Separation; 11] = [
         when(
             pair(a, b, Look::Shoulders, Look::Feet) || pair(a, b, Look::Shoulders, Look::Thighs),
             "a head accelerometer with the seat-pan force f_seat_z (a path to the shoulders shapes seat-head, one to the pelvis the apparent mass), or a wheel (hand) force or accelerometer",
+        )
+    },
+    |a, b| {
+        when(
+            pair(a, b, Look::OneSided, Look::UpperTorso),
+            "a run at a clearly different magnitude, or the strap's tension: a one-sided path carries a share that grows with the magnitude (it acts only past its slack), a backrest the same share at every magnitude",
         )
     },
     |a, b| own(a, b, Look::UpperTorso),

@@ -7,7 +7,7 @@ use super::*;
 use structure::{body_point_mass, heaviest_body_mass};
 
 /// The family's candidates, in report order.
-pub static DEFINITIONS: &[Candidate] = &[&BACKREST, &HANDS, &FEET, &THIGH];
+pub static DEFINITIONS: &[Candidate] = &[&BACKREST, &HANDS, &FEET, &THIGH, &HARNESS];
 
 /// Damping ratio of the joints and contacts of a support limb (knee and heel pad, shoulder and
 /// grip): soft tissue.
@@ -253,6 +253,59 @@ pub static THIGH: Definition = Definition {
     ..Definition::COMMON
 };
 
+/// A one-sided support path: shoulder straps (a pilot's harness) from the seat back that pull the
+/// upper body down only in tension, once it has risen `slack_m` (m) past its static position, with
+/// a strap stiffness tuned on the body point's mass to `f_strap_hz`; no force in compression. A
+/// compression stop (`Law::Bottoming`) on a link of no linear stiffness whose deflection is the
+/// body point's fall (row −1), so it acts on a rise. Its equivalent stiffness
+/// k_strap·P(rise > slack) grows with the run's r.m.s.: amplitude-dependent, where the two-sided
+/// paths are the same at every magnitude, and its pull on one side makes the torso's motion
+/// asymmetric.
+pub static HARNESS: Definition = Definition {
+    id: "harness",
+    family: Family::SupportPath,
+    params: || {
+        vec![
+            Param::new("f_strap_hz", 0.5, 25.0, &[3.0, 8.0], true),
+            Param::new("slack_m", 1e-5, 0.02, &[1e-4, 1e-3], true),
+        ]
+    },
+    applies_to: |s| target(Target::UpperBody, s).is_some(),
+    apply: |v, p| {
+        let s = &mut v.system;
+        let t = target_or_err(HARNESS.id, Target::UpperBody, s)?;
+        let m = s.m[(t, t)];
+        let w = 2.0 * std::f64::consts::PI * p[0];
+        let link = kv_link(
+            HARNESS.id,
+            (&s.dofs[t].name, "base"),
+            vec![(t, -1.0)],
+            m,
+            p[0],
+            0.0,
+        );
+        s.links.push(Link {
+            role: Role::Backrest,
+            element: Element::KelvinVoigt { k: 0.0, c: 0.0 },
+            law: Some(crate::system::link::Law::Bottoming {
+                gap: p[1],
+                k_stop: m * w * w,
+            }),
+            ..link
+        });
+        Ok(())
+    },
+    magnitude: Magnitude::Dependent {
+        at: Place::Body,
+        distortion_grows: true,
+    },
+    looks: &[Look::UpperTorso, Look::OneSided],
+    told_apart_by: Some(
+        "a run with the harness slackened, or the strap's tension (it pulls only while the torso rises past the slack)",
+    ),
+    ..Definition::COMMON
+};
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -348,5 +401,33 @@ mod tests {
         // The seat-pan force still reads the body–seat interface alone.
         let f = t.channel_index("f_seat_z").unwrap();
         assert_eq!(t.channels[f].rule, s.channels[f].rule);
+    }
+
+    #[test]
+    fn a_harness_pulls_the_torso_down_only_past_its_slack() {
+        use crate::system::link::Law;
+        let s = system("reference");
+        let t = target(Target::UpperBody, &s).unwrap();
+        let (f_hz, slack) = (5.0, 0.002);
+        let v = HARNESS.apply(&s, &[f_hz, slack]).unwrap();
+        let l = v.system.links.last().unwrap();
+        assert_eq!(l.row, vec![(t, -1.0)]);
+        assert_eq!(l.element.static_stiffness(), 0.0);
+        let k_strap = s.m[(t, t)] * (2.0 * std::f64::consts::PI * f_hz).powi(2);
+        let law: Law = l.law.unwrap();
+        // The link's deflection is the torso's fall: a rise q gives d = −q.
+        let on_torso = |q: f64| -law.force(0.0, 0.0, -q, 0.0).0 * -1.0;
+        // Within the slack, and at any fall, no force; past it the strap pulls down, −k (q − slack).
+        assert_eq!(on_torso(0.5 * slack), 0.0);
+        assert_eq!(on_torso(-0.01), 0.0);
+        let q = 3.0 * slack;
+        assert!((on_torso(q) + k_strap * (q - slack)).abs() < 1e-9 * k_strap);
+        // Its equivalent stiffness is k·P(rise > slack) = k·Φ(−slack/σ): none on a small run,
+        // half the strap's on a run of r.m.s. far above the slack.
+        let (k_small, _) = law.equivalent(0.0, 0.0, slack / 10.0, 1.0);
+        let (k_large, _) = law.equivalent(0.0, 0.0, slack * 1e3, 1.0);
+        assert!(k_small < 1e-6 * k_strap, "{k_small}");
+        assert!((k_large / k_strap - 0.5).abs() < 1e-3, "{k_large}");
+        assert!(HARNESS.amplitude_dependent());
     }
 }

@@ -67,25 +67,17 @@ impl Family {
     /// The family a diagnosis verdict or candidate id belongs to (the scorer's join; `None` for
     /// `none`, `unexplained`, `not-identifiable` and unknown ids).
     pub fn of_verdict(id: &str) -> Option<Family> {
-        let id = id.trim();
-        if id.starts_with("sensor-") || id.starts_with("logger-") {
-            Some(Family::Sensor)
-        } else if id.starts_with("cushion-viscoelastic") || id.starts_with("cushion-fractional") {
-            Some(Family::Viscoelastic)
-        } else if id.starts_with("cushion-stiffening")
-            || id.starts_with("cushion-contact")
-            || id.starts_with("cushion-bottoming")
-        {
-            Some(Family::Stiffening)
-        } else if id.starts_with("body-softening") {
-            Some(Family::Softening)
-        } else if id == "missing-dof" || id.starts_with("body-mode") || id.starts_with("seat-frame")
-        {
-            Some(Family::MissingDof)
-        } else if ["backrest", "hands-support", "feet-support", "thigh-support"].contains(&id) {
-            Some(Family::SupportPath)
-        } else {
-            None
+        use crate::diagnosis::candidate::{self, Family as Of};
+        // The bench's families are the diagnosis's, read from the candidate registry; the seat
+        // suspension has no bench form.
+        match candidate::from_id(id.trim())?.family {
+            Of::CushionViscoelasticity => Some(Family::Viscoelastic),
+            Of::CushionStiffening => Some(Family::Stiffening),
+            Of::BodySoftening => Some(Family::Softening),
+            Of::Sensor => Some(Family::Sensor),
+            Of::MissingDof => Some(Family::MissingDof),
+            Of::SupportPath => Some(Family::SupportPath),
+            Of::Suspension => None,
         }
     }
 }
@@ -535,6 +527,12 @@ mod tests {
             Some(Family::SupportPath)
         );
         assert_eq!(Family::of_verdict("body-mode"), Some(Family::MissingDof));
+        assert_eq!(Family::of_verdict("harness"), Some(Family::SupportPath));
+        assert_eq!(
+            Family::of_verdict("body-softening-magnitude"),
+            Some(Family::Softening)
+        );
+        assert_eq!(Family::of_verdict("suspension-friction"), None);
         assert_eq!(
             Family::of_verdict(crate::diagnosis::VerdictId::None.as_str()),
             None
