@@ -24,12 +24,13 @@ pub mod contacts;
 pub mod damping;
 pub mod measured;
 pub mod occupant;
+pub mod outcome;
 pub mod runs;
 
 use crate::analysis::{Spectrum, Weighting};
 use crate::error::{Error, Result};
 use crate::excitation::ExcitationSpec;
-use crate::excitation::classes::{self, InputClass, PsdCheck};
+use crate::excitation::classes::{self, InputClass};
 use crate::integrator::Method;
 use crate::model::Model;
 use crate::scenario::Scenario;
@@ -37,6 +38,7 @@ use crate::simulate::Settings as RunSettings;
 use crate::simulate::{AnalysisObserver, SpectraObserver};
 use contacts::{ContactObserver, Contacts};
 pub use occupant::{HEAVY_KG, LIGHT_KG, Occupant, REFERENCE_OPERATOR_KG, occupant_model};
+pub use outcome::{DampingTest, OccupantTest, Run, SeatTest, Spectra, Verdict};
 use serde::Serialize;
 use std::collections::BTreeMap;
 
@@ -48,30 +50,6 @@ pub const RUN_DURATION_S: f64 = 600.0;
 
 /// Most runs made while looking for three consecutive ones that agree.
 pub const MAX_RUNS: usize = 8;
-
-impl OccupantTest {
-    /// `light`, `heavy`, or `measured` for a lab's runs.
-    pub fn label(&self) -> &'static str {
-        self.occupant.map_or("measured", |p| p.name())
-    }
-    /// The body mass as a table cell: kg to 0.1, `-` for a lab's runs.
-    pub fn mass_cell(&self) -> String {
-        self.body_mass_kg.map_or("-".into(), |m| format!("{m:.1}"))
-    }
-    /// Whether the platform's PSD kept the standard's tolerance, as a table cell: `yes`, `NO`
-    /// (capitals: it voids the test), `-` when not checked.
-    pub fn psd_cell(&self) -> &'static str {
-        match self.psd_within_tolerance {
-            Some(true) => "yes",
-            Some(false) => "NO",
-            None => "-",
-        }
-    }
-    /// The end-stop contacts as a table cell: the count, `-` when not simulated.
-    pub fn contacts_cell(&self) -> String {
-        self.end_stop_contacts.map_or("-".into(), |c| c.to_string())
-    }
-}
 
 /// Acceptance values from the application standard; either may be absent.
 #[derive(Debug, Clone, Copy, PartialEq, Default, Serialize)]
@@ -97,16 +75,6 @@ impl Limits {
         }
         Ok(())
     }
-}
-
-/// The outcome against the limits.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
-#[serde(rename_all = "lowercase")]
-pub enum Verdict {
-    /// Every limit given is met (SEAT and damping-test transmissibility at or below their limits).
-    Pass,
-    /// At least one limit given is exceeded.
-    Fail,
 }
 
 /// How the simulated test is run.
@@ -137,159 +105,6 @@ impl Default for Settings {
             damping: true,
         }
     }
-}
-
-/// One run of a test.
-#[derive(Debug, Clone, PartialEq, Serialize)]
-pub struct Run {
-    /// The seed of a simulated run, or the file of a measured one.
-    pub id: String,
-    /// Wk-weighted r.m.s. of the platform, m/s².
-    pub a_wp: f64,
-    /// Wk-weighted r.m.s. of the seat surface, m/s².
-    pub a_ws: f64,
-    /// a_ws / a_wp of this run.
-    pub seat: f64,
-    /// VDV of the seat surface, m/s^1.75.
-    pub vdv_s: f64,
-    /// Crest factor of the Wk-weighted seat acceleration.
-    pub crest_factor_s: f64,
-    /// The run's platform PSD against the class tolerance.
-    pub platform_psd: Option<PsdCheck>,
-    /// End-stop contacts (simulated runs).
-    pub end_stop_contacts: Option<Contacts>,
-}
-
-/// Spectra kept for the report (not part of the JSON document).
-#[derive(Debug, Clone, PartialEq, Default)]
-pub struct Spectra {
-    /// Bin frequencies, Hz.
-    pub freq_hz: Vec<f64>,
-    /// Platform PSD averaged over the runs used, (m/s²)²/Hz.
-    pub platform: Vec<f64>,
-    /// Seat PSD averaged over the runs used, (m/s²)²/Hz.
-    pub seat: Vec<f64>,
-    /// Bin spacing, Hz.
-    pub df_hz: f64,
-    /// Welch segments summed over the runs used.
-    pub segments: usize,
-}
-
-/// The SEAT test of one test person.
-#[derive(Debug, Clone, PartialEq, Serialize)]
-pub struct OccupantTest {
-    /// `light`, `heavy`, or `null` for measured runs.
-    pub occupant: Option<Occupant>,
-    /// The test person's body mass, kg (`null` for measured runs).
-    pub body_mass_kg: Option<f64>,
-    /// The model's body masses, after scaling, kg.
-    pub supported_mass_kg: Option<f64>,
-    /// The factor the model's body was scaled by.
-    pub scale: Option<f64>,
-    /// Every run made, in order.
-    pub runs: Vec<Run>,
-    /// Index of the first of the three consecutive runs used.
-    pub first_used: usize,
-    /// Whether those three agree within ±5 % in a_wP (clause 10.2.1); when no three did, the last
-    /// three are used and this is false.
-    pub runs_agree: bool,
-    /// Mean a_wP of the runs used, m/s².
-    pub a_wp: f64,
-    /// Mean a_wS of the runs used, m/s².
-    pub a_ws: f64,
-    /// a_ws / a_wp (clause 10.2.2).
-    pub seat: f64,
-    /// SEAT · a*_wP: the seat value at the class's intended input, m/s² (clause 10.2.3).
-    pub a_ws_corrected: f64,
-    /// The runs' averaged platform PSD against the class's tolerance.
-    pub platform_psd: Option<PsdCheck>,
-    /// Whether that averaged PSD is within the tolerance.
-    pub psd_within_tolerance: Option<bool>,
-    /// End-stop contacts over the runs used.
-    pub end_stop_contacts: Option<usize>,
-    /// The averaged platform and seat PSDs, (m/s²)²/Hz, for the report's plots (not serialised).
-    #[serde(skip)]
-    pub spectra: Spectra,
-}
-
-/// The damping test's outcome.
-#[derive(Debug, Clone, PartialEq, Serialize)]
-pub struct DampingTest {
-    /// The inert mass, kg.
-    pub mass_kg: f64,
-    /// Resonance frequency, Hz (largest transmissibility of the sweep, parabola-refined).
-    pub f_r_hz: f64,
-    /// T = a_S/a_P at f_r.
-    pub transmissibility: f64,
-    /// The first estimate: the lowest undamped mode of the loaded seat, Hz.
-    pub undamped_estimate_hz: f64,
-    /// Platform displacement amplitude of the dwells, m.
-    pub platform_amplitude_m: f64,
-    /// The suspension's free travel either way, m (`null` without end stops).
-    pub free_travel_m: Option<f64>,
-    /// The sweep: dwell frequencies, Hz.
-    pub sweep_hz: Vec<f64>,
-    /// And the transmissibility at each.
-    pub sweep_transmissibility: Vec<f64>,
-    /// End-stop contacts over all dwells.
-    pub end_stop_contacts: usize,
-}
-
-/// The seat test: the JSON document of `wbv seat-test --json`.
-#[derive(Debug, Clone, PartialEq, Serialize)]
-pub struct SeatTest {
-    /// `simulated` or `measured`.
-    pub source: &'static str,
-    /// The model (simulated) or `null`.
-    pub model: Option<String>,
-    /// The input class's name (`iso7096-em3`).
-    pub class: String,
-    /// `ISO 7096`, `EN 13490` or `ISO 5007`.
-    pub standard: &'static str,
-    /// The class as the standard names it (`EM3`).
-    pub class_code: &'static str,
-    /// The machines the class stands for (unverified per class).
-    pub machine: &'static str,
-    /// a*_wP: the Wk-weighted r.m.s. of the class's target PSD, m/s².
-    pub intended_a_wp: f64,
-    /// Duration of each run, s.
-    pub run_duration_s: Option<f64>,
-    /// Every test person tested.
-    pub occupants: Vec<OccupantTest>,
-    /// The test person with the highest SEAT; the keys below are theirs.
-    pub governing_occupant: Option<Occupant>,
-    /// The governing test person's runs, in order.
-    pub runs: Vec<Run>,
-    /// The governing test person's mean Wk-weighted platform r.m.s. a_wP, m/s² (ISO 10326-1 10.2.1).
-    pub a_wp: f64,
-    /// The governing test person's mean Wk-weighted seat r.m.s. a_wS, m/s² (ISO 10326-1 10.2.1).
-    pub a_ws: f64,
-    /// The governing SEAT value a_wS/a_wP, dimensionless (ISO 10326-1 10.2.2).
-    pub seat: f64,
-    /// SEAT · a*_wP: the governing seat value at the class's intended input, m/s²
-    /// (ISO 10326-1 10.2.3).
-    pub a_ws_corrected: f64,
-    /// Whether every test person's averaged platform PSD is within the class's ±10 %-of-peak
-    /// tolerance (`null` when any test person's PSD was not checked).
-    pub psd_within_tolerance: Option<bool>,
-    /// End-stop contacts over every test person's runs used.
-    pub end_stop_contacts: Option<usize>,
-    /// The damping test (`null` when not run; see `damping_skipped`).
-    pub damping: Option<DampingTest>,
-    /// Why the damping test (ISO 10326-1 10.3) was not run, when it was not.
-    pub damping_skipped: Option<String>,
-    /// The application standard's acceptance values the verdict is judged against.
-    pub limits: Limits,
-    /// `pass`, `fail`, or `null` without limits.
-    pub verdict: Option<Verdict>,
-    /// Why, one sentence per criterion judged.
-    pub verdict_reasons: Vec<String>,
-    /// What was decided on the way (extra runs, PSD out of tolerance, …).
-    pub notes: Vec<String>,
-    /// The numbers this test rests on that are not verified against the standards' text.
-    pub unverified: Vec<String>,
-    /// Unit of each numeric key of the document (`a_wp` → `m/s^2`, `seat` → `1`, …).
-    pub units: BTreeMap<String, String>,
 }
 
 /// The Wk-weighted r.m.s. of `class`'s target PSD, m/s²: a*_wP.
