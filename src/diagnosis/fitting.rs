@@ -90,11 +90,6 @@ impl<'a> Base<'a> {
         }
     }
 
-    /// The check run's replay error ([`ReplayCalibration`]).
-    pub(super) fn replay_calibration(&self) -> ReplayCalibration {
-        self.replay_calibration
-    }
-
     /// The same base with the check run's replay error measured on a linear model
     /// ([`ReplayCalibration`]).
     pub(super) fn with_replay_calibration(self, replay_calibration: ReplayCalibration) -> Self {

@@ -209,9 +209,7 @@ pub(super) fn replay_refined(
     };
     let refined = fitting::refine_by_replay(base, &[first], u, tr)?;
     let v = fitting::build(base, &[first], &refined, fitting::reference_rms(tr))?;
-    let psd = super::replay::seat_psd(&v, ck)?;
-    entry.check.weighted =
-        super::gapmap::Weighted::replayed(ck, &psd, base.replay_calibration().aw_ratio);
+    fitting::replay_figures(base, &[first], &v, ck, &mut entry.check)?;
     let (aw, seat, _) = evidence::sizes(&entry.check, &null.check);
     entry.aw_change_percent = aw;
     entry.seat_change_points = seat;
