@@ -7,8 +7,8 @@
 //!   truth, its order and design;
 //! - a body that stiffens between runs (its resonance rises with magnitude): never named a
 //!   softening, whatever else the diagnosis says;
-//! - a pilot's harness (straps pulling the upper torso down only past their slack): named the
-//!   one-sided support path;
+//! - a pilot's harness (straps pulling the upper torso down only past their slack) and a lap belt
+//!   (the same law on the pelvis): each named the one-sided support path at its own place;
 //! - a base accelerometer 16.7 ms late on a field run (phase wrapping above 30 Hz): named a
 //!   logger offset, read within a millisecond.
 
@@ -234,6 +234,25 @@ fn a_pilots_harness_is_named_the_one_sided_support_path() {
         assert_eq!(
             doc["verdict"],
             "harness",
+            "{}: {}",
+            case.display(),
+            doc["verdict_text"]
+        );
+    }
+}
+
+#[test]
+fn a_lap_belt_is_named_the_one_sided_path_on_the_pelvis() {
+    let Some(dir) = common::input_fixtures() else {
+        return;
+    };
+    for (case, truth, doc) in diagnosed(&dir.join("lap-belt")) {
+        assert_eq!(truth["form"], "lap-belt", "{}", case.display());
+        // The shoulder harness fits it worse: the belt's pull enters at the pelvis, under the
+        // body's modes that a pull on the upper torso shapes.
+        assert_eq!(
+            doc["verdict"],
+            "lap-belt",
             "{}: {}",
             case.display(),
             doc["verdict_text"]

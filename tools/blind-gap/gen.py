@@ -268,7 +268,7 @@ FAMILIES = {
 # Forms reached only by a study set (--form): the random rotation above stays as it was, so the
 # cases of earlier seeds are drawn the same.
 STUDY_FORMS = {"missing-dof": ["rocking-frame"], "sensor": ["highpass-multi", "lowpass-multi"],
-               "body-stiffening": ["magnitude-stiffening"], "support-path": ["harness"]}
+               "body-stiffening": ["magnitude-stiffening"], "support-path": ["harness", "lap-belt"]}
 
 
 def prony_fractional(kf, alpha, f0, rng_lo=0.2, rng_hi=100.0, n=8):
@@ -347,6 +347,12 @@ def draw_effect(rng, family, form, strength):
             # the upper torso down only in tension, once the torso has risen past the strap's
             # slack (a one-sided path, unlike the candidates' two-sided spring-dampers)
             p = {"k_N_per_m": rng.uniform(15e3, 60e3) * strength,
+                 "slack_over_sigma": max(0.0, rng.uniform(0.0, 1.0) / strength)}
+        elif form == "lap-belt":
+            # a lap belt from the seat frame across the pelvis: webbing anchored beside the seat pan
+            # that pulls the pelvis down only in tension, once it has risen past the belt's slack;
+            # the belt's force does not pass through the seat pan's force plate
+            p = {"k_N_per_m": rng.uniform(20e3, 80e3) * strength,
                  "slack_over_sigma": max(0.0, rng.uniform(0.0, 1.0) / strength)}
         else:
             p = {"k_N_per_m": rng.uniform(20e3, 60e3) * strength, "c_Ns_per_m": rng.uniform(300, 1500) * strength}
@@ -517,6 +523,12 @@ def build_plant(subject, family, form, p, A_rms, sigma):
         slack = p["slack_over_sigma"] * sigma["torso"]
         kh = p["k_N_per_m"]
         nonlinear = ("upper_torso", None, lambda e, kh=kh, slack=slack: -kh * max(0.0, e - slack))
+        p = dict(p, slack_m=slack)
+    elif family == "support-path" and form == "lap-belt":
+        # the same tension-only law on the pelvis, anchored to the base (not through the cushion)
+        slack = p["slack_over_sigma"] * sigma["pelvis"]
+        kb = p["k_N_per_m"]
+        nonlinear = ("pelvis", None, lambda e, kb=kb, slack=slack: -kb * max(0.0, e - slack))
         p = dict(p, slack_m=slack)
     elif family == "support-path":
         node = "upper_torso" if form == "backrest" else "pelvis"
@@ -886,11 +898,13 @@ def outputs_for(plant, force, back=False):
     out = {"a_seat_z": ("acc", "cushion"), "a_head_z": ("acc", "head"),
            "defl_cushion": ("lin", plant.deflection_row("cushion", plant.links["cushion"][1]), 0.0),
            "defl_k4": ("lin", plant.deflection_row("pelvis", "cushion"), 0.0),
-           "defl_torso": ("lin", plant.deflection_row("upper_torso", None), 0.0)}
+           "defl_torso": ("lin", plant.deflection_row("upper_torso", None), 0.0),
+           "defl_pelvis": ("lin", plant.deflection_row("pelvis", None), 0.0)}
     if force:
         _, _, k4, c4 = plant.links["k4"]
         row = -k4 * plant.deflection_row("pelvis", "cushion") - c4 * plant.rate_row("pelvis", "cushion")
-        on_k4 = plant.nonlinear is not None and plant.nonlinear[0] == "pelvis"
+        # the seat-pan force carries a nonlinear law on the pelvis-cushion link, not a lap belt's
+        on_k4 = plant.nonlinear is not None and plant.nonlinear[:2] == ("pelvis", "cushion")
         out["f_seat_z"] = ("lin", row, 1.0 if on_k4 else 0.0)
     if back and "extra" in plant.links and plant.links["extra"][0] == "upper_torso":
         # an instrumented backrest: the vertical force of the back link on the upper torso, up positive
@@ -1078,7 +1092,8 @@ def make_case(case_dir, seed, index, override=None, model="reference"):
     twins_fine = [simulate(twin_plant, u, 1 / ffs, outputs_for(twin_plant, force)) for u in bases]
     sigma = {"cushion": float(np.std(twins_fine[1]["defl_cushion"][pre:])),
              "k4": float(np.std(twins_fine[1]["defl_k4"][pre:])),
-             "torso": float(np.std(twins_fine[1]["defl_torso"][pre:]))}
+             "torso": float(np.std(twins_fine[1]["defl_torso"][pre:])),
+             "pelvis": float(np.std(twins_fine[1]["defl_pelvis"][pre:]))}
     if model != "reference":
         sigma["susp_high"] = float(np.std(twins_fine[1]["defl_susp"][pre:]))
         sigma["susp_rate_high"] = float(np.std(twins_fine[1]["defl_susp_rate"][pre:]))

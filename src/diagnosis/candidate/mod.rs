@@ -196,7 +196,8 @@ pub enum Look {
     OneSided,
     /// A load path through the arms onto the shoulders.
     Shoulders,
-    /// A load path from the floor through the thighs onto the pelvis.
+    /// A load path onto the pelvis past the seat pan (the thighs on the seat's front edge, a lap
+    /// belt).
     Thighs,
     /// A load path from the floor through the feet and legs onto the pelvis.
     Feet,

@@ -21,6 +21,15 @@ fn own(a: Candidate, b: Candidate, look: Look) -> Option<&'static str> {
         .and_then(|c| c.told_apart_by)
 }
 
+/// Whether {a, b} are a one-sided and a two-sided support path onto the same place of the body
+/// (the upper torso, or the pelvis past the seat pan).
+fn one_sided_beside_two_sided(a: Candidate, b: Candidate) -> bool {
+    let same_place = [Look::UpperTorso, Look::Thighs]
+        .into_iter()
+        .any(|place| a.looks(place) && b.looks(place));
+    same_place && a.looks(Look::OneSided) != b.looks(Look::OneSided)
+}
+
 /// `m` when `applies`.
 fn when(applies: bool, m: &'static str) -> Option<&'static str> {
     applies.then_some(m)
@@ -66,7 +75,7 @@ const SEPARATIONS: [Separation; 12] = [
     },
     |a, b| {
         when(
-            pair(a, b, Look::OneSided, Look::UpperTorso),
+            one_sided_beside_two_sided(a, b),
             "a run at a clearly different magnitude, or the strap's tension: a one-sided path carries a share that grows with the magnitude (it acts only past its slack), a backrest the same share at every magnitude",
         )
     },
@@ -149,6 +158,18 @@ mod tests {
         assert!(
             m(&missing_dof::FRAME, &missing_dof::BODY_MODE).starts_with("a frame accelerometer")
         );
+        // A strap against a two-sided path at its own place: by magnitude or tension; against a
+        // path elsewhere, by the place's own measurement.
+        let (harness, belt) = (&support::HARNESS, &support::LAP_BELT);
+        for (one_sided, two_sided) in [(harness, backrest), (belt, thigh)] {
+            assert!(
+                m(one_sided, two_sided)
+                    .starts_with("a run at a clearly different magnitude, or the strap's tension")
+            );
+        }
+        assert!(m(belt, backrest).starts_with("a run without backrest contact"));
+        assert!(m(harness, belt).starts_with("a run with the harness slackened"));
+        assert!(m(belt, feet).starts_with("a run with the lap belt slackened"));
         assert_eq!(
             m(&suspension::END_STOP, &viscoelastic::CUSHION_FRACTIONAL),
             REPEAT

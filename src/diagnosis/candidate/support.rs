@@ -7,7 +7,7 @@ use super::*;
 use structure::{body_point_mass, heaviest_body_mass};
 
 /// The family's candidates, in report order.
-pub static DEFINITIONS: &[Candidate] = &[&BACKREST, &HANDS, &FEET, &THIGH, &HARNESS];
+pub static DEFINITIONS: &[Candidate] = &[&BACKREST, &HANDS, &FEET, &THIGH, &HARNESS, &LAP_BELT];
 
 /// Damping ratio of the joints and contacts of a support limb (knee and heel pad, shoulder and
 /// grip): soft tissue.
@@ -253,48 +253,51 @@ pub static THIGH: Definition = Definition {
     ..Definition::COMMON
 };
 
-/// A one-sided support path: shoulder straps (a pilot's harness) from the seat back that pull the
-/// upper body down only in tension, once it has risen `slack_m` (m) past its static position, with
-/// a strap stiffness tuned on the body point's mass to `f_strap_hz`; no force in compression. A
-/// compression stop (`Law::Bottoming`) on a link of no linear stiffness whose deflection is the
-/// body point's fall (row −1), so it acts on a rise. Its equivalent stiffness
-/// k_strap·P(rise > slack) grows with the run's r.m.s.: amplitude-dependent, where the two-sided
-/// paths are the same at every magnitude, and its pull on one side makes the torso's motion
-/// asymmetric.
+/// A strap from the seat frame that pulls body point `t` down only in tension, once it has risen
+/// `slack_m` (m) past its static position, with a stiffness tuned on the body point's mass to
+/// `f_strap_hz`; no force in compression. A compression stop (`Law::Bottoming`) on a link of no
+/// linear stiffness whose deflection is the body point's fall (row −1), so it acts on a rise. Its
+/// equivalent stiffness k_strap·P(rise > slack) grows with the run's r.m.s.: amplitude-dependent,
+/// where the two-sided paths are the same at every magnitude, and its pull on one side makes the
+/// body's motion asymmetric.
+fn push_strap(v: &mut Variant, id: &str, target: Target, p: &[f64]) -> Result<()> {
+    let s = &mut v.system;
+    let t = target_or_err(id, target, s)?;
+    let m = s.m[(t, t)];
+    let w = 2.0 * std::f64::consts::PI * p[0];
+    let link = kv_link(id, (&s.dofs[t].name, "base"), vec![(t, -1.0)], m, p[0], 0.0);
+    let role = match target {
+        Target::UpperBody => Role::Backrest,
+        Target::LowerBody => Role::Footrest,
+    };
+    s.links.push(Link {
+        role,
+        element: Element::KelvinVoigt { k: 0.0, c: 0.0 },
+        law: Some(crate::system::link::Law::Bottoming {
+            gap: p[1],
+            k_stop: m * w * w,
+        }),
+        ..link
+    });
+    Ok(())
+}
+
+/// A strap's parameters: its frequency on the body point's mass (Hz) and its slack (m).
+fn strap_params() -> Vec<Param> {
+    vec![
+        Param::new("f_strap_hz", 0.5, 25.0, &[3.0, 8.0], true),
+        Param::new("slack_m", 1e-5, 0.02, &[1e-4, 1e-3], true),
+    ]
+}
+
+/// A one-sided support path on the upper body: shoulder straps (a pilot's harness) from the seat
+/// back, acting past their slack only ([`push_strap`]).
 pub static HARNESS: Definition = Definition {
     id: "harness",
     family: Family::SupportPath,
-    params: || {
-        vec![
-            Param::new("f_strap_hz", 0.5, 25.0, &[3.0, 8.0], true),
-            Param::new("slack_m", 1e-5, 0.02, &[1e-4, 1e-3], true),
-        ]
-    },
+    params: strap_params,
     applies_to: |s| target(Target::UpperBody, s).is_some(),
-    apply: |v, p| {
-        let s = &mut v.system;
-        let t = target_or_err(HARNESS.id, Target::UpperBody, s)?;
-        let m = s.m[(t, t)];
-        let w = 2.0 * std::f64::consts::PI * p[0];
-        let link = kv_link(
-            HARNESS.id,
-            (&s.dofs[t].name, "base"),
-            vec![(t, -1.0)],
-            m,
-            p[0],
-            0.0,
-        );
-        s.links.push(Link {
-            role: Role::Backrest,
-            element: Element::KelvinVoigt { k: 0.0, c: 0.0 },
-            law: Some(crate::system::link::Law::Bottoming {
-                gap: p[1],
-                k_stop: m * w * w,
-            }),
-            ..link
-        });
-        Ok(())
-    },
+    apply: |v, p| push_strap(v, HARNESS.id, Target::UpperBody, p),
     magnitude: Magnitude::Dependent {
         at: Place::Body,
         distortion_grows: true,
@@ -302,6 +305,26 @@ pub static HARNESS: Definition = Definition {
     looks: &[Look::UpperTorso, Look::OneSided],
     told_apart_by: Some(
         "a run with the harness slackened, or the strap's tension (it pulls only while the torso rises past the slack)",
+    ),
+    ..Definition::COMMON
+};
+
+/// A one-sided support path on the lower body: a lap belt from the seat frame across the pelvis,
+/// acting past its slack only ([`push_strap`]). The seat-pan force does not carry it (the belt is
+/// anchored beside the pan), so with `f_seat_z` the apparent mass loses what the belt pulls.
+pub static LAP_BELT: Definition = Definition {
+    id: "lap-belt",
+    family: Family::SupportPath,
+    params: strap_params,
+    applies_to: |s| target(Target::LowerBody, s).is_some(),
+    apply: |v, p| push_strap(v, LAP_BELT.id, Target::LowerBody, p),
+    magnitude: Magnitude::Dependent {
+        at: Place::Body,
+        distortion_grows: true,
+    },
+    looks: &[Look::Thighs, Look::OneSided],
+    told_apart_by: Some(
+        "a run with the lap belt slackened, or the belt's tension (it pulls only while the pelvis rises past the slack)",
     ),
     ..Definition::COMMON
 };
@@ -404,30 +427,41 @@ mod tests {
     }
 
     #[test]
-    fn a_harness_pulls_the_torso_down_only_past_its_slack() {
+    fn a_strap_pulls_its_body_point_down_only_past_its_slack() {
         use crate::system::link::Law;
         let s = system("reference");
-        let t = target(Target::UpperBody, &s).unwrap();
-        let (f_hz, slack) = (5.0, 0.002);
-        let v = HARNESS.apply(&s, &[f_hz, slack]).unwrap();
-        let l = v.system.links.last().unwrap();
-        assert_eq!(l.row, vec![(t, -1.0)]);
-        assert_eq!(l.element.static_stiffness(), 0.0);
-        let k_strap = s.m[(t, t)] * (2.0 * std::f64::consts::PI * f_hz).powi(2);
-        let law: Law = l.law.unwrap();
-        // The link's deflection is the torso's fall: a rise q gives d = −q.
-        let on_torso = |q: f64| -law.force(0.0, 0.0, -q, 0.0).0 * -1.0;
-        // Within the slack, and at any fall, no force; past it the strap pulls down, −k (q − slack).
-        assert_eq!(on_torso(0.5 * slack), 0.0);
-        assert_eq!(on_torso(-0.01), 0.0);
-        let q = 3.0 * slack;
-        assert!((on_torso(q) + k_strap * (q - slack)).abs() < 1e-9 * k_strap);
-        // Its equivalent stiffness is k·P(rise > slack) = k·Φ(−slack/σ): none on a small run,
-        // half the strap's on a run of r.m.s. far above the slack.
-        let (k_small, _) = law.equivalent(0.0, 0.0, slack / 10.0, 1.0);
-        let (k_large, _) = law.equivalent(0.0, 0.0, slack * 1e3, 1.0);
-        assert!(k_small < 1e-6 * k_strap, "{k_small}");
-        assert!((k_large / k_strap - 0.5).abs() < 1e-3, "{k_large}");
-        assert!(HARNESS.amplitude_dependent());
+        for (d, place) in [
+            (&HARNESS, Target::UpperBody),
+            (&LAP_BELT, Target::LowerBody),
+        ] {
+            let t = target(place, &s).unwrap();
+            let (f_hz, slack) = (5.0, 0.002);
+            let v = d.apply(&s, &[f_hz, slack]).unwrap();
+            let l = v.system.links.last().unwrap();
+            assert_eq!(l.row, vec![(t, -1.0)], "{}", d.id);
+            assert_eq!(l.element.static_stiffness(), 0.0);
+            let k_strap = s.m[(t, t)] * (2.0 * std::f64::consts::PI * f_hz).powi(2);
+            let law: Law = l.law.unwrap();
+            // The link's deflection is the body point's fall: a rise q gives d = −q.
+            let on_body = |q: f64| -law.force(0.0, 0.0, -q, 0.0).0 * -1.0;
+            // Within the slack, and at any fall, no force; past it the strap pulls down,
+            // −k (q − slack).
+            assert_eq!(on_body(0.5 * slack), 0.0);
+            assert_eq!(on_body(-0.01), 0.0);
+            let q = 3.0 * slack;
+            assert!((on_body(q) + k_strap * (q - slack)).abs() < 1e-9 * k_strap);
+            // Its equivalent stiffness is k·P(rise > slack) = k·Φ(−slack/σ): none on a small
+            // run, half the strap's on a run of r.m.s. far above the slack.
+            let (k_small, _) = law.equivalent(0.0, 0.0, slack / 10.0, 1.0);
+            let (k_large, _) = law.equivalent(0.0, 0.0, slack * 1e3, 1.0);
+            assert!(k_small < 1e-6 * k_strap, "{k_small}");
+            assert!((k_large / k_strap - 0.5).abs() < 1e-3, "{k_large}");
+            assert!(d.amplitude_dependent());
+        }
+        // The belt is anchored beside the seat pan: the seat-pan force reads the body–seat
+        // interface alone, as without it.
+        let v = LAP_BELT.apply(&s, &[5.0, 0.002]).unwrap();
+        let f = s.channel_index("f_seat_z").unwrap();
+        assert_eq!(v.system.channels[f].rule, s.channels[f].rule);
     }
 }
