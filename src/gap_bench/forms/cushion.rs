@@ -130,7 +130,7 @@ pub(super) fn plant(
 
 /// J(g) = E[(z − g)^½; z > g] for a standard normal z: ∫_g^∞ √(z − g) φ(z) dz, by the midpoint
 /// rule on x = z − g = s² (dz = 2s ds, integrand 2 s² φ(g + s²)) over s in [0, 6].
-fn half_moment(g: f64) -> f64 {
+pub(super) fn half_moment(g: f64) -> f64 {
     let n = 4000;
     let ds = 6.0 / n as f64;
     (0..n)

@@ -18,6 +18,7 @@ mod cushion;
 mod frame;
 mod hands;
 mod sizing;
+mod strap;
 mod structure;
 
 pub use body::scheduled;
@@ -146,11 +147,17 @@ pub enum Form {
     /// Hands on a steering wheel: upper arms and forearms split off the upper torso on shoulder
     /// and elbow joints, gripping a wheel on a compliant steering column to the base.
     Hands,
+    /// Shoulder straps (a pilot's harness) from the seat frame that pull the upper torso down only
+    /// in tension past their slack, with a Hertzian toe (force ∝ stretch^(3/2)).
+    ShoulderStraps,
+    /// A lap belt from the seat frame across the pelvis, the same one-sided Hertzian webbing,
+    /// anchored beside the seat pan.
+    LapBelt,
 }
 
 impl Form {
     /// Every form, in report order.
-    pub const ALL: [Form; 25] = [
+    pub const ALL: [Form; 27] = [
         Form::Sls,
         Form::Maxwell2,
         Form::Fractional,
@@ -176,6 +183,8 @@ impl Form {
         Form::Backrest,
         Form::Legs,
         Form::Hands,
+        Form::ShoulderStraps,
+        Form::LapBelt,
     ];
     /// The family of the form.
     pub fn family(self) -> Family {
@@ -197,7 +206,9 @@ impl Form {
             Form::Frame | Form::Viscera | Form::FrameTwoMode | Form::RockingFrame => {
                 Family::MissingDof
             }
-            Form::Backrest | Form::Legs | Form::Hands => Family::SupportPath,
+            Form::Backrest | Form::Legs | Form::Hands | Form::ShoulderStraps | Form::LapBelt => {
+                Family::SupportPath
+            }
         }
     }
     /// The forms of `family`.
@@ -208,12 +219,15 @@ impl Form {
             .collect()
     }
     /// For a support-path form, the verdict ids that name its place on the body (the upper torso
-    /// from the frame, the shoulders from a wheel, the pelvis from the floor); `None` otherwise.
+    /// from the frame, the shoulders from a wheel, the pelvis from the floor, and a strap's place
+    /// and one-sided law); `None` otherwise.
     pub fn places(self) -> Option<&'static [&'static str]> {
         match self {
             Form::Backrest => Some(&["backrest"]),
             Form::Hands => Some(&["hands-support"]),
             Form::Legs => Some(&["feet-support", "thigh-support"]),
+            Form::ShoulderStraps => Some(&["harness"]),
+            Form::LapBelt => Some(&["lap-belt"]),
             _ => None,
         }
     }
@@ -245,6 +259,8 @@ impl Form {
             Form::Backrest => "backrest",
             Form::Legs => "legs",
             Form::Hands => "hands-on-wheel",
+            Form::ShoulderStraps => "shoulder-straps",
+            Form::LapBelt => "lap-belt",
         }
     }
 }
@@ -472,6 +488,7 @@ pub fn plant(
             structure::plant(form, u, rng, model)?
         }
         Form::Hands => hands::plant(u, rng, model)?,
+        Form::ShoulderStraps | Form::LapBelt => strap::plant(form, t, rng, model, lines)?,
     };
     Ok((planted, detail))
 }
