@@ -23,7 +23,9 @@ mod structure;
 
 pub use body::scheduled;
 pub use cushion::prony_fit;
-use sizing::{bisect, cushion, interface, kv, log_uniform, tuned, under_cushion, uniform};
+use sizing::{
+    bisect, cushion, interface, kv, log_uniform, seat_body, tuned, under_cushion, uniform,
+};
 pub use sizing::{gauss_mean, link_sigma};
 
 /// Effect families scored by the bench (the diagnosis is right when it names the family).

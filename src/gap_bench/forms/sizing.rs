@@ -133,3 +133,15 @@ pub(super) fn cushion(model: &Chain) -> Result<usize> {
 pub(super) fn interface(model: &Chain) -> usize {
     model.measure.interface[0]
 }
+
+/// The body mass on the seat (the interface link's body end), for `form`'s error when the model
+/// has none.
+pub(super) fn seat_body(model: &Chain, form: &str) -> Result<usize> {
+    match model.links[interface(model)].a {
+        Node::Mass(i) => Ok(i),
+        Node::Base => Err(crate::error::Error::parameter(
+            form,
+            "the bench's base model has no body mass on the seat",
+        )),
+    }
+}

@@ -23,17 +23,17 @@ pub(super) fn plant(
     model: &mut Chain,
     lines: &[(f64, f64)],
 ) -> Result<String> {
-    let target = match form {
-        Form::ShoulderStraps => heaviest_body(model).0,
-        Form::LapBelt => match model.links[interface(model)].a {
-            Node::Mass(i) => i,
-            Node::Base => {
-                return Err(crate::error::Error::parameter(
-                    "lap-belt",
-                    "the bench's base model has no body mass on the seat",
-                ));
-            }
-        },
+    let (target, name, role) = match form {
+        Form::ShoulderStraps => (
+            heaviest_body(model).0,
+            "truth-shoulder-straps",
+            Role::Backrest,
+        ),
+        Form::LapBelt => (
+            seat_body(model, "lap-belt")?,
+            "truth-lap-belt",
+            Role::Footrest,
+        ),
         _ => unreachable!("{form:?} is not a strap form"),
     };
     let beside: f64 = model
@@ -42,10 +42,6 @@ pub(super) fn plant(
         .filter(|l| l.a == Node::Mass(target) || l.b == Node::Mass(target))
         .map(|l| l.element.static_stiffness())
         .sum();
-    let (name, role) = match form {
-        Form::ShoulderStraps => ("truth-shoulder-straps", Role::Backrest),
-        _ => ("truth-lap-belt", Role::Footrest),
-    };
     model.links.push(Link {
         name: name.into(),
         a: Node::Base,

@@ -85,13 +85,7 @@ pub(super) fn plant(form: Form, u: f64, rng: &mut ChaCha8Rng, model: &mut Chain)
             )
         }
         Form::Legs => {
-            let p = model.links[interface(model)].a;
-            let Node::Mass(pi) = p else {
-                return Err(crate::error::Error::parameter(
-                    "legs",
-                    "the bench's base model has no body mass on the seat",
-                ));
-            };
+            let pi = seat_body(model, "legs")?;
             // Thighs split off the pelvis on a hip joint, the lower legs on a knee joint to the
             // thighs and a heel pad to the floor: two masses the candidate's one legs mass only
             // approximates.
