@@ -106,8 +106,8 @@ impl Site {
     /// Whether candidate `c` is a nonlinearity at this site.
     pub fn admits(self, c: Candidate) -> bool {
         match self {
-            Site::Support => c.nonlinear_at() == Some(Place::Support),
-            Site::Body => c.nonlinear_at() == Some(Place::Body),
+            Site::Support => matches!(c.nonlinear_at(), Some(Place::Support | Place::SeatToBody)),
+            Site::Body => matches!(c.nonlinear_at(), Some(Place::Body | Place::SeatToBody)),
             Site::Unlocated => c.amplitude_dependent(),
         }
     }
@@ -373,9 +373,16 @@ mod tests {
         assert!((bs.exponent - 1.0).abs() < 0.01 && bs.monotone);
         assert!(!d.paths[1].distorts());
         assert_eq!(d.site, Some(Site::Support));
-        use crate::diagnosis::candidate::{stiffening, viscoelastic};
+        use crate::diagnosis::candidate::{softening, stiffening, support, viscoelastic};
         assert!(Site::Support.admits(&stiffening::CUSHION_BOTTOMING));
+        assert!(!Site::Body.admits(&stiffening::CUSHION_BOTTOMING));
         assert!(!Site::Support.admits(&viscoelastic::CUSHION_VISCOELASTIC));
+        // A strap from the seat frame to a body mass is beside the cushion: either site.
+        for strap in [&support::HARNESS, &support::LAP_BELT] {
+            assert!(Site::Support.admits(strap) && Site::Body.admits(strap));
+        }
+        let softening = &softening::BODY_SOFTENING_MAGNITUDE;
+        assert!(Site::Body.admits(softening) && !Site::Support.admits(softening));
     }
 
     #[test]

@@ -124,6 +124,10 @@ pub enum Place {
     Support,
     /// In the occupant.
     Body,
+    /// From the seat frame to a body mass, beside the cushion (a strap): its force enters the
+    /// occupant from the base side, so its distortion shows on base→seat (the seat pad rides the
+    /// pelvis) and, as the body's paths carry it or not, on seat→head. Either site admits it.
+    SeatToBody,
 }
 
 /// How an effect depends on the run's magnitude.

@@ -299,7 +299,7 @@ pub static HARNESS: Definition = Definition {
     applies_to: |s| target(Target::UpperBody, s).is_some(),
     apply: |v, p| push_strap(v, HARNESS.id, Target::UpperBody, p),
     magnitude: Magnitude::Dependent {
-        at: Place::Body,
+        at: Place::SeatToBody,
         distortion_grows: true,
     },
     looks: &[Look::UpperTorso, Look::OneSided],
@@ -319,7 +319,7 @@ pub static LAP_BELT: Definition = Definition {
     applies_to: |s| target(Target::LowerBody, s).is_some(),
     apply: |v, p| push_strap(v, LAP_BELT.id, Target::LowerBody, p),
     magnitude: Magnitude::Dependent {
-        at: Place::Body,
+        at: Place::SeatToBody,
         distortion_grows: true,
     },
     looks: &[Look::Thighs, Look::OneSided],
