@@ -24,7 +24,8 @@ mod structure;
 pub use body::scheduled;
 pub use cushion::prony_fit;
 use sizing::{
-    bisect, cushion, interface, kv, log_uniform, seat_body, tuned, under_cushion, uniform,
+    bisect, cushion, interface, kv, log_uniform, seat_body, stiffness_on, tuned, under_cushion,
+    uniform,
 };
 pub use sizing::{gauss_mean, link_sigma};
 

@@ -134,6 +134,17 @@ pub(super) fn interface(model: &Chain) -> usize {
     model.measure.interface[0]
 }
 
+/// Sum of the static stiffnesses (N/m) of the links that end on mass `i`: the springs a path
+/// planted on it acts beside.
+pub(super) fn stiffness_on(model: &Chain, i: usize) -> f64 {
+    model
+        .links
+        .iter()
+        .filter(|l| l.a == Node::Mass(i) || l.b == Node::Mass(i))
+        .map(|l| l.element.static_stiffness())
+        .sum()
+}
+
 /// The body mass on the seat (the interface link's body end), for `form`'s error when the model
 /// has none.
 pub(super) fn seat_body(model: &Chain, form: &str) -> Result<usize> {

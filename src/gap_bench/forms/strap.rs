@@ -36,12 +36,7 @@ pub(super) fn plant(
         ),
         _ => unreachable!("{form:?} is not a strap form"),
     };
-    let beside: f64 = model
-        .links
-        .iter()
-        .filter(|l| l.a == Node::Mass(target) || l.b == Node::Mass(target))
-        .map(|l| l.element.static_stiffness())
-        .sum();
+    let beside = stiffness_on(model, target);
     model.links.push(Link {
         name: name.into(),
         a: Node::Base,
@@ -106,12 +101,7 @@ mod tests {
             // Its mean tangent over the top magnitude's Gaussian rise, by the sizing module's
             // trapezoid quadrature (not the half moment the planting used), is t times the body
             // links' stiffness on that mass.
-            let beside: f64 = base
-                .links
-                .iter()
-                .filter(|l| l.a == Node::Mass(target) || l.b == Node::Mass(target))
-                .map(|l| l.element.static_stiffness())
-                .sum();
+            let beside = stiffness_on(&base, target);
             let (s, _) = link_sigma(&model, i, &lines).unwrap();
             let mean = gauss_mean(s, |x| {
                 if x > gap {
