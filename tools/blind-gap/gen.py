@@ -26,7 +26,7 @@ import subprocess
 import sys
 
 import numpy as np
-from scipy import linalg, optimize, signal
+from scipy import integrate, linalg, optimize, signal
 
 G = 9.80665  # m/s^2, standard gravity
 
@@ -267,7 +267,7 @@ FAMILIES = {
 }
 # Forms reached only by a study set (--form): the random rotation above stays as it was, so the
 # cases of earlier seeds are drawn the same.
-STUDY_FORMS = {"missing-dof": ["rocking-frame"], "sensor": ["highpass-multi", "lowpass-multi"],
+STUDY_FORMS = {"viscoelastic": ["kww"], "missing-dof": ["rocking-frame"], "sensor": ["highpass-multi", "lowpass-multi"],
                "body-stiffening": ["magnitude-stiffening"], "support-path": ["harness", "lap-belt"]}
 
 
@@ -288,6 +288,35 @@ def prony_fractional(kf, alpha, f0, rng_lo=0.2, rng_hi=100.0, n=8):
     return [(float(k), float(t)) for k, t in zip(kn, taus) if k > 0], err
 
 
+def kww_modulus(w, tau, beta):
+    """The normalised complex modulus of a stretched-exponential (Kohlrausch-Williams-
+    Watts) relaxation phi(t) = exp(-(t/tau)^beta), M*(w) = i w int_0^inf phi(t) e^{-i w t} dt, by
+    scipy's Fourier-weighted quadrature (QAWF) on each frequency; 0 at rest, 1 at high frequency."""
+    out = []
+    for wi in np.atleast_1d(w):
+        phi = lambda t: np.exp(-(t / tau) ** beta)
+        c, _ = integrate.quad(phi, 0, np.inf, weight="cos", wvar=wi, limlst=200)
+        s_, _ = integrate.quad(phi, 0, np.inf, weight="sin", wvar=wi, limlst=200)
+        out.append(1j * wi * (c - 1j * s_))
+    return np.array(out)
+
+
+def prony_kww(dk, tau, beta, rng_lo=0.2, rng_hi=100.0, n=12):
+    """Maxwell arms (k_n, tau_n) whose sum approximates dk * M_kww(w) over rng_lo..rng_hi Hz
+    (non-negative least squares, relative error, log-spaced relaxation times two decades beyond)."""
+    taus = 1.0 / (2 * np.pi * np.geomspace(rng_lo / 10, rng_hi * 10, n))
+    f = np.geomspace(rng_lo, rng_hi, 120)
+    w = 2 * np.pi * f
+    target = dk * kww_modulus(w, tau, beta)
+    basis = (1j * w[:, None] * taus[None, :]) / (1 + 1j * w[:, None] * taus[None, :])
+    scale = np.abs(target)[:, None]
+    A = np.vstack([basis.real / scale, basis.imag / scale])
+    b = np.concatenate([target.real / np.abs(target), target.imag / np.abs(target)])
+    kn, _ = optimize.nnls(A, b)
+    err = float(np.max(np.abs(basis @ kn - target) / np.abs(target)))
+    return [(float(k), float(t)) for k, t in zip(kn, taus) if k > 0], err
+
+
 def draw_effect(rng, family, form, strength):
     """Parameters of one hidden effect; `strength` >= 1 scales its departure from the linear model."""
     p = {}
@@ -301,6 +330,11 @@ def draw_effect(rng, family, form, strength):
             p = {"k1_over_k": min(1.5, rng.uniform(0.2, 0.6) * strength), "tau1_s": rng.uniform(0.002, 0.01),
                  "k2_over_k": min(1.5, rng.uniform(0.2, 0.6) * strength), "tau2_s": rng.uniform(0.03, 0.2),
                  "c_parallel_over_c": rng.uniform(0.1, 0.6)}
+        elif form == "kww":
+            # a cold foam: stretched-exponential relaxation, its loss peak broad and skewed to high
+            # frequency (beta 0.3-0.6), near the body modes
+            p = {"dk_over_k": min(2.0, rng.uniform(0.3, 0.9) * strength), "tau_s": float(np.exp(rng.uniform(np.log(0.003), np.log(0.05)))),
+                 "beta": rng.uniform(0.3, 0.6), "c_parallel_over_c": rng.uniform(0.2, 0.8)}
         else:
             p = {"kf_over_k": min(1.0, rng.uniform(0.2, 0.5) * strength), "alpha": rng.uniform(0.2, 0.6),
                  "f0_hz": 5.0, "c_parallel_over_c": rng.uniform(0.1, 0.5)}
@@ -459,6 +493,11 @@ def build_plant(subject, family, form, p, A_rms, sigma):
             links["cushion"] = (i, j, k * (1 - 0.2 * (p["k1_over_k"] + p["k2_over_k"])), c * p["c_parallel_over_c"])
             arms.append((i, j, p["k1_over_k"] * k, p["tau1_s"]))
             arms.append((i, j, p["k2_over_k"] * k, p["tau2_s"]))
+        elif form == "kww":
+            series, _ = prony_kww(p["dk_over_k"] * k, p["tau_s"], p["beta"])
+            links["cushion"] = (i, j, k, c * p["c_parallel_over_c"])
+            for (kn, tn) in series:
+                arms.append((i, j, kn, tn))
         else:
             series, _ = prony_fractional(p["kf_over_k"] * k, p["alpha"], p["f0_hz"])
             links["cushion"] = (i, j, k * (1 - 0.5 * p["kf_over_k"]), c * p["c_parallel_over_c"])

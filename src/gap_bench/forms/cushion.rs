@@ -1,5 +1,5 @@
 //! Cushion truth forms: viscoelastic (standard linear solid, two Maxwell arms, fractional foam as a
-//! Prony series) and stiffening (cubic, quadratic contact, exponential, preloaded exponential, a
+//! Prony series, a cold foam's skewed log-normal relaxation spectrum) and stiffening (cubic, quadratic contact, exponential, preloaded exponential, a
 //! bottoming layer).
 
 use super::*;
@@ -77,6 +77,34 @@ pub(super) fn plant(
                 gs.iter().filter(|&&g| g > 0.0).count()
             )
         }
+        Form::ColdFoam => {
+            let i = cushion(model)?;
+            let (k, c) = kv(model, i);
+            // The spectrum's peak at 2.5–55 Hz; Gaussian in ln τ, wider on the fast side (a long
+            // high-frequency loss flank, as near the glass transition) than on the slow one.
+            let tau_p = log_uniform(rng, 0.003, 0.06);
+            let (s_fast, s_slow) = (uniform(rng, 1.5, 3.5), uniform(rng, 0.6, 1.5));
+            let arms = skewed_lognormal_arms(tau_p, s_fast, s_slow);
+            let share = 0.06 + 0.6 * u;
+            let at5: num_complex::Complex64 = arms
+                .iter()
+                .map(|&(t, w)| {
+                    let iwt = num_complex::Complex64::new(0.0, w5 * t);
+                    w * iwt / (1.0 + iwt)
+                })
+                .sum();
+            let dk = share * k / at5.norm();
+            let keep = uniform(rng, 0.3, 1.0);
+            model.links[i].element = Element::KelvinVoigt { k, c: keep * c };
+            for (j, &(t, w)) in arms.iter().enumerate() {
+                add_arm(model, i, &format!("cold{j}"), dk * w, t);
+            }
+            format!(
+                "cold foam: log-normal relaxation spectrum peaked at {:.1} Hz, σ {s_fast:.1} (fast side) / {s_slow:.1} (slow side) in ln τ, Δk = {dk:.0} N/m over {} Maxwell arms, parallel c ×{keep:.2}",
+                1.0 / (2.0 * PI * tau_p),
+                arms.len()
+            )
+        }
         Form::Cubic | Form::Contact | Form::Exponential | Form::PreloadExp => {
             let i = cushion(model)?;
             let (s, _) = link_sigma(model, i, lines)?;
@@ -140,6 +168,25 @@ pub(super) fn half_moment(g: f64) -> f64 {
             2.0 * s * s * (-0.5 * z * z).exp() / (2.0 * PI).sqrt() * ds
         })
         .sum()
+}
+
+/// A relaxation spectrum Gaussian in u = ln(τ/τ_p) with width `s_fast` for u < 0 and `s_slow` for
+/// u > 0, as Maxwell arms four per decade at 0.01–3000 Hz with weights ∝ the density at their τ,
+/// summing to one (arms below 10⁻⁴ of the largest dropped): a broad, asymmetric loss peak whose
+/// flanks fall as Gaussians in ln ω, not as the power laws of a Havriliak–Negami or fractional law.
+pub(super) fn skewed_lognormal_arms(tau_p: f64, s_fast: f64, s_slow: f64) -> Vec<(f64, f64)> {
+    let raw: Vec<(f64, f64)> = (0..=22)
+        .map(|j| {
+            let tau = 1.0 / (2.0 * PI * 0.01 * 10f64.powf(j as f64 / 4.0));
+            let u = (tau / tau_p).ln();
+            let s = if u < 0.0 { s_fast } else { s_slow };
+            (tau, (-0.5 * (u / s).powi(2)).exp())
+        })
+        .collect();
+    let top = raw.iter().map(|a| a.1).fold(0.0, f64::max);
+    let kept: Vec<(f64, f64)> = raw.into_iter().filter(|a| a.1 > 1e-4 * top).collect();
+    let sum: f64 = kept.iter().map(|a| a.1).sum();
+    kept.into_iter().map(|(t, w)| (t, w / sum)).collect()
 }
 
 /// A Maxwell arm in parallel with link `i` (same nodes), `k_m` N/m, relaxation time `tau` s.
@@ -215,6 +262,42 @@ pub fn prony_fit(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// Loss part of Σ w·iωτ/(1 + iωτ) at ω: Σ w·ωτ/(1 + (ωτ)²).
+    fn loss(arms: &[(f64, f64)], w: f64) -> f64 {
+        arms.iter()
+            .map(|&(t, k)| k * w * t / (1.0 + (w * t).powi(2)))
+            .sum()
+    }
+
+    #[test]
+    fn the_cold_foams_loss_peak_sits_at_its_spectrum_and_leans_to_high_frequency() {
+        let tau_p = 0.01;
+        // Symmetric in ln τ: the loss, Σ over a Gaussian of the Debye peak ½ sech(ln ωτ), is
+        // symmetric in ln(ωτ_p) and peaks at ωτ_p = 1 (within the grid's quarter decade).
+        let sym = skewed_lognormal_arms(tau_p, 1.0, 1.0);
+        assert!((sym.iter().map(|a| a.1).sum::<f64>() - 1.0).abs() < 1e-12);
+        let ws: Vec<f64> = (0..=200)
+            .map(|j| 10f64.powf(-2.0 + 4.0 * j as f64 / 200.0) / tau_p)
+            .collect();
+        let peak = ws
+            .iter()
+            .copied()
+            .max_by(|&a, &b| loss(&sym, a).total_cmp(&loss(&sym, b)))
+            .unwrap();
+        assert!(
+            (peak * tau_p).log10().abs() < 0.25,
+            "peak at ωτ = {}",
+            peak * tau_p
+        );
+        for x in [3.0, 10.0, 30.0] {
+            let (hi, lo) = (loss(&sym, x / tau_p), loss(&sym, 1.0 / (x * tau_p)));
+            assert!((hi / lo - 1.0).abs() < 0.1, "x {x}: {hi} vs {lo}");
+        }
+        // Wider on the fast side: a decade above the peak holds more loss than a decade below.
+        let cold = skewed_lognormal_arms(tau_p, 3.0, 0.8);
+        assert!(loss(&cold, 10.0 / tau_p) > 2.0 * loss(&cold, 0.1 / tau_p));
+    }
 
     #[test]
     fn the_half_moment_of_a_normal_tail_matches_its_closed_form() {

@@ -97,6 +97,10 @@ pub enum Form {
     /// Fractional-derivative foam k_f·(iω/ω_r)^α, realised as a Prony series of six Maxwell arms
     /// least-squares fitted to the fractional modulus over 0.3–100 Hz.
     Fractional,
+    /// A cold foam: a relaxation spectrum log-normal in τ and skewed (wider on the fast side), so
+    /// its loss peak is broad and asymmetric with Gaussian flanks — not the power-law flanks of
+    /// the candidates' Havriliak–Negami or fractional forms, nor one Maxwell arm.
+    ColdFoam,
     /// Cubic stiffening `k·d + k3·d³`.
     Cubic,
     /// Quadratic contact stiffening `k·d·(1 + |d|/d0)`.
@@ -160,10 +164,11 @@ pub enum Form {
 
 impl Form {
     /// Every form, in report order.
-    pub const ALL: [Form; 27] = [
+    pub const ALL: [Form; 28] = [
         Form::Sls,
         Form::Maxwell2,
         Form::Fractional,
+        Form::ColdFoam,
         Form::Cubic,
         Form::Contact,
         Form::Exponential,
@@ -192,7 +197,7 @@ impl Form {
     /// The family of the form.
     pub fn family(self) -> Family {
         match self {
-            Form::Sls | Form::Maxwell2 | Form::Fractional => Family::Viscoelastic,
+            Form::Sls | Form::Maxwell2 | Form::Fractional | Form::ColdFoam => Family::Viscoelastic,
             Form::Cubic
             | Form::Contact
             | Form::Exponential
@@ -240,6 +245,7 @@ impl Form {
             Form::Sls => "sls",
             Form::Maxwell2 => "maxwell-2arm",
             Form::Fractional => "fractional",
+            Form::ColdFoam => "cold-foam",
             Form::Cubic => "cubic",
             Form::Contact => "contact",
             Form::Exponential => "exponential",
@@ -374,6 +380,7 @@ pub fn plant(
         Form::Sls
         | Form::Maxwell2
         | Form::Fractional
+        | Form::ColdFoam
         | Form::Cubic
         | Form::Contact
         | Form::Exponential
