@@ -67,18 +67,7 @@ pub static CUSHION_FRACTIONAL: Definition = Definition {
             // frequency: α = 1 is the Kelvin–Voigt cushion again.
             s.links[i].element = Element::KelvinVoigt { k, c: 0.0 };
             let k_f = p[0] * c * 2.0 * PI * FRACTIONAL_REF_HZ;
-            for (j, &(tau, w)) in arms.iter().enumerate() {
-                s.links.push(Link {
-                    name: format!("{}-arm{j}", l.name),
-                    element: Element::Maxwell {
-                        k: k_f * w,
-                        c: k_f * w * tau,
-                    },
-                    law: None,
-                    record_deflection: false,
-                    ..l.clone()
-                });
-            }
+            add_spectrum(s, &l, "arm", k_f, &arms);
         }
         Ok(())
     },
@@ -108,19 +97,7 @@ pub static CUSHION_HAVRILIAK_NEGAMI: Definition = Definition {
         let arms = havriliak_negami_arms(p[1], p[2], p[3]);
         for i in cushion_or_err(CUSHION_HAVRILIAK_NEGAMI.id, s)? {
             let l = s.links[i].clone();
-            let dk = p[0] * l.element.static_stiffness();
-            for (j, &(tau, w)) in arms.iter().enumerate() {
-                s.links.push(Link {
-                    name: format!("{}-hn{j}", l.name),
-                    element: Element::Maxwell {
-                        k: dk * w,
-                        c: dk * w * tau,
-                    },
-                    law: None,
-                    record_deflection: false,
-                    ..l.clone()
-                });
-            }
+            add_spectrum(s, &l, "hn", p[0] * l.element.static_stiffness(), &arms);
         }
         Ok(())
     },
@@ -194,6 +171,23 @@ pub fn havriliak_negami_arms(tau0: f64, a: f64, b: f64) -> Vec<(f64, f64)> {
     arms.insert(0, (tau_slow, slow));
     arms.push((tau_fast, fast_wt / tau_fast));
     arms
+}
+
+/// A relaxation spectrum beside link `l`: one Maxwell arm per (τ s, weight) of `arms`, of
+/// stiffness `k_total`·weight N/m and dashpot stiffness·τ, named `<link>-<tag><j>`.
+fn add_spectrum(s: &mut System, l: &Link, tag: &str, k_total: f64, arms: &[(f64, f64)]) {
+    for (j, &(tau, w)) in arms.iter().enumerate() {
+        s.links.push(Link {
+            name: format!("{}-{tag}{j}", l.name),
+            element: Element::Maxwell {
+                k: k_total * w,
+                c: k_total * w * tau,
+            },
+            law: None,
+            record_deflection: false,
+            ..l.clone()
+        });
+    }
 }
 
 /// Reference frequency of the fractional cushion's modulus, Hz: the body-mode region.
