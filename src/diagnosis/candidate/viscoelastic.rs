@@ -232,20 +232,21 @@ mod tests {
     use super::*;
     use num_complex::Complex64;
 
+    /// The arms' summed dynamic stiffness at ω (rad/s) as the system computes it: each (τ, k) a
+    /// Maxwell element of spring k and dashpot k·τ ([`Element::dynamic_stiffness`]).
+    fn arms_stiffness(arms: &[(f64, f64)], w: f64) -> Complex64 {
+        arms.iter()
+            .map(|&(t, k)| Element::Maxwell { k, c: k * t }.dynamic_stiffness(w))
+            .sum()
+    }
+
     #[test]
     fn fractional_arms_follow_the_power_law_in_the_analysed_band() {
         // (iω/ω₅)^α: magnitude (f/5)^α and phase απ/2, closed form, over 0.5–31.5 Hz.
         for alpha in [0.2, 0.5, 0.8] {
             let arms = fractional_arms(alpha);
             for f in [0.5, 1.0, 2.0, 5.0, 10.0, 20.0, 31.5] {
-                let w = 2.0 * PI * f;
-                let s: Complex64 = arms
-                    .iter()
-                    .map(|&(t, k)| {
-                        let iwt = Complex64::new(0.0, w * t);
-                        k * iwt / (1.0 + iwt)
-                    })
-                    .sum();
+                let s = arms_stiffness(&arms, 2.0 * PI * f);
                 let want = (f / FRACTIONAL_REF_HZ).powf(alpha);
                 assert!(
                     (s.norm() / want - 1.0).abs() < 0.03,
@@ -279,14 +280,7 @@ mod tests {
                     };
                     let scale = fs.iter().map(|&f| exact(f).norm()).fold(0.0, f64::max);
                     for &f in &fs {
-                        let w = 2.0 * PI * f;
-                        let s: Complex64 = arms
-                            .iter()
-                            .map(|&(t, k)| {
-                                let iwt = Complex64::new(0.0, w * t);
-                                k * iwt / (1.0 + iwt)
-                            })
-                            .sum();
+                        let s = arms_stiffness(&arms, 2.0 * PI * f);
                         let e = (s - exact(f)).norm() / scale.max(0.05);
                         worst = worst.max(e);
                         assert!(e < 0.02, "τ₀ {tau0} a {a} b {b} f {f}: error {e}");
