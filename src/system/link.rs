@@ -171,6 +171,27 @@ pub enum Law {
         /// Hertzian contact coefficient of the `(−d − gap)^(3/2)` force, N/m^1.5 (Johnson 1985, eq. 4.23).
         k_h: f64,
     },
+    /// A preloaded contact that can separate (feet on a floor, a heel pad): linear about its
+    /// static compression until the contact force k·travel it carries at rest is used up, then no
+    /// force at all: `f = min(k·d + c·v, k·travel)`, `travel` in m of extension (d > 0) before it
+    /// lifts off. Stiffness and damping both vanish while it is off, so the path carries less the
+    /// larger the motion.
+    LiftOff {
+        /// Extension past the static equilibrium at which the preloaded contact unloads, m (the
+        /// static compression of the contact).
+        travel: f64,
+    },
+    /// A preloaded Hertzian pad that can separate (Johnson, *Contact Mechanics*, 1985, eq. 4.23):
+    /// contact force ∝ (travel − d)^(3/2), so the deviation about rest is
+    /// `f = (2/3)·k·travel·[1 − (1 − d/travel)^(3/2)]` with tangent `k·√(1 − d/travel)` (k at
+    /// rest), damping `c·(1 − d/travel)^(3/2)` (Hunt & Crossley, J. Appl. Mech. 42 (1975) 440:
+    /// damping with the contact force's own power of the compression), and `f = (2/3)·k·travel`
+    /// once off (d ≥ travel). Used by the gap bench's truth forms.
+    HertzPad {
+        /// Extension past the static equilibrium at which the pad unloads, m (its static
+        /// compression).
+        travel: f64,
+    },
     /// Preloaded exponential foam about its static sag: the spring force `k·d` becomes
     /// `k·d_e·(1 − e^(−d/d_e))`, `d_e` in m (tangent `k·e^(−d/d_e)`): the deviation about the sag of
     /// a foam force `F₀(e^(D/d_e) − 1)` in the total compression D (Deng, Davies & Bajaj 2003
@@ -234,6 +255,23 @@ impl Law {
                     (k * d + c * v, k, c)
                 }
             }
+            Law::LiftOff { travel } => {
+                let f = k * d + c * v;
+                if f < k * travel {
+                    (f, k, c)
+                } else {
+                    (k * travel, 0.0, 0.0)
+                }
+            }
+            Law::HertzPad { travel } => {
+                let r = (1.0 - d / travel).max(0.0).sqrt();
+                let (f0, r3) = (2.0 / 3.0 * k * travel, r * r * r);
+                (
+                    f0 * (1.0 - r3) + c * r3 * v,
+                    k * r - 1.5 * c * v * r / travel,
+                    c * r3,
+                )
+            }
             Law::PreloadExp { d_e } => {
                 // Capped argument as for `Exponential` (compression is d < 0).
                 let e = (-d / d_e).clamp(-60.0, 60.0).exp();
@@ -253,7 +291,8 @@ impl Law {
     /// Exact Gaussian mean of the stiffness `E[∂f/∂d]` (N/m) for a zero-mean Gaussian deflection of
     /// r.m.s. `sigma` (m), for the laws whose tangent steps where a stop touches: `EndStop`
     /// `k + k_stop·P(|d| > gap) = k + k_stop·erfc(gap/(σ√2))`, `Bottoming`
-    /// `k + k_stop·P(d < −gap) = k + k_stop·erfc(gap/(σ√2))/2`. A quadrature on a fixed grid is
+    /// `k + k_stop·P(d < −gap) = k + k_stop·erfc(gap/(σ√2))/2`, `LiftOff`
+    /// `k·P(d < travel) = k·(1 − erfc(travel/(σ√2))/2)`. A quadrature on a fixed grid is
     /// piecewise constant in `gap` for these, so a fit could not move the gap; `None` for the
     /// smooth laws (their quadrature is accurate and smooth).
     pub fn gaussian_stiffness(&self, k: f64, sigma: f64) -> Option<f64> {
@@ -267,6 +306,7 @@ impl Law {
         match *self {
             Law::EndStop { gap, k_stop } => Some(k + k_stop * exceed(gap)),
             Law::Bottoming { gap, k_stop } => Some(k + 0.5 * k_stop * exceed(gap)),
+            Law::LiftOff { travel } => Some(k * (1.0 - 0.5 * exceed(travel))),
             _ => None,
         }
     }
@@ -381,6 +421,40 @@ mod tests {
     }
 
     #[test]
+    fn a_lifting_contact_carries_its_preload_and_no_more() {
+        let (k, c, travel) = (4e4, 200.0, 0.003);
+        let law = Law::LiftOff { travel };
+        // In contact: the linear link; the contact force k·travel − f stays ≥ 0.
+        assert_eq!(law.force(k, c, 0.001, 0.1), (k * 0.001 + c * 0.1, k, c));
+        assert_eq!(law.force(k, c, -0.01, 0.0), (-k * 0.01, k, c));
+        // Off (f would exceed the preload): the preload released, no stiffness, no damping.
+        assert_eq!(law.force(k, c, 0.004, 0.0), (k * travel, 0.0, 0.0));
+        assert_eq!(law.force(k, c, 0.002, 0.6), (k * travel, 0.0, 0.0));
+        // Gaussian mean stiffness k·P(d < travel): at σ = travel, Φ(1) = 0.841344746068543.
+        let g = law.gaussian_stiffness(k, travel).unwrap();
+        assert!((g / (k * 0.841344746068543) - 1.0).abs() < 1e-12, "{g}");
+        assert_eq!(law.gaussian_stiffness(k, 0.0), Some(k));
+    }
+
+    #[test]
+    fn a_hertzian_pad_softens_as_it_unloads_and_lifts_off() {
+        let (k, c, travel) = (4e4, 200.0, 0.003);
+        let law = Law::HertzPad { travel };
+        // At rest: the linear link's tangents.
+        assert_eq!(law.tangent_at_rest(k, c), (k, c));
+        // The contact force F(d) = F0·(1 − d/travel)^(3/2), F0 = (2/3)·k·travel (so that its
+        // tangent at rest is k), against the deviation F0 − F(d), computed from F directly.
+        let f0 = 2.0 / 3.0 * k * travel;
+        for d in [-0.004, -0.001, 0.0, 0.0015, 0.0029] {
+            let contact = f0 * (1.0 - d / travel).powf(1.5);
+            let got = law.force(k, 0.0, d, 0.0).0;
+            assert!((got - (f0 - contact)).abs() < 1e-9 * f0, "d {d}: {got}");
+        }
+        // Off: the preload released, nothing else.
+        assert_eq!(law.force(k, c, 0.005, 0.3), (f0, 0.0, 0.0));
+    }
+
+    #[test]
     fn preload_exponential_is_the_foam_law_about_its_sag() {
         // F(D) = F0 (e^(D/d_e) − 1) with tangent k at the sag D0: F(D0 + x) − F(D0) = k d_e (e^(x/d_e) − 1)
         // for a compression x = −d; checked against F evaluated directly.
@@ -421,6 +495,7 @@ mod tests {
                 k_stop: 1e5,
             },
             Law::PreloadExp { d_e: 0.004 },
+            Law::HertzPad { travel: 0.004 },
             Law::HertzStop {
                 gap: 0.002,
                 k_h: 3e7,

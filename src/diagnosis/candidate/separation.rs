@@ -22,9 +22,9 @@ fn own(a: Candidate, b: Candidate, look: Look) -> Option<&'static str> {
 }
 
 /// Whether {a, b} are a one-sided and a two-sided support path onto the same place of the body
-/// (the upper torso, or the pelvis past the seat pan).
+/// (the upper torso, the pelvis past the seat pan, or the pelvis through the feet).
 fn one_sided_beside_two_sided(a: Candidate, b: Candidate) -> bool {
-    let same_place = [Look::UpperTorso, Look::Thighs]
+    let same_place = [Look::UpperTorso, Look::Thighs, Look::Feet]
         .into_iter()
         .any(|place| a.looks(place) && b.looks(place));
     same_place && a.looks(Look::OneSided) != b.looks(Look::OneSided)
@@ -76,7 +76,7 @@ const SEPARATIONS: [Separation; 12] = [
     |a, b| {
         when(
             one_sided_beside_two_sided(a, b),
-            "a run at a clearly different magnitude, or the strap's tension: a one-sided path carries a share that grows with the magnitude (it acts only past its slack), a backrest the same share at every magnitude",
+            "a run at a clearly different magnitude, or the path's own force: a one-sided path's share changes with the magnitude (a strap pulls only past its slack, a foot carries only while it keeps contact), a two-sided path carries the same share at every magnitude",
         )
     },
     |a, b| own(a, b, Look::UpperTorso),
@@ -158,15 +158,21 @@ mod tests {
         assert!(
             m(&missing_dof::FRAME, &missing_dof::BODY_MODE).starts_with("a frame accelerometer")
         );
-        // A strap against a two-sided path at its own place: by magnitude or tension; against a
-        // path elsewhere, by the place's own measurement.
-        let (harness, belt) = (&support::HARNESS, &support::LAP_BELT);
-        for (one_sided, two_sided) in [(harness, backrest), (belt, thigh)] {
+        // A one-sided path against a two-sided one at its own place: by magnitude or the path's
+        // force; against a path elsewhere, by the place's own measurement.
+        let (harness, belt, lift) = (
+            &support::HARNESS,
+            &support::LAP_BELT,
+            &support::FEET_LIFT_OFF,
+        );
+        for (one_sided, two_sided) in [(harness, backrest), (belt, thigh), (lift, feet)] {
             assert!(
                 m(one_sided, two_sided)
-                    .starts_with("a run at a clearly different magnitude, or the strap's tension")
+                    .starts_with("a run at a clearly different magnitude, or the path's own force")
             );
         }
+        assert!(m(lift, thigh).starts_with("the seat-pan force f_seat_z"));
+        assert!(m(lift, hands).starts_with("a head accelerometer with the seat-pan force"));
         assert!(m(belt, backrest).starts_with("a run without backrest contact"));
         assert!(m(harness, belt).starts_with("a run with the harness slackened"));
         assert!(m(belt, feet).starts_with("a run with the lap belt slackened"));

@@ -7,7 +7,15 @@ use super::*;
 use structure::{body_point_mass, heaviest_body_mass};
 
 /// The family's candidates, in report order.
-pub static DEFINITIONS: &[Candidate] = &[&BACKREST, &HANDS, &FEET, &THIGH, &HARNESS, &LAP_BELT];
+pub static DEFINITIONS: &[Candidate] = &[
+    &BACKREST,
+    &HANDS,
+    &FEET,
+    &FEET_LIFT_OFF,
+    &THIGH,
+    &HARNESS,
+    &LAP_BELT,
+];
 
 /// Damping ratio of the joints and contacts of a support limb (knee and heel pad, shoulder and
 /// grip): soft tissue.
@@ -159,6 +167,42 @@ pub static FEET: Definition = Definition {
     looks: &[Look::Feet],
     told_apart_by: Some(
         "a run with the feet on a fixed floor, or a footrest force (the feet carry part of the thighs past the seat pan)",
+    ),
+    ..Definition::COMMON
+};
+
+/// Feet that lift off the floor (a one-sided [`FEET`]): the heel pad is a preloaded contact that
+/// carries the legs only while it stays compressed (`Law::LiftOff`): past `travel_m` (m) of rise
+/// of the legs over the floor, its static compression, the foot leaves the floor and the path
+/// carries nothing. Its equivalent stiffness k_heel·P(rise < travel) falls as the run's r.m.s.
+/// grows: amplitude-dependent, a share of the load that the seat pan takes back on large runs —
+/// the opposite trend to a strap's. Seated feet carry a few hundred newtons of the legs' and
+/// thighs' weight on a pad of tens of kN/m, so the static compression is millimetres: bounds
+/// 0.05–20 mm.
+pub static FEET_LIFT_OFF: Definition = Definition {
+    id: "feet-lift-off",
+    family: Family::SupportPath,
+    params: || {
+        let mut p = (FEET.params)();
+        p.push(Param::new("travel_m", 5e-5, 0.02, &[1e-3], true));
+        p
+    },
+    applies_to: |s| target(Target::LowerBody, s).is_some(),
+    apply: |v, p| {
+        (FEET.apply)(v, &p[..3])?;
+        // The heel pad is the last link `FEET` adds.
+        let heel = (v.system.links.last_mut())
+            .ok_or_else(|| Error::parameter(FEET_LIFT_OFF.id, "no heel link to lift off"))?;
+        heel.law = Some(crate::system::link::Law::LiftOff { travel: p[3] });
+        Ok(())
+    },
+    magnitude: Magnitude::Dependent {
+        at: Place::SeatToBody,
+        distortion_grows: true,
+    },
+    looks: &[Look::Feet, Look::OneSided],
+    told_apart_by: Some(
+        "a run with the feet on a footrest they cannot leave, or a floor force under the feet (it drops to zero while the heels are off)",
     ),
     ..Definition::COMMON
 };
@@ -380,6 +424,31 @@ mod tests {
         // The seat-pan force still reads the body–seat interface alone.
         let f = t.channel_index("f_seat_z").unwrap();
         assert_eq!(t.channels[f].rule, s.channels[f].rule);
+    }
+
+    #[test]
+    fn feet_that_lift_off_are_the_feet_path_with_a_heel_that_carries_its_preload_only() {
+        use crate::system::link::Law;
+        let s = system("reference");
+        let (on, off) = (
+            FEET.apply(&s, &[6.0, 3.0, 12.0]).unwrap(),
+            FEET_LIFT_OFF.apply(&s, &[6.0, 3.0, 12.0, 0.002]).unwrap(),
+        );
+        // The same legs, knee and heel; only the heel's law differs.
+        assert_eq!(on.system.links.len(), off.system.links.len());
+        let heel = off.system.links.last().unwrap();
+        assert_eq!(heel.name, "heel");
+        assert_eq!(heel.element, on.system.links.last().unwrap().element);
+        assert_eq!(heel.law, Some(Law::LiftOff { travel: 0.002 }));
+        // The heel's deflection is the legs' rise over the floor: off past 2 mm of it.
+        let j = off.system.dof() - 1;
+        assert_eq!(heel.row, vec![(j, 1.0)]);
+        let k = heel.element.static_stiffness();
+        assert_eq!(
+            heel.law.unwrap().force(k, 0.0, 0.003, 0.0),
+            (k * 0.002, 0.0, 0.0)
+        );
+        assert!(FEET_LIFT_OFF.amplitude_dependent() && !FEET.amplitude_dependent());
     }
 
     #[test]

@@ -201,7 +201,8 @@ fn unexplained(_: &Evidence) -> Option<Verdict> {
 /// nonlinearity whose
 /// distortion does not grow with magnitude (Coulomb friction's share of the force falls as the
 /// magnitude rises) unless the site's best fits all runs as well, within the margin in units of
-/// its training ĉ.
+/// its training ĉ. A support path is the site's candidate only where its fit over all runs is no
+/// worse than the null's.
 pub(in crate::diagnosis) fn located(e: &Evidence, responses: &Verdict) -> Option<Verdict> {
     let site = e.distortion.as_ref()?.site?;
     let named = responses.effect();
@@ -212,10 +213,16 @@ pub(in crate::diagnosis) fn located(e: &Evidence, responses: &Verdict) -> Option
     if named.is_some_and(|c| site.admits(c) || (c.family == Family::Sensor && !marginal(c))) {
         return None;
     }
+    // The distortion places a law; it says nothing of a second load path. A support path adds
+    // one, which moves the FRFs at every magnitude, so it is named on the distortion only where
+    // the fit over all runs supports it (ΔBIC ≤ 0); a law on the seat's own links (a one-sided
+    // foam whose linearisation barely moves the FRFs) needs no such support.
+    let path_supported =
+        |r: &&Ranked, c: Candidate| c.family != Family::SupportPath || r.delta_bic_all <= 0.0;
     let b = e
         .cands
         .iter()
-        .filter(|r| candidate(r).is_some_and(|c| site.admits(c)))
+        .filter(|r| candidate(r).is_some_and(|c| site.admits(c) && path_supported(r, c)))
         .min_by(|a, b| a.delta_bic_all.total_cmp(&b.delta_bic_all))?;
     if let Some(c) = named.filter(|c| c.amplitude_dependent() && !c.distortion_grows())
         && let Some(v) = e.entry(c)

@@ -24,6 +24,7 @@ pub fn list(model: &Chain) -> Vec<String> {
             Some(Law::Friction { .. }) => &["f_c", "v_ref"],
             Some(Law::EndStop { .. } | Law::Bottoming { .. }) => &["gap", "k_stop"],
             Some(Law::PreloadExp { .. }) => &["d_e"],
+            Some(Law::LiftOff { .. } | Law::HertzPad { .. }) => &["travel"],
             Some(Law::HertzStop { .. }) => &["gap", "k_h"],
             Some(Law::Contact { .. } | Law::Exponential { .. }) => &["d0"],
             Some(Law::Bilinear { .. }) => &["d_knee", "ratio"],
@@ -83,6 +84,7 @@ fn slot<'a>(model: &'a mut Chain, path: &str) -> Result<&'a mut f64> {
                     Ok(k_stop)
                 }
                 (Some(Law::PreloadExp { d_e }), "d_e") => Ok(d_e),
+                (Some(Law::LiftOff { travel } | Law::HertzPad { travel }), "travel") => Ok(travel),
                 (Some(Law::Contact { d0 } | Law::Exponential { d0 }), "d0") => Ok(d0),
                 (Some(Law::Bilinear { d_knee, .. }), "d_knee") => Ok(d_knee),
                 (Some(Law::Bilinear { ratio, .. }), "ratio") => Ok(ratio),
@@ -123,7 +125,8 @@ pub fn set(model: &mut Chain, path: &str, value: f64) -> Result<()> {
         || path.ends_with(".k_m")
         || path.ends_with(".c_m")
         || path.ends_with(".d_ref")
-        || path.ends_with(".v_ref");
+        || path.ends_with(".v_ref")
+        || path.ends_with(".travel");
     if !value.is_finite() || value < 0.0 || (must_be_positive && value == 0.0) {
         return Err(Error::parameter(
             path,

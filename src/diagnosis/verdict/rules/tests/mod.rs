@@ -636,3 +636,35 @@ fn the_iso_figures_decide_only_for_linear_effects() {
 }
 
 mod order;
+
+#[test]
+fn the_distortion_names_a_support_path_only_where_all_runs_support_its_path() {
+    // Responses name a foam; the distortion grows on the support. Feet that lift off fit all runs
+    // worse than the null (ΔBIC +7.9) yet better than the cushion's stiffening (+14): the
+    // distortion locates a law, not a second load path, so the cushion's law is named.
+    let null = ranked("null", 1.0, 1.0, 0.0, 0.0, 1.0);
+    let cands = vec![
+        ranked("cushion-viscoelastic", 1.0, 1.0, -2.0, -72.0, 0.9),
+        ranked("feet-lift-off", 1.1, 1.1, 25.6, 7.9, 0.0),
+        ranked("cushion-stiffening", 1.1, 1.1, 7.0, 14.0, 0.0),
+    ];
+    let mut e = evidence(&null, &cands);
+    e.distortion = Some(located_at(Site::Support));
+    let foam = Verdict::Named {
+        effect: c("cushion-viscoelastic"),
+        basis: Basis::HeldOut {
+            tie: None,
+            alternative: None,
+        },
+        second: None,
+    };
+    let v = located(&e, &foam).expect("renamed");
+    assert!(named(c("cushion-stiffening"))(&v), "{v:?}");
+    // Where all runs support the path (ΔBIC −20) it is the site's best and is named.
+    let mut supported = cands.clone();
+    supported[1].delta_bic_all = -20.0;
+    let mut e = evidence(&null, &supported);
+    e.distortion = Some(located_at(Site::Support));
+    let v = located(&e, &foam).expect("renamed");
+    assert!(named(c("feet-lift-off"))(&v), "{v:?}");
+}
