@@ -268,7 +268,7 @@ FAMILIES = {
 # Forms reached only by a study set (--form): the random rotation above stays as it was, so the
 # cases of earlier seeds are drawn the same.
 STUDY_FORMS = {"viscoelastic": ["kww"], "missing-dof": ["rocking-frame"], "sensor": ["highpass-multi", "lowpass-multi"],
-               "body-stiffening": ["magnitude-stiffening"], "support-path": ["harness", "lap-belt"]}
+               "body-stiffening": ["magnitude-stiffening"], "support-path": ["harness", "lap-belt", "feet-lift-off"]}
 
 
 def prony_fractional(kf, alpha, f0, rng_lo=0.2, rng_hi=100.0, n=8):
@@ -388,6 +388,13 @@ def draw_effect(rng, family, form, strength):
             # the belt's force does not pass through the seat pan's force plate
             p = {"k_N_per_m": rng.uniform(20e3, 80e3) * strength,
                  "slack_over_sigma": max(0.0, rng.uniform(0.0, 1.0) / strength)}
+        elif form == "feet-lift-off":
+            # the feet on the floor carrying part of the pelvis past the seat pan, preloaded by the
+            # legs' weight: the contact unloads and the feet leave the floor once the pelvis has
+            # risen past the pad's static compression (a path that carries less the larger the
+            # motion; its damper stays, so the law is not the candidates' clean lift-off)
+            p = {"k_N_per_m": rng.uniform(20e3, 60e3) * strength, "c_Ns_per_m": rng.uniform(300, 1500) * strength,
+                 "travel_over_sigma": rng.uniform(0.4, 1.2)}
         else:
             p = {"k_N_per_m": rng.uniform(20e3, 60e3) * strength, "c_Ns_per_m": rng.uniform(300, 1500) * strength}
     elif family == "missing-dof":
@@ -569,6 +576,14 @@ def build_plant(subject, family, form, p, A_rms, sigma):
         kb = p["k_N_per_m"]
         nonlinear = ("pelvis", None, lambda e, kb=kb, slack=slack: -kb * max(0.0, e - slack))
         p = dict(p, slack_m=slack)
+    elif family == "support-path" and form == "feet-lift-off":
+        # the linear pad from the floor to the pelvis, and once the pelvis has risen past the
+        # pad's static compression the spring's pull given back (the contact carries no tension)
+        travel = p["travel_over_sigma"] * sigma["pelvis"]
+        kf = p["k_N_per_m"]
+        links["extra"] = ("pelvis", None, kf, p["c_Ns_per_m"])
+        nonlinear = ("pelvis", None, lambda e, kf=kf, travel=travel: kf * max(0.0, e - travel))
+        p = dict(p, travel_m=travel)
     elif family == "support-path":
         node = "upper_torso" if form == "backrest" else "pelvis"
         links["extra"] = (node, None, p["k_N_per_m"], p["c_Ns_per_m"])

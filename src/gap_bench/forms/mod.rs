@@ -160,11 +160,14 @@ pub enum Form {
     /// A lap belt from the seat frame across the pelvis, the same one-sided Hertzian webbing,
     /// anchored beside the seat pan.
     LapBelt,
+    /// Feet on the floor as [`Form::Legs`], with heels that lift off: the heel pad a preloaded
+    /// Hertzian contact that softens as it unloads and carries nothing once off.
+    HeelLiftOff,
 }
 
 impl Form {
     /// Every form, in report order.
-    pub const ALL: [Form; 28] = [
+    pub const ALL: [Form; 29] = [
         Form::Sls,
         Form::Maxwell2,
         Form::Fractional,
@@ -193,6 +196,7 @@ impl Form {
         Form::Hands,
         Form::ShoulderStraps,
         Form::LapBelt,
+        Form::HeelLiftOff,
     ];
     /// The family of the form.
     pub fn family(self) -> Family {
@@ -214,9 +218,12 @@ impl Form {
             Form::Frame | Form::Viscera | Form::FrameTwoMode | Form::RockingFrame => {
                 Family::MissingDof
             }
-            Form::Backrest | Form::Legs | Form::Hands | Form::ShoulderStraps | Form::LapBelt => {
-                Family::SupportPath
-            }
+            Form::Backrest
+            | Form::Legs
+            | Form::Hands
+            | Form::ShoulderStraps
+            | Form::LapBelt
+            | Form::HeelLiftOff => Family::SupportPath,
         }
     }
     /// The forms of `family`.
@@ -227,8 +234,8 @@ impl Form {
             .collect()
     }
     /// For a support-path form, the verdict ids that name its place on the body (the upper torso
-    /// from the frame, the shoulders from a wheel, the pelvis from the floor, and a strap's place
-    /// and one-sided law); `None` otherwise.
+    /// from the frame, the shoulders from a wheel, the pelvis from the floor — with or without its
+    /// lift-off — and a strap's place and one-sided law); `None` otherwise.
     pub fn places(self) -> Option<&'static [&'static str]> {
         match self {
             Form::Backrest => Some(&["backrest"]),
@@ -236,6 +243,7 @@ impl Form {
             Form::Legs => Some(&["feet-support", "thigh-support"]),
             Form::ShoulderStraps => Some(&["harness"]),
             Form::LapBelt => Some(&["lap-belt"]),
+            Form::HeelLiftOff => Some(&["feet-lift-off", "feet-support", "thigh-support"]),
             _ => None,
         }
     }
@@ -270,6 +278,7 @@ impl Form {
             Form::Hands => "hands-on-wheel",
             Form::ShoulderStraps => "shoulder-straps",
             Form::LapBelt => "lap-belt",
+            Form::HeelLiftOff => "heel-lift-off",
         }
     }
 }
@@ -499,6 +508,7 @@ pub fn plant(
         }
         Form::Hands => hands::plant(u, rng, model)?,
         Form::ShoulderStraps | Form::LapBelt => strap::plant(form, t, rng, model, lines)?,
+        Form::HeelLiftOff => structure::plant_lift_off(u, rng, model, lines)?,
     };
     Ok((planted, detail))
 }

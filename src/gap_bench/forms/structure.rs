@@ -124,6 +124,34 @@ pub(super) fn plant(form: Form, u: f64, rng: &mut ChaCha8Rng, model: &mut Chain)
     })
 }
 
+/// Plants [`Form::HeelLiftOff`]: the legs of [`Form::Legs`] with strength `u`, their heel pad a
+/// preloaded Hertzian contact (`Law::HertzPad`, tangent k_heel·√(1 − rise/travel), off past its
+/// static compression `travel`). The travel is g·σ, σ the legs' r.m.s. rise over the floor at the
+/// top magnitude and g 0.7–2.0, so the heels are off 2–24 % of the time on the largest run (a
+/// Gaussian rise's P(rise > g·σ)) and far less on the smallest: the feet carry less of the load
+/// the larger the motion, and the pad softens before it leaves.
+pub(super) fn plant_lift_off(
+    u: f64,
+    rng: &mut ChaCha8Rng,
+    model: &mut Chain,
+    lines: &[(f64, f64)],
+) -> Result<String> {
+    let legs = plant(Form::Legs, u, rng, model)?;
+    let heel = (model.links.iter())
+        .position(|l| l.name == "truth-heel")
+        .ok_or_else(|| {
+            crate::Error::parameter("heel-lift-off", "the legs form planted no heel pad")
+        })?;
+    let (sigma, _) = link_sigma(model, heel, lines)?;
+    let g = uniform(rng, 0.7, 2.0);
+    let law = Law::HertzPad { travel: g * sigma };
+    model.links[heel].law = Some(law);
+    Ok(format!(
+        "{legs}; the heels lift off past {g:.2} σ ({:.2} mm at the top magnitude, Hertzian pad)",
+        g * sigma * 1e3
+    ))
+}
+
 /// Index and mass (kg) of the heaviest body mass.
 pub(super) fn heaviest_body(model: &Chain) -> (usize, f64) {
     model
@@ -133,4 +161,41 @@ pub(super) fn heaviest_body(model: &Chain) -> (usize, f64) {
         .filter(|(_, m)| m.role == Role::Body)
         .map(|(i, m)| (i, m.m))
         .fold((0, 0.0), |a, b| if b.1 > a.1 { b } else { a })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use rand::SeedableRng;
+
+    #[test]
+    fn heels_that_lift_off_are_the_legs_with_a_hertzian_pad_off_past_a_share_of_their_rise() {
+        let base = crate::model::catalog::resolve_chain("reference").unwrap();
+        // A flat spectrum of 1.2 m/s² r.m.s. over 0.5–40 Hz, in 0.5 Hz lines.
+        let lines: Vec<(f64, f64)> = (1..=80).map(|j| (0.5 * j as f64, 1.44 / 80.0)).collect();
+        let (mut legs, mut lift) = (base.clone(), base.clone());
+        let seed = |s| ChaCha8Rng::seed_from_u64(s);
+        plant(Form::Legs, 0.5, &mut seed(3), &mut legs).unwrap();
+        plant_lift_off(0.5, &mut seed(3), &mut lift, &lines).unwrap();
+        // The same legs, knee and heel pad as the legs form drawn from the same stream.
+        assert_eq!(legs.masses, lift.masses);
+        assert_eq!(legs.links.len(), lift.links.len());
+        let i = lift
+            .links
+            .iter()
+            .position(|l| l.name == "truth-heel")
+            .unwrap();
+        assert_eq!(lift.links[i].element, legs.links[i].element);
+        assert_eq!(legs.links[i].law, None);
+        // Its pad is Hertzian, off past g·σ of the legs' rise over the floor, g in 0.7–2.0,
+        // σ from the linear model's exact response (the legs form's own, no law).
+        let Some(Law::HertzPad { travel }) = lift.links[i].law else {
+            panic!("{:?}", lift.links[i].law)
+        };
+        let (sigma, _) = link_sigma(&legs, i, &lines).unwrap();
+        let g = travel / sigma;
+        assert!((0.7..=2.0).contains(&g), "g {g}");
+        // The heel's deflection is the legs' rise: the link runs from the legs to the base.
+        assert_eq!(lift.links[i].b, Node::Base);
+    }
 }
