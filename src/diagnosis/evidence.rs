@@ -18,13 +18,10 @@ use num_complex::Complex64;
 /// the prediction of every path as the run's H1 estimates it, `seat` the base→seat response the
 /// seat's a_w is predicted from ([`super::predict::seat_response`]).
 pub fn stage(check: &RunSpectra, as_estimated: &[Vec<Complex64>], seat: &[Complex64]) -> Stage {
-    let n = score::residual_count(std::slice::from_ref(check)).max(1);
-    let mut r = Vec::new();
-    score::run_residuals(check, as_estimated, &mut r);
-    let chi2: f64 = r.iter().map(|x| x * x).sum();
+    let (chi2_red, n) = chi2_red(check, as_estimated);
     let cells = gapmap::band_cells(check, as_estimated);
     Stage {
-        chi2_red: chi2 / n as f64,
+        chi2_red,
         residuals: n,
         gap_db_rms: gapmap::rms_gap_db(&cells, None).unwrap_or(0.0),
         phase_deg_rms: Path::ALL
@@ -33,8 +30,18 @@ pub fn stage(check: &RunSpectra, as_estimated: &[Vec<Complex64>], seat: &[Comple
             .fold(0.0, f64::max),
         weighted: Weighted::of(check, seat),
         iso_sigma: None,
+        replayed_chi2_red: None,
         cells,
     }
+}
+
+/// Reduced χ² of the predictions `as_estimated` (`[path][bin]`) on `check`, χ²/n with n its
+/// number of residuals (two per trusted cell, at least 1), and n.
+pub(super) fn chi2_red(check: &RunSpectra, as_estimated: &[Vec<Complex64>]) -> (f64, usize) {
+    let n = score::residual_count(std::slice::from_ref(check)).max(1);
+    let mut r = Vec::new();
+    score::run_residuals(check, as_estimated, &mut r);
+    (r.iter().map(|x| x * x).sum::<f64>() / n as f64, n)
 }
 
 /// Fraction of the training runs' structural gap that `c` closes against the null re-fit,

@@ -192,6 +192,31 @@ fn settings(max_iter: usize) -> fit::Settings {
     }
 }
 
+/// The multistart points: `at` with the parameters `vary` (index in `u`, parameter) set to the
+/// Cartesian product of their starting values (in `u` space).
+fn start_grid(at: &[f64], vary: &[(usize, &Param)]) -> Vec<Vec<f64>> {
+    let mut starts: Vec<Vec<f64>> = vec![at.to_vec()];
+    for &(i, p) in vary {
+        starts = starts
+            .into_iter()
+            .flat_map(|s| {
+                p.starts.iter().map(move |v| {
+                    let mut t = s.clone();
+                    t[i] = p.u(*v);
+                    t
+                })
+            })
+            .collect();
+    }
+    starts
+}
+
+/// Whether `u_i` lies within a thousandth of its range from the bound `lo_i` or `hi_i`.
+fn near_bound(u_i: f64, lo_i: f64, hi_i: f64) -> bool {
+    let r = (hi_i - lo_i).max(1e-12);
+    (u_i - lo_i) < 1e-3 * r || (hi_i - u_i) < 1e-3 * r
+}
+
 /// Fits the stack `cands` (empty = null) jointly with the base parameters on `train`; `warm` gives
 /// the starting base parameters and any leading effect parameters (forward selection), the rest
 /// start from each parameter's multistart values.
@@ -233,20 +258,11 @@ pub(super) fn fit_candidate(
         }
         Ok(r)
     };
-    // Multistart over the effect parameters not warm-started (their Cartesian product).
-    let mut starts: Vec<Vec<f64>> = vec![warm.to_vec()];
-    for p in &eff[warm.len() - nb..] {
-        starts = starts
-            .into_iter()
-            .flat_map(|s| {
-                p.starts.iter().map(move |v| {
-                    let mut t = s.clone();
-                    t.push(p.u(*v));
-                    t
-                })
-            })
-            .collect();
-    }
+    // Multistart over the effect parameters not warm-started.
+    let mut at = warm.to_vec();
+    at.resize(nb + eff.len(), 0.0);
+    let vary: Vec<(usize, &Param)> = (warm.len()..at.len()).map(|i| (i, &eff[i - nb])).collect();
+    let starts = start_grid(&at, &vary);
     // A structural choice (a filter's order) is pinned to each of its values in turn, the others
     // fitted from their starts; the lowest cost wins, ties to the first value listed.
     let pinned: Vec<usize> = (nb..nb + eff.len())
@@ -299,11 +315,20 @@ pub(super) const REFINE_ITERATIONS: usize = 4;
 /// not the H1 a run measures of a nonlinear structure, so the law's strength comes out biased
 /// (docs/gap.md §6.2). Levenberg–Marquardt from the linearised fit's values, at most
 /// [`REFINE_ITERATIONS`] iterations; a structural choice stays pinned.
+///
+/// With `restart` (the linearised law leaves the check run far above the noise), a law parameter
+/// the linearised fit left on its bound is a sign the linearisation could not place the law
+/// inside its range (a strong one-sided stop is far from Gaussian: its equivalent
+/// stiffness k·P(rise > slack) keeps asking for a stiffer, slacker strap than the replayed one
+/// needs). Then those parameters' own starting values (their Cartesian product, the other
+/// parameters at their fitted values) are replayed once per point, and the refinement also runs
+/// from the point of lowest cost; the lower of the two refined fits is kept.
 pub(super) fn refine_by_replay(
     base: &Base,
     cands: &[Candidate],
     u: &[f64],
     train: &[RunSpectra],
+    restart: bool,
 ) -> Result<Vec<f64>> {
     let nb = base.params.len();
     let rms_ref = reference_rms(train);
@@ -326,7 +351,37 @@ pub(super) fn refine_by_replay(
     let pinned: Vec<usize> = (0..nb)
         .chain((nb..u.len()).filter(|&i| eff[i - nb].discrete))
         .collect();
-    Ok(multistart(&f, &[u.to_vec()], &lo, &hi, &pinned, REFINE_ITERATIONS)?.u)
+    let mut starts = vec![u.to_vec()];
+    let on_bound: Vec<(usize, &Param)> = (nb..u.len())
+        .filter(|&i| restart && !pinned.contains(&i) && near_bound(u[i], lo[i], hi[i]))
+        .map(|i| (i, &eff[i - nb]))
+        .collect();
+    if !on_bound.is_empty() {
+        let cost = |s: &Vec<f64>| -> Result<f64> { Ok(f(s)?.iter().map(|r| r * r).sum()) };
+        // The grid over the parameters on their bounds; the others keep their fitted values.
+        let grid = start_grid(u, &on_bound);
+        let costs: Vec<f64> = grid.par_iter().map(cost).collect::<Result<_>>()?;
+        let best = (0..grid.len()).min_by(|&a, &b| costs[a].total_cmp(&costs[b]));
+        starts.extend(best.map(|k| grid[k].clone()));
+    }
+    let fits: Vec<fit::Fit> = starts
+        .par_iter()
+        .map(|s| {
+            multistart(
+                &f,
+                std::slice::from_ref(s),
+                &lo,
+                &hi,
+                &pinned,
+                REFINE_ITERATIONS,
+            )
+        })
+        .collect::<Result<_>>()?;
+    Ok(fits
+        .into_iter()
+        .min_by(|a, b| a.cost.total_cmp(&b.cost))
+        .expect("at least one start")
+        .u)
 }
 
 /// Levenberg–Marquardt from the best of `starts` (each scouted briefly when there are several,
@@ -465,10 +520,7 @@ pub(super) fn fit_ranked(
 pub(super) fn estimates(base: &Base, cands: &[Candidate], ft: &fit::Fit) -> Vec<Estimate> {
     let (lo, hi) = bounds(base, cands);
     let nb = base.params.len();
-    let near = |i: usize| {
-        let r = (hi[i] - lo[i]).max(1e-12);
-        (ft.u[i] - lo[i]) < 1e-3 * r || (hi[i] - ft.u[i]) < 1e-3 * r
-    };
+    let near = |i: usize| near_bound(ft.u[i], lo[i], hi[i]);
     if cands.is_empty() {
         return base
             .params

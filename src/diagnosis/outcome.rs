@@ -45,8 +45,25 @@ pub struct Stage {
     /// scatter); `None` otherwise and for the nominal model, which is not fitted.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub iso_sigma: Option<IsoSigma>,
+    /// Reduced χ² on the held-out run of the fitted nonlinear model as the simulator replays it:
+    /// the check run's measured base driven through the law (its best linear approximation,
+    /// [`super::replay::responses`]), not through its statistical linearisation. Set for an
+    /// amplitude-dependent effect named on its own (docs/gap.md §6.2), `None` otherwise.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub replayed_chi2_red: Option<f64>,
     /// The per-band gap map.
     pub cells: Vec<BandCell>,
+}
+
+impl Stage {
+    /// The reduced χ² the effect's model leaves on the held-out run: the lower of its equivalent
+    /// linear system's (the form the fit saw) and its replay's, when replayed. Both approximate
+    /// one fitted law; a law explains the run when either does (a strong one-sided law is far
+    /// from Gaussian, so its linearisation can miss what its replay fits).
+    pub fn explained_chi2_red(&self) -> f64 {
+        self.replayed_chi2_red
+            .map_or(self.chi2_red, |r| r.min(self.chi2_red))
+    }
 }
 
 /// Standard errors of a fitted model's ISO figures on the check run, from its parameters'

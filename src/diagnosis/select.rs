@@ -189,8 +189,9 @@ fn pair_trial(pair: &[Candidate], ft: &fitting::Fitted) -> Trial {
 /// The figures of the amplitude-dependent effect `first` the rules name, on its own (forward
 /// selection added nothing), from the check run `ck` replayed through its law refined on the
 /// training runs `tr` by the replayed best linear approximation ([`fitting::refine_by_replay`]):
-/// its entry among `cands` gets the seat a_w and SEAT of that replay, and its sizes against the
-/// null entry are taken again ([`evidence::sizes`]). `fits` are the ranked candidates' fitted
+/// its entry among `cands` gets the seat a_w and SEAT of that replay and the replayed BLA's
+/// reduced χ² (`Stage::replayed_chi2_red`), and its sizes against the null entry are taken again
+/// ([`evidence::sizes`]). `fits` are the ranked candidates' fitted
 /// parameter vectors on `tr`.
 pub(super) fn replay_refined(
     base: &Base,
@@ -207,9 +208,14 @@ pub(super) fn replay_refined(
     ) else {
         return Ok(());
     };
-    let refined = fitting::refine_by_replay(base, &[first], u, tr)?;
+    let far = entry.check.chi2_red > super::thresholds::EXPLAINED_CHI2;
+    let refined = fitting::refine_by_replay(base, &[first], u, tr, far)?;
     let v = fitting::build(base, &[first], &refined, fitting::reference_rms(tr))?;
     fitting::replay_figures(base, &[first], &v, ck, &mut entry.check)?;
+    // The paths a replay does not yield (a backrest force) keep the linearised prediction.
+    let linearised = super::predict::predict(&v, ck)?.as_estimated;
+    let replayed = super::replay::responses(&v, ck, &linearised)?;
+    entry.check.replayed_chi2_red = Some(evidence::chi2_red(ck, &replayed).0);
     let (aw, seat, _) = evidence::sizes(&entry.check, &null.check);
     entry.aw_change_percent = aw;
     entry.seat_change_points = seat;

@@ -28,6 +28,9 @@ pub(super) fn render(
             ..
         } => {
             let mut text = sentence(d, e);
+            if let Some(r) = e.entry(effect).filter(|_| added.is_none()) {
+                text += &replayed_fit(&r.check);
+            }
             let pair = e.second.as_ref().filter(|_| added.is_some());
             if let Some(s) = pair {
                 text += &second(effect, s.added, &s.pair);
@@ -403,6 +406,18 @@ pub(super) fn partial(
         null.weighted.seat_model,
         null.weighted.seat_meas
     )
+}
+
+/// How the named amplitude-dependent effect's law fits the check run replayed through the
+/// simulator, beside its statistical linearisation (`Stage::replayed_chi2_red`); empty when it
+/// was not replayed.
+fn replayed_fit(st: &Stage) -> String {
+    st.replayed_chi2_red.map_or(String::new(), |r| {
+        format!(
+            "; replayed through the simulator, its fitted law leaves the check run's reduced χ² at {r:.1} (its statistical linearisation {:.1})",
+            st.chi2_red
+        )
+    })
 }
 
 /// The warning when amplitude-dependent effect(s) move the check run's ISO figures away

@@ -97,16 +97,16 @@ impl Shortfall {
 }
 
 /// Whether the model with the named effect(s) (`with`) falls short of explaining the check run
-/// where the re-fitted base model gives `null`: its reduced χ² stays far above the noise, or it
+/// where the re-fitted base model gives `null`: its reduced χ² stays far above the noise (the
+/// lower of its linearisation's and its replay's, [`Stage::explained_chi2_red`]), or it
 /// moves a_w or SEAT away from the measurement by the practical size and beyond what its own
 /// parameters' uncertainty allows (2σ, about 95 %: a move inside it is the fit's scatter, not the
 /// form's bias). The χ² rule is checked first: a residual far above the noise means structure is
 /// missing whatever the ISO figures do.
 pub(super) fn shortfall(null: &Stage, with: &Stage) -> Option<Shortfall> {
-    if with.chi2_red > super::thresholds::EXPLAINED_CHI2 {
-        return Some(Shortfall::FarAboveNoise {
-            chi2_red: with.chi2_red,
-        });
+    let chi2_red = with.explained_chi2_red();
+    if chi2_red > super::thresholds::EXPLAINED_CHI2 {
+        return Some(Shortfall::FarAboveNoise { chi2_red });
     }
     let (n, w) = (&null.weighted, &with.weighted);
     let (aw, seat) = super::thresholds::ISO_AWAY;

@@ -35,6 +35,7 @@ fn ranked(id: &str, train: f64, check: f64, dbic: f64, dbic_all: f64, closed: f6
         fraction_closed: closed,
         check: Stage {
             iso_sigma: None,
+            replayed_chi2_red: None,
             chi2_red: check,
             residuals: 2000,
             gap_db_rms: 0.3,
@@ -616,6 +617,44 @@ fn a_named_effect_that_leaves_the_check_run_far_from_the_measurement_is_partial(
     assert!(matches!(
         shortfall(&null, &with_sigma(0.5 * ISO_AWAY.0)),
         Some(Shortfall::IsoAway { sigma: Some(_), .. })
+    ));
+}
+
+#[test]
+fn a_law_whose_replay_explains_the_check_run_is_not_far_above_the_noise() {
+    use crate::diagnosis::thresholds::EXPLAINED_CHI2;
+    use crate::diagnosis::verdict::{Shortfall, shortfall};
+    let null = ranked("null", 30.0, 300.0, 0.0, 0.0, 0.0).check;
+    let stage = |linearised: f64, replayed: Option<f64>| {
+        let mut s = null.clone();
+        s.chi2_red = linearised;
+        s.replayed_chi2_red = replayed;
+        s
+    };
+    // A strong strap: its statistical linearisation far above the noise, its replay within.
+    let strap = stage(4.0 * EXPLAINED_CHI2, Some(0.9 * EXPLAINED_CHI2));
+    assert_eq!(strap.explained_chi2_red(), 0.9 * EXPLAINED_CHI2);
+    assert_eq!(shortfall(&null, &strap), None);
+    // Both far above: structure is missing, and the lower of the two is what is reported.
+    let both = stage(4.0 * EXPLAINED_CHI2, Some(1.5 * EXPLAINED_CHI2));
+    assert_eq!(
+        shortfall(&null, &both),
+        Some(Shortfall::FarAboveNoise {
+            chi2_red: 1.5 * EXPLAINED_CHI2
+        })
+    );
+    // A replay worse than the linearisation does not undo a fit the linearisation explains.
+    assert_eq!(
+        shortfall(
+            &null,
+            &stage(0.5 * EXPLAINED_CHI2, Some(3.0 * EXPLAINED_CHI2))
+        ),
+        None
+    );
+    // Not replayed (a linear effect): its own χ².
+    assert!(matches!(
+        shortfall(&null, &stage(1.1 * EXPLAINED_CHI2, None)),
+        Some(Shortfall::FarAboveNoise { .. })
     ));
 }
 
