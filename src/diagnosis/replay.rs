@@ -77,34 +77,28 @@ pub fn replay(system: &System, base: &[f64], fs: f64, source: &str) -> Result<Si
 /// distortion power a nonlinearity moves between frequencies is in it as it is in the measured
 /// seat PSD, which the equivalent linear system's |H|²·G_uu lacks (docs/gap.md §7).
 pub fn seat_psd(v: &Variant, run: &RunSpectra) -> Result<Vec<f64>> {
-    let all = Replayed::of(v, run)?.cross("a_base_z", "a_seat_z")?;
-    let chain = &v.chain;
-    Ok(run
-        .freq_hz
-        .iter()
-        .zip(&run.base_motion)
-        .map(|(&f, &b)| {
-            let read = (chain.seat.response(f) / chain.base.response(f)).norm_sqr();
-            all.gyy[run.bin(f, all.gyy.len())] * read * b
-        })
-        .collect())
+    Replayed::of(v, run)?.seat_psd()
 }
 
 /// Variant `v` simulated in `run` ([`replay`]): its system as it is at the run's magnitude (the
 /// schedule applied, every nonlinear law kept) driven by the run's measured base fluctuation,
 /// and the run's own Welch estimator, so a replayed spectrum is estimated from the same segments
-/// as the measured one (the excluded stretches left out alike).
-struct Replayed<'r> {
+/// as the measured one (the excluded stretches left out alike). One replay gives both readings,
+/// [`Self::seat_psd`] and [`Self::responses`], so a caller wanting both simulates the run once.
+pub(crate) struct Replayed<'r> {
+    v: &'r Variant,
     run: &'r RunSpectra,
     sim: Signals,
     welch: Welch,
 }
 
 impl<'r> Replayed<'r> {
-    fn of(v: &Variant, run: &'r RunSpectra) -> Result<Self> {
+    /// Simulates `v` in `run` ([`replay`]) and prepares the run's estimator.
+    pub(crate) fn of(v: &'r Variant, run: &'r RunSpectra) -> Result<Self> {
         let scheduled = v.schedule.map(|s| s.at(&v.system, run.base_rms));
         let system = scheduled.as_ref().unwrap_or(&v.system);
         Ok(Replayed {
+            v,
             run,
             sim: replay(system, &run.base_fluctuation, run.fs, "replay")?,
             welch: measure::welch(run.fs, run.duration_s)?,
@@ -137,6 +131,21 @@ impl<'r> Replayed<'r> {
             ));
         };
         self.welch.cross_excluding(xs, ys, &self.run.excluded)
+    }
+
+    /// The seat acceleration PSD of the replay ([`seat_psd`]).
+    pub(crate) fn seat_psd(&mut self) -> Result<Vec<f64>> {
+        let all = self.cross("a_base_z", "a_seat_z")?;
+        let (chain, run) = (&self.v.chain, self.run);
+        Ok(run
+            .freq_hz
+            .iter()
+            .zip(&run.base_motion)
+            .map(|(&f, &b)| {
+                let read = (chain.seat.response(f) / chain.base.response(f)).norm_sqr();
+                all.gyy[run.bin(f, all.gyy.len())] * read * b
+            })
+            .collect())
     }
 }
 
@@ -188,48 +197,57 @@ pub fn responses(
     run: &RunSpectra,
     fallback: &[Vec<num_complex::Complex64>],
 ) -> Result<Vec<Vec<num_complex::Complex64>>> {
-    use super::measure::Path;
-    let mut replayed = Replayed::of(v, run)?;
-    let chain = &v.chain;
-    let mut out = Vec::with_capacity(run.paths.len());
-    for (pe, fb) in run.paths.iter().zip(fallback) {
-        let (x, y) = pe.path.channels();
-        if pe.path == Path::BackrestMass || !replayed.has(x) || !replayed.has(y) {
-            out.push(fb.clone());
-            continue;
-        }
-        let h1 = replayed.cross(x, y)?.h1();
-        let from_base = x == "a_base_z";
-        out.push(
-            run.freq_hz
-                .iter()
-                .enumerate()
-                .map(|(b, &f)| {
-                    let h = h1[run.bin(f, h1.len())];
-                    let (lb, ls, lh) = (
-                        chain.base.response(f),
-                        chain.seat.response(f),
-                        chain.head.response(f),
-                    );
-                    let read = match pe.path {
-                        Path::BaseSeat | Path::BaseSeatX => h * ls / lb,
-                        Path::SeatHead => h * lh / ls,
-                        Path::BaseHead | Path::BaseHeadX => h * lh / lb,
-                        Path::ApparentMass => {
-                            chain.force.response(f) * (h + chain.force_mass_kg) / ls
+    Replayed::of(v, run)?.responses(fallback)
+}
+
+impl Replayed<'_> {
+    /// The replay's H1 of every path of the run ([`responses`]).
+    pub(crate) fn responses(
+        &mut self,
+        fallback: &[Vec<num_complex::Complex64>],
+    ) -> Result<Vec<Vec<num_complex::Complex64>>> {
+        use super::measure::Path;
+        let (chain, run) = (&self.v.chain, self.run);
+        let mut out = Vec::with_capacity(run.paths.len());
+        for (pe, fb) in run.paths.iter().zip(fallback) {
+            let (x, y) = pe.path.channels();
+            if pe.path == Path::BackrestMass || !self.has(x) || !self.has(y) {
+                out.push(fb.clone());
+                continue;
+            }
+            let h1 = self.cross(x, y)?.h1();
+            let from_base = x == "a_base_z";
+            out.push(
+                run.freq_hz
+                    .iter()
+                    .enumerate()
+                    .map(|(b, &f)| {
+                        let h = h1[run.bin(f, h1.len())];
+                        let (lb, ls, lh) = (
+                            chain.base.response(f),
+                            chain.seat.response(f),
+                            chain.head.response(f),
+                        );
+                        let read = match pe.path {
+                            Path::BaseSeat | Path::BaseSeatX => h * ls / lb,
+                            Path::SeatHead => h * lh / ls,
+                            Path::BaseHead | Path::BaseHeadX => h * lh / lb,
+                            Path::ApparentMass => {
+                                chain.force.response(f) * (h + chain.force_mass_kg) / ls
+                            }
+                            Path::BackrestMass => h,
+                        };
+                        if from_base {
+                            read * run.base_motion.get(b).copied().unwrap_or(1.0)
+                        } else {
+                            read
                         }
-                        Path::BackrestMass => h,
-                    };
-                    if from_base {
-                        read * run.base_motion.get(b).copied().unwrap_or(1.0)
-                    } else {
-                        read
-                    }
-                })
-                .collect(),
-        );
+                    })
+                    .collect(),
+            );
+        }
+        Ok(out)
     }
-    Ok(out)
 }
 
 #[cfg(test)]

@@ -211,11 +211,13 @@ pub(super) fn replay_refined(
     let far = entry.check.chi2_red > super::thresholds::EXPLAINED_CHI2;
     let refined = fitting::refine_by_replay(base, &[first], u, tr, far)?;
     let v = fitting::build(base, &[first], &refined, fitting::reference_rms(tr))?;
-    fitting::replay_figures(base, &[first], &v, ck, &mut entry.check)?;
-    // The paths a replay does not yield (a backrest force) keep the linearised prediction.
-    let linearised = super::predict::predict(&v, ck)?.as_estimated;
-    let replayed = super::replay::responses(&v, ck, &linearised)?;
-    entry.check.replayed_chi2_red = Some(evidence::chi2_red(ck, &replayed).0);
+    // One replay of the check run gives the seat figures and the replayed BLA; the paths a replay
+    // does not yield (a backrest force) keep the linearised prediction.
+    if let Some(mut sim) = fitting::replay_figures(base, &[first], &v, ck, &mut entry.check)? {
+        let linearised = super::predict::predict(&v, ck)?.as_estimated;
+        let replayed = sim.responses(&linearised)?;
+        entry.check.replayed_chi2_red = Some(evidence::chi2_red(ck, &replayed).0);
+    }
     let (aw, seat, _) = evidence::sizes(&entry.check, &null.check);
     entry.aw_change_percent = aw;
     entry.seat_change_points = seat;

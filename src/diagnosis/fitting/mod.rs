@@ -15,7 +15,7 @@ use super::gapmap::Weighted;
 use super::measure::RunSpectra;
 use super::outcome::{Estimate, IsoSigma, Stage};
 use super::predict::{self, Variant};
-use super::replay::ReplayCalibration;
+use super::replay::{ReplayCalibration, Replayed};
 use super::score;
 use crate::error::Result;
 use crate::model::{Model, Quantity};
@@ -595,19 +595,25 @@ pub(super) fn fitted_stage(
 /// measured base replayed through the fitted nonlinear model `v` ([`super::replay::seat_psd`]),
 /// whose seat PSD holds the distortion power the equivalent linear system lacks, divided by the
 /// replay's own error ([`ReplayCalibration`]). The standard errors stay the linear prediction's.
-/// A linear stack's figures are exact already and are left as they are.
-pub(super) fn replay_figures(
+/// A linear stack's figures are exact already and are left as they are (`None`); otherwise the
+/// replay made is returned for callers that read more from it ([`Replayed::responses`]).
+pub(super) fn replay_figures<'r>(
     base: &Base,
     cands: &[Candidate],
-    v: &Variant,
-    check: &RunSpectra,
+    v: &'r Variant,
+    check: &'r RunSpectra,
     st: &mut Stage,
-) -> Result<()> {
-    if cands.iter().any(|c| c.amplitude_dependent()) {
-        let psd = super::replay::seat_psd(v, check)?;
-        st.weighted = Weighted::replayed(check, &psd, base.replay_calibration.aw_ratio);
+) -> Result<Option<Replayed<'r>>> {
+    if !cands.iter().any(|c| c.amplitude_dependent()) {
+        return Ok(None);
     }
-    Ok(())
+    let mut replayed = Replayed::of(v, check)?;
+    st.weighted = Weighted::replayed(
+        check,
+        &replayed.seat_psd()?,
+        base.replay_calibration.aw_ratio,
+    );
+    Ok(Some(replayed))
 }
 
 /// Fits every stack of `stacks` jointly with the base parameters on `runs` from `warm`, in
