@@ -41,7 +41,7 @@ pub(super) fn chi2_red(check: &RunSpectra, as_estimated: &[Vec<Complex64>]) -> (
     let n = score::residual_count(std::slice::from_ref(check)).max(1);
     let mut r = Vec::new();
     score::run_residuals(check, as_estimated, &mut r);
-    (r.iter().map(|x| x * x).sum::<f64>() / n as f64, n)
+    (crate::numeric::lm::cost(&r) / n as f64, n)
 }
 
 /// Fraction of the training runs' structural gap that `c` closes against the null re-fit,

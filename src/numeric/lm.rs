@@ -185,7 +185,9 @@ pub struct Fit {
     pub evaluations: usize,
 }
 
-fn cost(r: &[f64]) -> f64 {
+/// The cost a fit minimises, Σ rᵢ² of residuals `r` (their units squared): shared by every
+/// caller that compares fits or starting points on the same scale as [`Fit::cost`].
+pub fn cost(r: &[f64]) -> f64 {
     r.iter().map(|x| x * x).sum()
 }
 

@@ -61,7 +61,7 @@ pub(in crate::diagnosis) fn refine_by_replay(
         .map(|i| (i, &eff[i - nb]))
         .collect();
     if !on_bound.is_empty() {
-        let cost = |s: &Vec<f64>| -> Result<f64> { Ok(f(s)?.iter().map(|r| r * r).sum()) };
+        let cost = |s: &Vec<f64>| -> Result<f64> { Ok(fit::cost(&f(s)?)) };
         // The grid over the parameters on their bounds; the others keep their fitted values.
         let grid = start_grid(u, &on_bound);
         let costs: Vec<f64> = grid.par_iter().map(cost).collect::<Result<_>>()?;
