@@ -151,6 +151,19 @@ pub fn diagnose_with(
         second: None,
         channel_errors: prepared.channel_errors,
     };
+    // The simulator's judgement of the laws whose linearisation cannot be trusted where the
+    // distortion places a nonlinearity the verdict so far does not name (`rules::replayed`).
+    for c in verdict::to_replay(&evidence) {
+        select::replay_refined(
+            &base,
+            &evidence.null,
+            &mut evidence.cands,
+            &ranking.fits,
+            c,
+            tr,
+            ck,
+        )?;
+    }
     // Forward selection: a second effect beside the effect the rules name.
     if let Some(first) = verdict::nominee(&evidence) {
         evidence.second =

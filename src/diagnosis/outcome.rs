@@ -300,6 +300,9 @@ pub enum Rule {
     NoCandidateClosesTheGap,
     /// The distortion's second opinion: the site's nonlinearity over the responses' verdict.
     DistortionSite,
+    /// The simulator's second opinion: a one-sided path at the distortion's site whose replayed
+    /// law explains the check run better than the verdict so far.
+    ReplayedAtSite,
     /// The clock's second opinion: a drifting logger clock over another timing or filter effect.
     ClockDrift,
     /// The named effect(s) leave the check run far from the measurement: unexplained, partial.
@@ -310,7 +313,7 @@ pub enum Rule {
 
 impl Rule {
     /// Every rule in the order [`super::verdict::decide`] applies them.
-    pub const ORDER: [Rule; 11] = [
+    pub const ORDER: [Rule; 12] = [
         Rule::RefittedOnAllRuns,
         Rule::AmplitudeEffectOnAllRuns,
         Rule::LookAlikes,
@@ -319,6 +322,7 @@ impl Rule {
         Rule::NoStructuralGap,
         Rule::NoCandidateClosesTheGap,
         Rule::DistortionSite,
+        Rule::ReplayedAtSite,
         Rule::ClockDrift,
         Rule::ExplainsOnlyInPart,
         Rule::CalibrationFinding,
@@ -335,6 +339,7 @@ impl Rule {
             Rule::NoStructuralGap => "no-structural-gap",
             Rule::NoCandidateClosesTheGap => "no-candidate-closes-the-gap",
             Rule::DistortionSite => "distortion-site",
+            Rule::ReplayedAtSite => "replayed-at-site",
             Rule::ClockDrift => "clock-drift",
             Rule::ExplainsOnlyInPart => "explains-only-in-part",
             Rule::CalibrationFinding => "calibration-finding",

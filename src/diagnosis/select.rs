@@ -186,9 +186,10 @@ fn pair_trial(pair: &[Candidate], ft: &fitting::Fitted) -> Trial {
     }
 }
 
-/// The figures of the amplitude-dependent effect `first` the rules name, on its own (forward
-/// selection added nothing), from the check run `ck` replayed through its law refined on the
-/// training runs `tr` by the replayed best linear approximation ([`fitting::refine_by_replay`]):
+/// The figures of the amplitude-dependent effect `first` (the one the rules name on its own, or one
+/// the simulator's second opinion judges, `verdict::to_replay`), from the check run `ck` replayed
+/// through its law refined on the training runs `tr` by the replayed best linear approximation
+/// ([`fitting::refine_by_replay`]):
 /// its entry among `cands` gets the seat a_w and SEAT of that replay and the replayed BLA's
 /// reduced χ² (`Stage::replayed_chi2_red`), and its sizes against the null entry are taken again
 /// ([`evidence::sizes`]). `fits` are the ranked candidates' fitted
@@ -208,6 +209,9 @@ pub(super) fn replay_refined(
     ) else {
         return Ok(());
     };
+    if entry.check.replayed_chi2_red.is_some() {
+        return Ok(()); // replayed already, for the simulator's second opinion
+    }
     let far = entry.check.chi2_red > super::thresholds::EXPLAINED_CHI2;
     let refined = fitting::refine_by_replay(base, &[first], u, tr, far)?;
     let v = fitting::build(base, &[first], &refined, fitting::reference_rms(tr))?;

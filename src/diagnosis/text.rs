@@ -64,6 +64,7 @@ pub(super) fn sentence(d: &Decision, e: &Evidence) -> String {
             Basis::HeldOut { tie, alternative } => held_out(e, effect, *tie, *alternative),
             Basis::Distortion { responses } => distortion(e, e.entry(effect).expect("ranked"), responses),
             Basis::Clock { responses } => clock(e, e.entry(effect).expect("ranked"), responses),
+            Basis::Replayed { responses } => replayed(e, e.entry(effect).expect("ranked"), responses),
         },
         Verdict::NotIdentifiable { a, b, separating } => {
             let (a, b) = (
@@ -347,6 +348,24 @@ fn clock(e: &Evidence, b: &Ranked, responses: &super::VerdictId) -> String {
         b.delta_bic,
         c.drift_ppm,
         c.sigma_ppm,
+        size(b)
+    )
+}
+
+/// Named by the simulator's second opinion ([`Basis::Replayed`]).
+fn replayed(e: &Evidence, b: &Ranked, responses: &super::VerdictId) -> String {
+    let site = e
+        .distortion
+        .as_ref()
+        .and_then(|d| d.site)
+        .expect("located by the distortion");
+    format!(
+        "{}, a path that acts on one side only: the runs' distortion places a nonlinearity {}, and the check run replayed through its law (refined on the training runs by the replayed best linear approximation) leaves a reduced χ² of {:.1}, clearly below what the frequency-response verdict, {responses}, leaves; its statistical linearisation (reduced χ² {:.1}, ΔBIC {:.1}) ranked it lower, as a clipped force is far from the Gaussian one it assumes. Its size on the check run: {}",
+        b.id,
+        site.describe(),
+        b.check.replayed_chi2_red.unwrap_or(f64::NAN),
+        b.check.chi2_red,
+        b.delta_bic,
         size(b)
     )
 }

@@ -147,6 +147,13 @@ pub enum Basis {
         /// The frequency-response verdict it replaces.
         responses: VerdictId,
     },
+    /// A one-sided path at the distortion's site, judged by the check run replayed through its
+    /// law refined by the replayed best linear approximation; `responses` is the verdict it
+    /// replaces.
+    Replayed {
+        /// The verdict it replaces.
+        responses: VerdictId,
+    },
     /// A drifting clock, seen as the lag moving between the runs' halves; `responses` is the
     /// timing or filter effect the whole-run responses named.
     Clock {
@@ -277,7 +284,8 @@ pub(super) fn candidate(r: &Ranked) -> Option<Candidate> {
 }
 
 /// The frequency-response verdict and its rule: the first of [`rules::RULES`] that applies; then
-/// the second opinions, [`rules::located`] when the distortion places a nonlinearity elsewhere and
+/// the second opinions, [`rules::located`] when the distortion places a nonlinearity elsewhere,
+/// [`rules::replayed`] when a one-sided path there, replayed, explains the check run better, and
 /// [`rules::clocked`] when the lag moves through the runs.
 fn structural(e: &Evidence) -> (Verdict, Rule) {
     let (responses, rule) = rules::RULES
@@ -287,6 +295,10 @@ fn structural(e: &Evidence) -> (Verdict, Rule) {
     let (v, rule) = match rules::located(e, &responses) {
         Some(v) => (v, Rule::DistortionSite),
         None => (responses, rule),
+    };
+    let (v, rule) = match rules::replayed(e, &v) {
+        Some(replayed) => (replayed, Rule::ReplayedAtSite),
+        None => (v, rule),
     };
     match rules::clocked(e, &v) {
         Some(v) => (v, Rule::ClockDrift),
@@ -298,6 +310,14 @@ fn structural(e: &Evidence) -> (Verdict, Rule) {
 /// selection pairs a second effect with.
 pub(super) fn nominee(e: &Evidence) -> Option<Candidate> {
     structural(e).0.effect()
+}
+
+/// The candidates whose laws the simulator must judge before the verdict is read
+/// ([`rules::replayed`]): empty unless the distortion places a nonlinearity at a site the verdict
+/// so far does not name; else the site's one-sided paths, and the named effect itself when it is
+/// amplitude-dependent (so that both sides are judged by their replays).
+pub(super) fn to_replay(e: &Evidence) -> Vec<Candidate> {
+    rules::to_replay(e, &structural(e).0)
 }
 
 /// The decision, in one place: the rules of [`Rule::ORDER`] in turn. The frequency-response rules

@@ -6,8 +6,9 @@ use super::{
     Basis, Evidence, Rule, Verdict, candidate, overdispersion, practically_small, training_closed,
 };
 use crate::diagnosis::candidate::{
-    Candidate, Definition, Family, Prior, separating_measurement, with,
+    Candidate, Definition, Family, Look, Prior, separating_measurement, with,
 };
+use crate::diagnosis::distortion::Site;
 use crate::diagnosis::outcome::Ranked;
 use crate::diagnosis::score;
 use crate::diagnosis::thresholds::{
@@ -234,6 +235,78 @@ pub(in crate::diagnosis) fn located(e: &Evidence, responses: &Verdict) -> Option
     Some(Verdict::Named {
         effect: candidate(b)?,
         basis: Basis::Distortion {
+            responses: responses.id(),
+        },
+        second: None,
+    })
+}
+
+/// The reduced χ² on the check run of the effect verdict `v` names, or of the best candidate
+/// when `v` names none though a structural gap remains (the lower of the linearisation's and the
+/// replay's, [`crate::diagnosis::outcome::Stage::explained_chi2_red`]); `None` when `v` finds
+/// no structural gap.
+fn verdict_chi2(e: &Evidence, v: &Verdict) -> Option<f64> {
+    match v {
+        Verdict::Named { effect, .. } => e.entry(effect),
+        Verdict::Unexplained | Verdict::NotIdentifiable { .. } | Verdict::Partial { .. } => {
+            e.best()
+        }
+        Verdict::None | Verdict::Calibration(_) => None,
+    }
+    .map(|r| r.check.explained_chi2_red())
+}
+
+/// The one-sided paths the distortion's `site` admits and the fit over all runs supports
+/// (ΔBIC ≤ 0, as [`located`] asks of a support path).
+fn one_sided_at(e: &Evidence, site: Site) -> impl Iterator<Item = &Ranked> {
+    e.cands.iter().filter(move |r| {
+        r.delta_bic_all <= 0.0
+            && candidate(r).is_some_and(|c| c.looks(Look::OneSided) && site.admits(c))
+    })
+}
+
+/// What [`replayed`] needs replayed before it can judge `responses`: when the distortion places a
+/// nonlinearity at a site the verdict does not name and a structural gap remains, the site's
+/// one-sided paths ([`one_sided_at`]), and the named effect when it is amplitude-dependent.
+pub(in crate::diagnosis) fn to_replay(e: &Evidence, responses: &Verdict) -> Vec<Candidate> {
+    let Some(site) = e.distortion.as_ref().and_then(|d| d.site) else {
+        return Vec::new();
+    };
+    let named = responses.effect();
+    if named.is_some_and(|c| site.admits(c))
+        || verdict_chi2(e, responses).is_none_or(|x| x <= GAP_CHI2)
+    {
+        return Vec::new();
+    }
+    one_sided_at(e, site)
+        .filter_map(candidate)
+        .chain(named.filter(|c| c.amplitude_dependent()))
+        .collect()
+}
+
+/// The simulator's second opinion. A path that acts on one side only (a strap past its slack, a
+/// pad that lifts off) clips the force it carries, so the Gaussian input its statistical
+/// linearisation assumes is furthest from what the path sees, and its linearised fit can rank it
+/// far below an effect elsewhere — a sensor mount, a body mode — that bends the responses the same
+/// way without distorting them. When the distortion places the nonlinearity at the path's site and
+/// the verdict so far names no effect there, the site's one-sided paths are judged by their laws
+/// refined by the replayed best linear approximation and replayed through the check run
+/// ([`crate::diagnosis::select::replay_refined`]): the one whose replay leaves the check run's
+/// reduced χ² lowest is named when it beats the verdict's by [`IDENTIFIABLE_MARGIN`] in the BIC's
+/// units, n·Δ(χ²/ν) over n residuals, read in units of the path's own overdispersion ĉ.
+pub(in crate::diagnosis) fn replayed(e: &Evidence, responses: &Verdict) -> Option<Verdict> {
+    let site = e.distortion.as_ref()?.site?;
+    if responses.effect().is_some_and(|c| site.admits(c)) {
+        return None;
+    }
+    let against = verdict_chi2(e, responses)?;
+    let (b, x) = one_sided_at(e, site)
+        .filter_map(|r| r.check.replayed_chi2_red.map(|x| (r, x)))
+        .min_by(|a, b| a.1.total_cmp(&b.1))?;
+    let n = e.null.check.residuals as f64;
+    ((against - x) * n / overdispersion(x) >= IDENTIFIABLE_MARGIN).then_some(Verdict::Named {
+        effect: candidate(b)?,
+        basis: Basis::Replayed {
             responses: responses.id(),
         },
         second: None,

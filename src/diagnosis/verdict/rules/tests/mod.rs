@@ -461,6 +461,64 @@ fn located_at(site: Site) -> Distortion {
     }
 }
 
+/// A lap belt behind a head mount, as a strong strap leaves them: the mount fits the check run to
+/// χ²/ν 41.8 (ΔBIC −22 000); the belt's statistical linearisation leaves 130 (ΔBIC −4 000) and
+/// its replay `replayed`; the distortion grows on the support. The evidence, and the verdict so
+/// far.
+fn strap_behind_a_mount(replayed: f64) -> (Evidence, Verdict) {
+    let mut belt = ranked("lap-belt", 60.0, 130.0, -4000.0, -12900.0, 0.2);
+    belt.check.replayed_chi2_red = Some(replayed);
+    let mut e = evidence(
+        &ranked("null", 100.0, 104.7, 0.0, 0.0, 1.0),
+        &[
+            ranked("sensor-mount-head", 40.0, 41.8, -22000.0, -80000.0, 0.6),
+            ranked("body-mode", 45.0, 49.0, -19500.0, -62600.0, 0.54),
+            belt,
+        ],
+    );
+    e.distortion = Some(located_at(Site::Support));
+    let responses = Verdict::Named {
+        effect: c("sensor-mount-head"),
+        basis: Basis::HeldOut {
+            tie: None,
+            alternative: None,
+        },
+        second: None,
+    };
+    (e, responses)
+}
+
+#[test]
+fn a_one_sided_path_is_judged_by_its_replay_where_the_distortion_places_it() {
+    // Replayed, the belt leaves 31 against the mount's 41.8: 2 000 residuals × 10.8 / ĉ 31 ≈ 700
+    // BIC units, far past the margin: the belt is named on the simulator's opinion.
+    let (e, responses) = strap_behind_a_mount(31.0);
+    assert_eq!(to_replay(&e, &responses), vec![c("lap-belt")]);
+    let (v, text) = judged(&e);
+    assert_eq!(v.effect(), Some(c("lap-belt")), "{text}");
+    assert!(text.contains("acts on one side only"), "{text}");
+    // Replayed no better than the mount's linear fit: the responses' verdict stands.
+    let (e, _) = strap_behind_a_mount(41.8);
+    assert_eq!(judged(&e).0.effect(), Some(c("sensor-mount-head")));
+    // With no distortion there is nothing to replay and nothing to judge.
+    let (mut e, responses) = strap_behind_a_mount(31.0);
+    e.distortion = None;
+    assert!(to_replay(&e, &responses).is_empty());
+    assert_eq!(judged(&e).0.effect(), Some(c("sensor-mount-head")));
+    // A verdict at the site already (the distortion's own candidate) is not second-guessed.
+    let (e, _) = strap_behind_a_mount(31.0);
+    let at_site = Verdict::Named {
+        effect: c("cushion-contact"),
+        basis: Basis::HeldOut {
+            tie: None,
+            alternative: None,
+        },
+        second: None,
+    };
+    assert!(to_replay(&e, &at_site).is_empty());
+    assert!(replayed(&e, &at_site).is_none());
+}
+
 #[test]
 fn the_distortion_names_the_site_s_nonlinearity_over_a_linear_verdict() {
     // The responses name a viscoelastic foam (linear), the distortion grows on the support: the

@@ -130,6 +130,20 @@ fn distortion_site() -> (Evidence, Verdict) {
     (e, v)
 }
 
+/// The responses name a head mount (χ²/ν 41.8 on the check run); the distortion grows on the
+/// support, where a lap belt's linearisation leaves 130 but its replay 31.
+fn replayed_at_site() -> (Evidence, Verdict) {
+    let (e, _) = strap_behind_a_mount(31.0);
+    let v = Verdict::Named {
+        effect: c("lap-belt"),
+        basis: Basis::Replayed {
+            responses: VerdictId::Effect(c("sensor-mount-head")),
+        },
+        second: None,
+    };
+    (e, v)
+}
+
 /// The responses name a delay; the lag moves between the runs' halves by 150 ± 2 ppm and the
 /// drift is detected on the check run.
 fn clock_drift() -> (Evidence, Verdict) {
@@ -193,6 +207,7 @@ fn fixture(rule: Rule) -> (Evidence, Verdict) {
         Rule::NoStructuralGap => (quiet(), Verdict::None),
         Rule::NoCandidateClosesTheGap => no_candidate_closes_the_gap(),
         Rule::DistortionSite => distortion_site(),
+        Rule::ReplayedAtSite => replayed_at_site(),
         Rule::ClockDrift => clock_drift(),
         Rule::ExplainsOnlyInPart => explains_only_in_part(),
         Rule::CalibrationFinding => calibration_finding(),
