@@ -1,4 +1,4 @@
-//! The shortfall rule (docs/gap.md §7 rule 10): when the named effect(s) explain the check run,
+//! The shortfall rule (docs/gap.md §7 rule 11): when the named effect(s) explain the check run,
 //! read on its reduced χ² (the linearisation's or the replay's) and its ISO figures.
 
 use super::*;
