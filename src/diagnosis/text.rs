@@ -359,8 +359,16 @@ fn replayed(e: &Evidence, b: &Ranked, responses: &super::VerdictId) -> String {
         .as_ref()
         .and_then(|d| d.site)
         .expect("located by the distortion");
+    // What the verdict it replaces leaves on the check run (the best's, when it named nothing).
+    let against = match responses {
+        super::VerdictId::Effect(c) => e.entry(c),
+        _ => e.best(),
+    }
+    .map_or(String::new(), |r| {
+        format!(" ({:.1})", r.check.explained_chi2_red())
+    });
     format!(
-        "{}, a path that acts on one side only: the runs' distortion places a nonlinearity {}, and the check run replayed through its law (refined on the training runs by the replayed best linear approximation) leaves a reduced χ² of {:.1}, clearly below what the frequency-response verdict, {responses}, leaves; its statistical linearisation (reduced χ² {:.1}, ΔBIC {:.1}) ranked it lower, as a clipped force is far from the Gaussian one it assumes. Its size on the check run: {}",
+        "{}, a path that acts on one side only: the runs' distortion places a nonlinearity {}, and the check run replayed through its law (refined on the training runs by the replayed best linear approximation) leaves a reduced χ² of {:.1}, clearly below what the frequency-response verdict, {responses}, leaves{against}; its statistical linearisation (reduced χ² {:.1}, ΔBIC {:+.1}) ranked it lower, as a clipped force is far from the Gaussian one it assumes. Its size on the check run: {}",
         b.id,
         site.describe(),
         b.check.replayed_chi2_red.unwrap_or(f64::NAN),

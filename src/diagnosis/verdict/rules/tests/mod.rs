@@ -497,6 +497,10 @@ fn a_one_sided_path_is_judged_by_its_replay_where_the_distortion_places_it() {
     let (v, text) = judged(&e);
     assert_eq!(v.effect(), Some(c("lap-belt")), "{text}");
     assert!(text.contains("acts on one side only"), "{text}");
+    assert!(
+        text.contains("reduced χ² of 31.0") && text.contains("sensor-mount-head, leaves (41.8)"),
+        "{text}"
+    );
     // Replayed no better than the mount's linear fit: the responses' verdict stands.
     let (e, _) = strap_behind_a_mount(41.8);
     assert_eq!(judged(&e).0.effect(), Some(c("sensor-mount-head")));
