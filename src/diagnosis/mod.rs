@@ -171,8 +171,11 @@ pub fn diagnose_with(
     }
     // An amplitude-dependent nominee named on its own: its figures from its law refined by the
     // replayed best linear approximation.
-    if let Some(first) =
-        verdict::nominee(&evidence).filter(|c| c.amplitude_dependent() && evidence.second.is_none())
+    let paired = evidence
+        .second
+        .as_ref()
+        .is_some_and(|s| verdict::pair_beats(&evidence, s));
+    if let Some(first) = verdict::nominee(&evidence).filter(|c| c.amplitude_dependent() && !paired)
     {
         select::replay_refined(
             &base,
@@ -196,7 +199,11 @@ pub fn diagnose_with(
     let verdict_text = text::render(&decision, &evidence, &nominal, &partial);
     let mut warnings = prepared.warnings;
     warnings.extend(decision.caveat.as_ref().map(text::replayed_iso));
-    let second = evidence.second.map(|s| s.pair);
+    // The pair is reported only where the decision took it.
+    let second = evidence
+        .second
+        .filter(|_| decision.verdict.second().is_some())
+        .map(|s| s.pair);
     Ok(Diagnosis {
         verdict: decision.verdict.id(),
         decided_by: Some(decision.rule),

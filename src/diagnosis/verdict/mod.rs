@@ -183,6 +183,14 @@ impl Verdict {
         }
     }
 
+    /// The second effect forward selection added, where the decision took it.
+    pub fn second(&self) -> Option<Candidate> {
+        match self {
+            Verdict::Named { second, .. } | Verdict::Partial { second, .. } => *second,
+            _ => None,
+        }
+    }
+
     /// The separating measurement of a not-identifiable pair.
     pub fn separating(&self) -> Option<&str> {
         match self {
@@ -333,7 +341,10 @@ pub(super) fn decide(e: &Evidence) -> Decision {
     };
     let mut caveat = None;
     if let Verdict::Named { effect, second, .. } = &mut verdict {
-        let pair = e.second.as_ref().filter(|s| s.first == *effect);
+        let pair = e
+            .second
+            .as_ref()
+            .filter(|s| s.first == *effect && pair_beats(e, s));
         *second = pair.map(|s| s.added);
         let named = pair.map_or_else(
             || e.entry(effect).map(|r| &r.check),
@@ -368,6 +379,17 @@ pub(super) fn decide(e: &Evidence) -> Decision {
         caveat,
         calibration,
     }
+}
+
+/// Whether forward selection's pair `s` explains the check run better than its named effect
+/// alone, each judged at its best (the lower of its linearisation's and its replay's reduced χ²,
+/// [`Stage::explained_chi2_red`]). The pair is found and scored on its statistical linearisation;
+/// where the simulator has replayed the named effect's law (a one-sided path whose clipped force
+/// its linearisation misjudges), a second effect that only bends the linearised model toward what
+/// the replay already explains is not a second effect.
+pub(super) fn pair_beats(e: &Evidence, s: &Second) -> bool {
+    e.entry(s.first)
+        .is_none_or(|r| s.pair.check.explained_chi2_red() < r.check.explained_chi2_red())
 }
 
 /// Overdispersion ĉ = max(1, χ²/ν) of a fit (QAIC, Burnham & Anderson 2002, §2.5): when even the

@@ -523,6 +523,36 @@ fn a_one_sided_path_is_judged_by_its_replay_where_the_distortion_places_it() {
     assert!(replayed(&e, &at_site).is_none());
 }
 
+/// Forward selection's pair of `first` and `added` whose linearised fit leaves `chi2` on the
+/// check run.
+fn pair_leaving(first: &str, added: &str, chi2: f64) -> crate::diagnosis::select::Second {
+    let mut pair = ranked(first, chi2, chi2, -500.0, -500.0, 0.5);
+    pair.id = Effects::Pair(c(first), c(added));
+    crate::diagnosis::select::Second {
+        first: c(first),
+        added: c(added),
+        pair,
+    }
+}
+
+#[test]
+fn a_second_effect_is_kept_only_where_the_pair_beats_the_named_effects_replay() {
+    // The belt, named on its replay (31), with a pair whose linearised fit leaves 47.5: the pair
+    // explains less than the belt alone as the simulator judges it, so the belt stands alone.
+    let (mut e, _) = strap_behind_a_mount(31.0);
+    e.second = Some(pair_leaving("lap-belt", "sensor-mount-head", 47.5));
+    let d = decide(&e);
+    assert_eq!(d.verdict.effect(), Some(c("lap-belt")));
+    assert_eq!(d.verdict.second(), None, "{:?}", d.verdict);
+    // A pair that leaves less than the belt's replay is a second effect.
+    e.second = Some(pair_leaving("lap-belt", "sensor-mount-head", 20.0));
+    let d = decide(&e);
+    assert_eq!(d.verdict.second(), Some(c("sensor-mount-head")));
+    // A pair of another effect than the one named is never taken.
+    e.second = Some(pair_leaving("body-mode", "sensor-mount-head", 5.0));
+    assert_eq!(decide(&e).verdict.second(), None);
+}
+
 #[test]
 fn the_distortion_names_the_site_s_nonlinearity_over_a_linear_verdict() {
     // The responses name a viscoelastic foam (linear), the distortion grows on the support: the
