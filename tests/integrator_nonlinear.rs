@@ -6,7 +6,7 @@ use wbv::model::{Model, catalog};
 use wbv::simulate::observer::{Layout, Observer, Step};
 use wbv::simulate::{Settings, run};
 
-mod common;
+use crate::common;
 use common::Sine;
 
 #[derive(Default)]

@@ -1,0 +1,53 @@
+//! The integration tests, one module per file of `tests/`, built as one test binary: one crate
+//! compiles and links once where one crate per file repeated the work (`cargo test --release
+//! --test suite MODULE::` runs one file's tests).
+
+mod analysis_cli;
+mod analysis_exposure;
+mod analysis_figures;
+mod analysis_low_rates;
+mod analysis_shocks;
+mod analysis_steady;
+mod analysis_weighting;
+mod architecture;
+mod cli_first_hour;
+mod cli_json;
+mod cli_models;
+mod cli_simulate;
+mod common;
+mod excitation_errors;
+mod excitation_recorded;
+mod excitation_spectrum;
+mod excitation_stream;
+mod first_hour;
+mod gap_backrest;
+mod gap_diagnosis;
+mod gap_input_noise;
+mod gap_loggers;
+mod gap_outside_forms;
+mod gap_planar;
+mod gap_structure;
+mod gap_support_place;
+mod gap_truth_bench;
+mod input_damaged;
+mod input_fixtures;
+mod input_fuzz;
+mod integrator_accuracy;
+mod integrator_linear;
+mod integrator_nonlinear;
+mod live_view;
+mod logger_faults;
+mod planar_model;
+mod planar_response;
+mod planar_simulate;
+mod plots;
+mod record_cli;
+mod record_roundtrip;
+mod record_threads;
+mod response_closed_form;
+mod seat_test;
+mod simulate_random;
+mod study_calibrate;
+mod study_foam;
+mod study_shards;
+mod study_spectral;
