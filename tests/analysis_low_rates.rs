@@ -6,7 +6,7 @@
 //! Annex A formula (checked against the printed tables in tests/analysis_weighting.rs); the burst
 //! figures are the values printed in ISO 8041-1 Table 8.
 
-use crate::common;
+mod common;
 
 use std::f64::consts::PI;
 use wbv::analysis::{Options, Report, Weighting};

@@ -4,7 +4,7 @@
 //! offset held through a quiet first second; `tools/test` runs this with `WBV_INPUT_FIXTURES=DIR`.
 //! Without that variable the test says so and checks nothing else.
 
-use crate::common;
+mod common;
 
 use wbv::analysis::{Options, Report};
 use wbv::io::input::InputArgs;

@@ -4,7 +4,7 @@
 //! `wbv sweep` times itself, prints no status line before an error and has help that tells the
 //! truth; the README says how to get `wbv` on the PATH.
 
-use crate::common;
+mod common;
 use common::wbv;
 use serde_json::Value;
 

@@ -3,7 +3,7 @@
 //! command's name, its expected top-level keys, a `warnings` array, sizes of the files it wrote,
 //! and no `null` where a figure is expected. A subcommand added without a case here fails the test.
 
-use crate::common;
+mod common;
 use serde_json::Value;
 use std::path::Path;
 

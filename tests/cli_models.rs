@@ -1,6 +1,6 @@
 //! The model commands work on every built-in model and fail with one clear line on bad input.
 
-use crate::common;
+mod common;
 use common::wbv;
 
 #[test]

@@ -1,7 +1,7 @@
 //! `wbv simulate` end to end: a recorded run that analyses and replays, deterministic bytes, and one
 //! clear error line (nothing half-written) for bad input.
 
-use crate::common;
+mod common;
 use common::wbv;
 use std::path::Path;
 use std::process::Command;

@@ -5,7 +5,7 @@
 //! `tools/test` runs this with `WBV_INPUT_FIXTURES=DIR`; without it the test says so and checks
 //! nothing else.
 
-use crate::common;
+mod common;
 
 use serde_json::Value;
 use std::process::Command;

@@ -14,7 +14,7 @@
 //! - a base accelerometer 16.7 ms late on a field run (phase wrapping above 30 Hz): named a
 //!   logger offset, read within a millisecond.
 
-use crate::common;
+mod common;
 use std::path::{Path, PathBuf};
 
 fn read_json(p: &Path) -> serde_json::Value {

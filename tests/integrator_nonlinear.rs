@@ -6,7 +6,7 @@ use wbv::model::{Model, catalog};
 use wbv::simulate::observer::{Layout, Observer, Step};
 use wbv::simulate::{Settings, run};
 
-use crate::common;
+mod common;
 use common::Sine;
 
 #[derive(Default)]

@@ -5,7 +5,7 @@
 //! converter's range limit; a quantised signal that revisits its codes is neither clipped nor held,
 //! in `wbv analyze` (whose warnings `wbv report` prints) and in `wbv gap` alike.
 
-use crate::common;
+mod common;
 use common::wbv;
 
 fn json(out: &std::process::Output) -> serde_json::Value {

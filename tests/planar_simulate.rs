@@ -10,7 +10,7 @@ use wbv::response::frf;
 use wbv::simulate::collect::Collector;
 use wbv::simulate::{Settings, run};
 
-use crate::common;
+mod common;
 use common::Sine;
 
 fn amplitude(fs: f64, y: &[f64], f: f64, from: usize) -> Complex64 {

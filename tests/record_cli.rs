@@ -1,7 +1,7 @@
 //! `wbv simulate` recordings as files: byte-identical wherever they are written and from `--from`,
 //! protobuf and JSON reading back the same signals, clean interruption, leftovers and two writers.
 
-use crate::common;
+mod common;
 
 use std::path::Path;
 use std::process::{Command, Stdio};

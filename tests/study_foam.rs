@@ -1,7 +1,7 @@
 //! Foam-thickness study (paper 000 Table 4): the trends of a thicker, softer layer in both domains,
 //! and the `wbv foam` table next to the paper's values.
 
-use crate::common;
+mod common;
 use common::wbv;
 use wbv::model::catalog;
 use wbv::study::foam::{Foam, PAPER_TABLE_4, paper_run, thickness_study};

@@ -1,6 +1,6 @@
 //! Inputs and helpers shared by the integration tests.
 
-// Each test module uses a part of it.
+// Each test crate includes this module and uses a part of it.
 #![allow(dead_code)]
 
 use std::f64::consts::PI;
