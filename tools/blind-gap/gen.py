@@ -267,7 +267,7 @@ FAMILIES = {
 }
 # Forms reached only by a study set (--form): the random rotation above stays as it was, so the
 # cases of earlier seeds are drawn the same.
-STUDY_FORMS = {"viscoelastic": ["kww"], "missing-dof": ["rocking-frame"], "sensor": ["highpass-multi", "lowpass-multi"],
+STUDY_FORMS = {"viscoelastic": ["kww"], "missing-dof": ["rocking-frame", "floor-panel"], "sensor": ["highpass-multi", "lowpass-multi"],
                "body-stiffening": ["magnitude-stiffening"], "support-path": ["harness", "lap-belt", "feet-lift-off"]}
 
 
@@ -404,6 +404,11 @@ def draw_effect(rng, family, form, strength):
             p = {"m_kg": rng.uniform(4, 12), "front_mass_share": rng.uniform(0.3, 0.5),
                  "front_load_share": rng.uniform(0.15, 0.4), "rear_leg_share": rng.uniform(0.55, 0.8),
                  "f_loaded_hz": rng.uniform(15, 28), "zeta": rng.uniform(0.03, 0.1) / strength}
+        elif form == "floor-panel":
+            p = {"m_frame_kg": rng.uniform(3, 8), "f_frame_hz": rng.uniform(28, 45),
+                 "m_panel_kg": rng.uniform(8, 20), "f_panel_hz": rng.uniform(12, 22),
+                 "m_side_kg": rng.uniform(2, 6), "f_side_hz": rng.uniform(30, 55),
+                 "zeta": rng.uniform(0.03, 0.1) / strength}
         else:
             p = {"host": str(rng.choice(["upper_torso", "lower_torso"])), "m_kg": min(8.0, rng.uniform(2, 5) * strength),
                  "f_hz": rng.uniform(4, 10), "zeta": rng.uniform(0.15, 0.4)}
@@ -616,6 +621,30 @@ def build_plant(subject, family, form, p, A_rms, sigma):
             for name, node, kl in (("leg_rear", "frame_rear", rho * kf), ("leg_front", "frame_front", (1 - rho) * kf)):
                 links[name] = (node, None, kl, 2 * p["zeta"] * kl / (2 * np.pi * frame[0]))
             p["frame_modes_hz"], p["k_legs_N_per_m"] = [float(f) for f in frame], kf
+        elif form == "floor-panel":
+            # A seat frame on a cab floor panel, between the base accelerometer (on the cab's
+            # structure) and the seat: the panel's first plate mode a mass on its own spring to the
+            # base carrying the frame, its second a modal mass hung off the panel beside the load
+            # path (it moves the frame's footing, not the frame's load). Three lightly damped modes
+            # reach the seat pad; the springs are tuned on their own masses, the modes with the
+            # occupant seated come from the eigenproblem.
+            masses["panel"], masses["panel_side"], masses["frame"] = p["m_panel_kg"], p["m_side_kg"], p["m_frame_kg"]
+            i, _, k, c = links["cushion"]
+            links["cushion"] = (i, "frame", k, c)
+            z = p["zeta"]
+            for name, node, to, m, f in (("frame", "frame", "panel", p["m_frame_kg"], p["f_frame_hz"]),
+                                         ("panel", "panel", None, p["m_panel_kg"] + p["m_frame_kg"], p["f_panel_hz"]),
+                                         ("panel_side", "panel_side", "panel", p["m_side_kg"], p["f_side_hz"])):
+                kl = m * (2 * np.pi * f) ** 2
+                links[name] = (node, to, kl, 2 * z * math.sqrt(kl * m))
+            pl = Plant(masses, {n: (a, b, kk, 0.0) for n, (a, b, kk, _) in links.items()})
+            nm = len(pl.names)
+            A, _, _ = pl.matrices()
+            K = -np.diag(pl.m) @ A[nm:2 * nm, :nm]
+            w2, phi = linalg.eigh(K, np.diag(pl.m))
+            parts = [pl.idx(n) for n in ("panel", "panel_side", "frame")]
+            p["structure_modes_hz"] = [float(math.sqrt(max(w2[q], 0.0)) / (2 * np.pi)) for q in range(nm)
+                                       if sum(pl.m[a] * phi[a, q] ** 2 for a in parts) / (phi[:, q] @ np.diag(pl.m) @ phi[:, q]) >= 0.5]
         else:
             host = p["host"]
             masses[host] = masses[host] - p["m_kg"]
