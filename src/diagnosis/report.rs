@@ -5,12 +5,13 @@ use std::fmt::Write;
 
 /// A stage's figures; a_w and SEAT with their standard errors from the fitted parameters where
 /// known ([`super::IsoSigma`]).
-fn stage_line(label: &str, s: &Stage) -> String {
+/// One stage's line of section 3, its label padded to `width` characters so the figures line up.
+fn stage_line(label: &str, width: usize, s: &Stage) -> String {
     let (aw_sigma, seat_sigma) = super::text::iso_sigmas(s);
     let aw = format!("{:>+6.1}{aw_sigma} %", s.weighted.aw_gap_percent);
     let seat = format!("{:>5.1}{seat_sigma} %", s.weighted.seat_model);
     format!(
-        "  {label:<22} reduced χ² {:>8.2}   band gap {:>5.2} dB RMS   a_w gap {aw:<15}   SEAT {seat:<14} (measured {:.1} %)",
+        "  {label:<width$} reduced χ² {:>8.2}   band gap {:>5.2} dB RMS   a_w gap {aw:<15}   SEAT {seat:<14} (measured {:.1} %)",
         s.chi2_red, s.gap_db_rms, s.weighted.seat_meas
     )
 }
@@ -243,13 +244,22 @@ fn which(out: &mut String, d: &Diagnosis) {
 /// Section 3: how far the gap shrinks on the check run.
 fn shrinks(out: &mut String, d: &Diagnosis) {
     let _ = writeln!(out, "\n3. How far the gap shrinks on the check run");
-    let _ = writeln!(out, "{}", stage_line("nominal", &d.nominal));
-    let _ = writeln!(out, "{}", stage_line("re-fitted (null)", &d.null.check));
-    for r in d.candidates.iter().take(2) {
-        let _ = writeln!(out, "{}", stage_line(&format!("+ {}", r.id), &r.check));
+    let mut stages = vec![
+        ("nominal".to_string(), &d.nominal),
+        ("re-fitted (null)".to_string(), &d.null.check),
+    ];
+    for r in d.candidates.iter().take(2).chain(&d.second) {
+        stages.push((format!("+ {}", r.id.written(" + ")), &r.check));
     }
-    if let Some(s) = &d.second {
-        let _ = writeln!(out, "{}", stage_line(&format!("+ {}", s.id), &s.check));
+    // The widest label sets the column: a stack of three effects is longer than one name.
+    let width = stages
+        .iter()
+        .map(|(l, _)| l.chars().count())
+        .max()
+        .unwrap_or(0)
+        .max(22);
+    for (label, s) in stages {
+        let _ = writeln!(out, "{}", stage_line(&label, width, s));
     }
 }
 

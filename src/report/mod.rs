@@ -124,7 +124,7 @@ figure{margin:1em 0}figure svg{max-width:100%;height:auto}figcaption{color:#555;
 .verdict{font-size:1.1em;padding:.6em;border-left:4px solid #0072b2;background:#f5f9fc}\
 .warning{font-size:1.1em;padding:.6em;border-left:4px solid #d55e00;background:#fdf3ec}\
 .assumed{display:block;margin-top:.4em;padding:.3em .5em;background:#fdf3ec;color:#7a3300}\
-table.kv td{text-align:left}";
+table.kv td{text-align:left}td.params{text-align:left;white-space:nowrap;font-size:.9em}";
 
 #[cfg(feature = "plot")]
 fn figure_html(out: &mut String, fig: &RunFigure) -> Result<()> {

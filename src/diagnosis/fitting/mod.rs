@@ -461,15 +461,32 @@ pub(super) fn estimates(base: &Base, cands: &[Candidate], ft: &fit::Fit) -> Vec<
             })
             .collect();
     }
+    // In a stack each parameter names its effect (`missing-dof.f_frame_hz`), a repeated one its
+    // occurrence (`missing-dof(2).f_frame_hz`, the mode forward selection added under the first).
+    let names: Vec<String> = cands
+        .iter()
+        .enumerate()
+        .zip(effect_params(cands))
+        .flat_map(|((k, c), ps)| {
+            let nth = cands[..=k].iter().filter(|o| o.id == c.id).count();
+            let effect = match (cands.len(), nth) {
+                (1, _) => String::new(),
+                (_, 1) => format!("{}.", c.id),
+                (_, n) => format!("{}({n}).", c.id),
+            };
+            ps.into_iter().map(move |p| format!("{effect}{}", p.name))
+        })
+        .collect();
     effect_params(cands)
         .concat()
         .iter()
+        .zip(names)
         .enumerate()
-        .map(|(j, p)| {
+        .map(|(j, (p, name))| {
             let i = nb + j;
             let v = p.value(ft.u[i]);
             Estimate {
-                name: p.name.clone(),
+                name,
                 value: v,
                 sigma: if p.log {
                     v * ft.sigma_u[i]

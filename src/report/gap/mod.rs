@@ -124,15 +124,16 @@ pub fn section(out: &mut String, d: &Diagnosis, source: &str) -> Result<Summary>
              <th>band gap change [dB]</th><th>parameters</th></tr>",
         );
         for r in effects {
+            // One parameter a line: a stack of three effects has eight or more.
             let params: Vec<String> = r
                 .params
                 .iter()
-                .map(|p| format!("{} = {:.4e} ± {:.2e}", p.name, p.value, p.sigma))
+                .map(|p| super::esc(&format!("{} = {:.4e} ± {:.2e}", p.name, p.value, p.sigma)))
                 .collect();
             let _ = write!(
                 out,
                 "<tr><td>{}</td><td>{:.1}</td><td>{:.2}</td><td>{:.0}</td><td>{:+.1}</td>\
-                 <td>{:+.1}</td><td>{:+.2}</td><td>{}</td></tr>",
+                 <td>{:+.1}</td><td>{:+.2}</td><td class=\"params\">{}</td></tr>",
                 super::esc(&r.id.to_string()),
                 r.delta_bic,
                 r.probability,
@@ -140,7 +141,7 @@ pub fn section(out: &mut String, d: &Diagnosis, source: &str) -> Result<Summary>
                 r.aw_change_percent,
                 r.seat_change_points,
                 r.band_gap_change_db,
-                super::esc(&params.join("; "))
+                params.join("<br>")
             );
         }
         out.push_str("</table>\n");
