@@ -47,7 +47,8 @@ fn a_two_mode_seat_frame_is_named_as_a_frame_mode_and_a_second_one_under_it() {
         d.verdict_text
     );
     assert!(
-        d.verdict_text.contains("a second mode of the frame"),
+        d.verdict_text
+            .contains("a second missing-dof (more than one mode of the structure"),
         "{}",
         d.verdict_text
     );
@@ -87,4 +88,51 @@ fn a_rocking_seat_frame_is_named_a_missing_mode_and_closes_the_check_run() {
         "{}",
         d.verdict_text
     );
+}
+
+/// A two-mode frame (pan on riser) measured through a 4-pole anti-alias low-pass on one channel:
+/// three effects, two of them frame modes. Forward selection goes on past the pair while the
+/// stack leaves a structural residual, so the named model holds all three and explains the check
+/// run, which the pair alone cannot.
+#[test]
+fn a_two_mode_frame_behind_a_low_pass_is_named_with_both_modes_and_the_filter() {
+    let case = make_case_with(
+        4,
+        11,
+        &CaseOptions {
+            effects: Some(vec![(Form::FrameTwoMode, 0.6), (Form::LowPass, 0.8)]),
+            spectrum: Some("white"),
+            fs_hz: Some(500.0),
+            duration_s: Some(90.0),
+            noise: Some(0.01),
+            force: Some(false),
+            ..CaseOptions::default()
+        },
+    )
+    .unwrap();
+    let planted: Vec<&str> = case
+        .label
+        .effects
+        .iter()
+        .map(|e| e.detail.as_str())
+        .collect();
+    let model = catalog::resolve("reference").unwrap();
+    let d = diagnose(&model, &case.train, &case.check).unwrap();
+    let named: Vec<&str> = d.named.iter().map(|c| c.id).collect();
+    assert_eq!(named.len(), 3, "{planted:?}: {}", d.verdict_text);
+    assert_eq!(
+        named.iter().filter(|&&c| c == "missing-dof").count(),
+        2,
+        "{planted:?}: {}",
+        d.verdict_text
+    );
+    assert!(
+        named.iter().any(|c| c.starts_with("sensor-lowpass")),
+        "{planted:?}: {}",
+        d.verdict_text
+    );
+    let stack = d.second.as_ref().unwrap();
+    assert_eq!(stack.id.candidates().len(), 3);
+    assert!(stack.check.chi2_red < 3.0, "{}", d.verdict_text);
+    assert!(d.verdict_text.contains("and a third"), "{}", d.verdict_text);
 }

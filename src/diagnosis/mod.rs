@@ -7,7 +7,7 @@
 //! gap map, magnitude trend) → fit and [`rank`](select::rank) the candidates ([`candidate`], fitted
 //! by [`fitting`] through the prediction layer [`predict`], scored by [`evidence`]) → judge
 //! amplitude-dependent effects on all runs ([`all_runs`]) → one evidence record, with forward
-//! selection's second effect ([`select::second_effect`]) → the one decision ([`verdict::decide`]:
+//! selection's added effects, up to three in all ([`select::added_effects`]) → the one decision ([`verdict::decide`]:
 //! the [`Verdict`] and the rule that decided it) → the text ([`text`]).
 
 pub mod acquisition;
@@ -148,7 +148,7 @@ pub fn diagnose_with(
         all_runs: all_runs.map(|(a, _)| a),
         distortion: prepared.distortion,
         clock: prepared.clock,
-        second: None,
+        added: None,
         channel_errors: prepared.channel_errors,
     };
     // The simulator's judgement of the laws whose linearisation cannot be trusted where the
@@ -164,18 +164,18 @@ pub fn diagnose_with(
             ck,
         )?;
     }
-    // Forward selection: a second effect beside the effect the rules name.
+    // Forward selection: up to two effects added beside the effect the rules name.
     if let Some(first) = verdict::nominee(&evidence) {
-        evidence.second =
-            select::second_effect(&base, (&evidence.cands, &ranking.fits), first, tr, ck, n)?;
+        evidence.added =
+            select::added_effects(&base, (&evidence.cands, &ranking.fits), first, tr, ck, n)?;
     }
     // An amplitude-dependent nominee named on its own: its figures from its law refined by the
     // replayed best linear approximation.
-    let paired = evidence
-        .second
+    let stacked = evidence
+        .added
         .as_ref()
-        .is_some_and(|s| verdict::pair_beats(&evidence, s));
-    if let Some(first) = verdict::nominee(&evidence).filter(|c| c.amplitude_dependent() && !paired)
+        .is_some_and(|s| verdict::stack_beats(&evidence, s));
+    if let Some(first) = verdict::nominee(&evidence).filter(|c| c.amplitude_dependent() && !stacked)
     {
         select::replay_refined(
             &base,
@@ -189,21 +189,23 @@ pub fn diagnose_with(
     }
     let decision = verdict::decide(&evidence);
     let partial = match &decision.verdict {
-        Verdict::Partial { best, second, .. } => outcome::partial_effects(
+        Verdict::Partial { best, added, .. } => outcome::partial_effects(
             &evidence.cands,
-            &std::iter::once(*best).chain(*second).collect::<Vec<_>>(),
-            evidence.second.as_ref().map(|s| &s.pair),
+            &std::iter::once(*best)
+                .chain(added.iter().copied())
+                .collect::<Vec<_>>(),
+            evidence.added.as_ref().map(|s| &s.entry),
         ),
         _ => Vec::new(),
     };
     let verdict_text = text::render(&decision, &evidence, &nominal, &partial);
     let mut warnings = prepared.warnings;
     warnings.extend(decision.caveat.as_ref().map(text::replayed_iso));
-    // The pair is reported only where the decision took it.
+    // The stack is reported only where the decision took it.
     let second = evidence
-        .second
-        .filter(|_| decision.verdict.second().is_some())
-        .map(|s| s.pair);
+        .added
+        .filter(|_| !decision.verdict.added().is_empty())
+        .map(|s| s.entry);
     Ok(Diagnosis {
         verdict: decision.verdict.id(),
         decided_by: Some(decision.rule),

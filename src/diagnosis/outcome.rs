@@ -78,8 +78,8 @@ pub struct IsoSigma {
 }
 
 /// The effects a fitted model adds to the base model: none (the null re-fit), one candidate, or a
-/// candidate and the second effect forward selection paired with it. Written in the JSON as
-/// `null`, the candidate's id, or the two ids joined by `+`.
+/// candidate and the effects forward selection added beside it, one or two (docs/gap.md §6.5).
+/// Written in the JSON as `null`, the candidate's id, or the ids joined by `+`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Effects {
     /// The base model's own parameters re-fitted, no effect.
@@ -88,9 +88,22 @@ pub enum Effects {
     One(Candidate),
     /// A candidate and a second effect.
     Pair(Candidate, Candidate),
+    /// A candidate, a second and a third effect.
+    Triple(Candidate, Candidate, Candidate),
 }
 
 impl Effects {
+    /// The effects of a stack of candidates, in order; `None` for more than three.
+    pub fn of(stack: &[Candidate]) -> Option<Self> {
+        Some(match *stack {
+            [] => Effects::Null,
+            [a] => Effects::One(a),
+            [a, b] => Effects::Pair(a, b),
+            [a, b, c] => Effects::Triple(a, b, c),
+            _ => return None,
+        })
+    }
+
     /// The candidate of a one-effect model.
     pub fn candidate(self) -> Option<Candidate> {
         match self {
@@ -105,6 +118,7 @@ impl Effects {
             Effects::Null => Vec::new(),
             Effects::One(c) => vec![c],
             Effects::Pair(a, b) => vec![a, b],
+            Effects::Triple(a, b, c) => vec![a, b, c],
         }
     }
 
@@ -112,23 +126,27 @@ impl Effects {
     pub(super) fn written(self, sep: &str) -> String {
         match self {
             Effects::Null => "null".into(),
-            Effects::One(c) => c.id.into(),
-            Effects::Pair(a, b) => format!("{}{sep}{}", a.id, b.id),
+            _ => {
+                let ids: Vec<&str> = self.candidates().iter().map(|c| c.id).collect();
+                ids.join(sep)
+            }
         }
     }
 
     /// The effects written as `written` writes them with `sep`.
     pub(super) fn read(s: &str, sep: &str) -> Result<Self, String> {
-        let known = |id: &str| {
-            from_id(id.trim()).ok_or_else(|| {
-                format!("unknown candidate `{id}`: not one of this wbv's `wbv gap` candidates")
+        if s == "null" {
+            return Ok(Effects::Null);
+        }
+        let stack = s
+            .split(sep.trim())
+            .map(|id| {
+                from_id(id.trim()).ok_or_else(|| {
+                    format!("unknown candidate `{id}`: not one of this wbv's `wbv gap` candidates")
+                })
             })
-        };
-        Ok(match s.split_once(sep.trim()) {
-            _ if s == "null" => Effects::Null,
-            Some((a, b)) => Effects::Pair(known(a)?, known(b)?),
-            None => Effects::One(known(s)?),
-        })
+            .collect::<Result<Vec<_>, _>>()?;
+        Effects::of(&stack).ok_or_else(|| format!("`{s}`: more than three effects"))
     }
 }
 
@@ -426,8 +444,9 @@ pub struct Diagnosis {
     pub null: Ranked,
     /// Candidates, best first.
     pub candidates: Vec<Ranked>,
-    /// The best candidate plus a forward-selected second effect, when that pair is detected
-    /// against the best alone (`delta_bic` and `fraction_closed` are relative to the best).
+    /// The named effect and the effects forward selection added to it (one or two, docs/gap.md
+    /// §6.5), where the decision took them (`delta_bic` and `fraction_closed` are relative to the
+    /// named effect alone).
     pub second: Option<Ranked>,
     /// For `not-identifiable`: the measurement that would separate the two best.
     pub separating_measurement: Option<String>,
@@ -440,7 +459,7 @@ pub struct Diagnosis {
 /// A candidate that closes part of a gap it does not explain.
 #[derive(Debug, Clone, Serialize, Deserialize)]
 pub struct PartialEffect {
-    /// The candidate, or the pair a forward selection added (written `A + B`).
+    /// The candidate, or the stack a forward selection built (written `A + B`, `A + B + C`).
     #[serde(
         serialize_with = "spaced_effects",
         deserialize_with = "read_spaced_effects"
@@ -507,8 +526,8 @@ pub(super) fn named_stage<'a>(
     })
 }
 
-/// The partial candidates of an `unexplained` verdict: the named effect(s) first (the pair when
-/// forward selection added a second), then the other detected candidates, up to four in all.
+/// The partial candidates of an `unexplained` verdict: the named effect(s) first (the stack when
+/// forward selection added effects), then the other detected candidates, up to four in all.
 pub(super) fn partial_effects(
     candidates: &[Ranked],
     named: &[Candidate],
@@ -571,4 +590,34 @@ pub struct ChannelError {
     pub factor: f64,
     /// The runs it was found in.
     pub runs: Vec<String>,
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn effects_are_read_back_as_written_up_to_three_and_refused_beyond() {
+        let c = |id: &str| from_id(id).unwrap();
+        let triple = Effects::Triple(c("missing-dof"), c("missing-dof"), c("sensor-mount-base"));
+        let json = serde_json::to_string(&triple).unwrap();
+        assert_eq!(json, "\"missing-dof+missing-dof+sensor-mount-base\"");
+        assert_eq!(serde_json::from_str::<Effects>(&json).unwrap(), triple);
+        assert_eq!(
+            Effects::read("missing-dof + body-mode", " + ").unwrap(),
+            Effects::Pair(c("missing-dof"), c("body-mode"))
+        );
+        assert_eq!(Effects::read("null", "+").unwrap(), Effects::Null);
+        let four = "missing-dof+missing-dof+missing-dof+body-mode";
+        assert!(
+            Effects::read(four, "+")
+                .unwrap_err()
+                .contains("more than three")
+        );
+        assert!(
+            Effects::read("missing-dof+no-such", "+")
+                .unwrap_err()
+                .contains("no-such")
+        );
+    }
 }

@@ -10,15 +10,16 @@ use super::outcome::{Effects, Ranked, Stage};
 use super::thresholds::{ACCEPT_DELTA_BIC, GAP_CHI2, MIN_CLOSED};
 use crate::error::Result;
 
-/// The effect forward selection added beside the effect the rules name ([`second_effect`]).
+/// The effects forward selection added beside the effect the rules name ([`added_effects`]).
 #[derive(Debug, Clone)]
-pub(super) struct Second {
-    /// The named effect it was paired with.
+pub(super) struct Added {
+    /// The named effect they were added to.
     pub first: Candidate,
-    /// The second effect.
-    pub added: Candidate,
-    /// The pair's entry, scored against the named effect alone.
-    pub pair: Ranked,
+    /// The added effects, in the order forward selection took them (one or two).
+    pub added: Vec<Candidate>,
+    /// The stack's entry (the named effect and the added ones), scored against the named effect
+    /// alone.
+    pub entry: Ranked,
 }
 
 /// The null re-fit and the candidates ranked against it.
@@ -90,96 +91,120 @@ pub(super) fn rank(
     })
 }
 
-/// Forward selection: when the named effect `bc` leaves a structural residual on the check run
-/// (reduced χ² > [`GAP_CHI2`]), the four best candidates of other families (and, after a missing
-/// mode, a second mode) are fitted jointly with it (from its optimum) and the pair with the lowest BIC is kept if it is detected against
-/// `bc` alone (ΔBIC ≤ [`ACCEPT_DELTA_BIC`]) and closes ≥ [`MIN_CLOSED`] of what `bc` leaves — the
-/// held-out rule, with `bc` as the reference; `cands` and `fits` are the ranked candidates and
-/// their fitted parameter vectors (the warm start). Returns the second effect and the pair's entry.
-pub(super) fn second_effect(
+/// The most effects a forward selection stacks: the named one and two added (three modes of a
+/// structure — a floor panel, a frame and its riser — or a mode beside a sensor and a path).
+pub(super) const MAX_EFFECTS: usize = 3;
+
+/// Forward selection (docs/gap.md §6.5): while the stack of effects (first the named effect `bc`
+/// alone) leaves a structural residual on the check run (reduced χ² > [`GAP_CHI2`]) and holds
+/// fewer than [`MAX_EFFECTS`], the four best candidates of families not in the stack (and, after
+/// a missing mode, the family's other forms and a repeat of a form that repeats) are each fitted
+/// jointly with the stack, from its optimum; the one with the lowest BIC is added if it is
+/// detected against the stack (ΔBIC ≤ [`ACCEPT_DELTA_BIC`]) and closes ≥ [`MIN_CLOSED`] of what the
+/// stack leaves — the held-out rule, with the stack as the reference. `cands` and `fits` are the
+/// ranked candidates and their fitted parameter vectors (`bc`'s is the first warm start). Returns
+/// the added effects and the final stack's entry, its figures from the simulator where it holds an
+/// amplitude-dependent effect, scored against `bc` alone.
+pub(super) fn added_effects(
     base: &Base,
     (cands, fits): (&[Ranked], &[(Candidate, Vec<f64>)]),
     bc: Candidate,
     tr: &[RunSpectra],
     ck: &RunSpectra,
     n: Counts,
-) -> Result<Option<Second>> {
+) -> Result<Option<Added>> {
     let Some(best) = cands.iter().find(|b| b.id == Effects::One(bc)) else {
         return Ok(None);
     };
-    if best.check.chi2_red <= GAP_CHI2 {
-        return Ok(None);
-    }
     let Some((_, warm)) = fits.iter().find(|(c, _)| *c == bc) else {
         return Ok(None);
     };
-    let mut others: Vec<Candidate> = cands
-        .iter()
-        .filter(|r| r.id != best.id)
-        .filter_map(|r| r.id.candidate())
-        .filter(|c| c.family != bc.family)
-        .take(4)
-        .collect();
-    // A structure can lack more than one part of a family: after a frame or body mode, the
-    // family's other forms (a body mode after a frame, a frame after a body mode) and the named
-    // one again where it repeats (a riser: the frame's second mode under the first).
-    if bc.family.adds_parts() {
-        others.extend(candidate::all().filter(|&c| {
-            c.family == bc.family
-                && (c != bc || c.repeats)
-                && cands.iter().any(|r| r.id == Effects::One(c))
-        }));
-    }
-    let stacks: Vec<Vec<Candidate>> = others.iter().map(|&o| vec![bc, o]).collect();
-    // Only the pair kept is reported, so only its figures are replayed.
-    let pairs = fitting::fit_each(
-        base,
-        &stacks,
-        tr,
-        warm,
-        Some((ck, fitting::IsoFigures::Linearised)),
-    )?;
-    let mut second: Option<(usize, Second)> = None;
-    for (i, (pair, ft)) in stacks.iter().zip(&pairs).enumerate() {
-        if fitting::contradicts(base, pair, &ft.fit.u) {
-            continue;
+    let ranked: Vec<Candidate> = cands.iter().filter_map(|r| r.id.candidate()).collect();
+    let mut stack = vec![bc];
+    // The stack's entry (against `bc` alone, once something is added), its fit and its variant.
+    let mut reference = best.clone();
+    let mut kept: Option<(fitting::Fitted, Ranked)> = None;
+    let mut warm = warm.clone();
+    while stack.len() < MAX_EFFECTS && reference.check.chi2_red > GAP_CHI2 {
+        let families: Vec<_> = stack.iter().map(|c| c.family).collect();
+        let mut others: Vec<Candidate> = ranked
+            .iter()
+            .copied()
+            .filter(|c| !families.contains(&c.family))
+            .take(4)
+            .collect();
+        // A structure can lack more than one part of a family: after a frame or body mode, the
+        // family's other forms (a body mode after a frame, a frame after a body mode) and a form
+        // again where it repeats (a riser: the frame's second mode under the first).
+        if let Some(&part) = stack.iter().find(|c| c.family.adds_parts()) {
+            others.extend(candidate::all().filter(|&c| {
+                c.family == part.family && (!stack.contains(&c) || c.repeats) && ranked.contains(&c)
+            }));
         }
-        let r = evidence::against(best, warm.len(), pair_trial(pair, ft), n);
-        if r.delta_bic <= ACCEPT_DELTA_BIC
-            && r.fraction_closed >= MIN_CLOSED
-            && second
-                .as_ref()
-                .is_none_or(|(_, s)| r.delta_bic < s.pair.delta_bic)
-        {
-            second = Some((
-                i,
-                Second {
-                    first: bc,
-                    added: pair[1],
-                    pair: r,
-                },
-            ));
+        let stacks: Vec<Vec<Candidate>> = others
+            .iter()
+            .map(|&o| stack.iter().copied().chain([o]).collect())
+            .collect();
+        // Only the stack kept is reported, so only its figures are replayed.
+        let fitted = fitting::fit_each(
+            base,
+            &stacks,
+            tr,
+            &warm,
+            Some((ck, fitting::IsoFigures::Linearised)),
+        )?;
+        let mut step: Option<(usize, Ranked)> = None;
+        for (i, (s, ft)) in stacks.iter().zip(&fitted).enumerate() {
+            if fitting::contradicts(base, s, &ft.fit.u) {
+                continue;
+            }
+            let r = evidence::against(&reference, warm.len(), stack_trial(s, 1, ft), n);
+            if r.delta_bic <= ACCEPT_DELTA_BIC
+                && r.fraction_closed >= MIN_CLOSED
+                && step.as_ref().is_none_or(|(_, b)| r.delta_bic < b.delta_bic)
+            {
+                step = Some((i, r));
+            }
         }
+        let Some((i, _)) = step else {
+            break;
+        };
+        let ft = fitted.into_iter().nth(i).expect("one fit per stack");
+        stack = stacks[i].clone();
+        warm = ft.fit.u.clone();
+        let extra = stack.len() - 1;
+        reference = evidence::against(best, best_len(fits, bc), stack_trial(&stack, extra, &ft), n);
+        kept = Some((ft, reference.clone()));
     }
-    let Some((i, second)) = second else {
+    let Some((ft, _)) = kept else {
         return Ok(None);
     };
-    // The kept pair's figures from the simulator, its entry scored again with them.
-    let (pair, ft) = (&stacks[i], &pairs[i]);
-    let mut t = pair_trial(pair, ft);
-    fitting::replay_figures(base, pair, &ft.variant, ck, &mut t.stage)?;
-    Ok(Some(Second {
-        pair: evidence::against(best, warm.len(), t, n),
-        ..second
+    // The kept stack's figures from the simulator, its entry scored again with them.
+    let mut t = stack_trial(&stack, stack.len() - 1, &ft);
+    fitting::replay_figures(base, &stack, &ft.variant, ck, &mut t.stage)?;
+    Ok(Some(Added {
+        first: bc,
+        added: stack[1..].to_vec(),
+        entry: evidence::against(best, best_len(fits, bc), t, n),
     }))
 }
 
-/// The pair `pair`'s fit `ft` as a trial against the named effect alone: the pair's second
-/// effect adds its parameters.
-fn pair_trial(pair: &[Candidate], ft: &fitting::Fitted) -> Trial {
+/// The length of the named effect `bc`'s fitted parameter vector (base and its own parameters).
+fn best_len(fits: &[(Candidate, Vec<f64>)], bc: Candidate) -> usize {
+    fits.iter()
+        .find(|(c, _)| *c == bc)
+        .map_or(0, |(_, u)| u.len())
+}
+
+/// The stack `stack`'s fit `ft` as a trial against a reference that lacks its last `added`
+/// effects: those add their parameters.
+fn stack_trial(stack: &[Candidate], added: usize, ft: &fitting::Fitted) -> Trial {
     Trial {
-        effects: Effects::Pair(pair[0], pair[1]),
-        extra: pair[1].params().len(),
+        effects: Effects::of(stack).expect("at most MAX_EFFECTS"),
+        extra: stack[stack.len() - added..]
+            .iter()
+            .map(|c| c.params().len())
+            .sum(),
         cost: ft.fit.cost,
         params: ft.params.clone(),
         stage: ft.stage.clone().expect("evaluated on the check run"),

@@ -22,22 +22,18 @@ pub(super) fn render(
         Verdict::Partial { shortfall, .. } => {
             self::partial(shortfall, partial, nominal, &e.null.check)
         }
-        Verdict::Named {
-            effect,
-            second: added,
-            ..
-        } => {
+        Verdict::Named { effect, added, .. } => {
             let mut text = sentence(d, e);
-            if let Some(r) = e.entry(effect).filter(|_| added.is_none()) {
+            if let Some(r) = e.entry(effect).filter(|_| added.is_empty()) {
                 text += &replayed_fit(&r.check);
             }
-            let pair = e.second.as_ref().filter(|_| added.is_some());
-            if let Some(s) = pair {
-                text += &second(effect, s.added, &s.pair);
+            let stack = e.added.as_ref().filter(|_| !added.is_empty());
+            if let Some(s) = stack {
+                text += &self::added(effect, &s.added, &s.entry);
             }
-            let with = pair.map_or_else(
+            let with = stack.map_or_else(
                 || e.entry(effect).map(|r| &r.check),
-                |s| Some(&s.pair.check),
+                |s| Some(&s.entry.check),
             );
             if let Some(with) = with {
                 text += &iso(nominal, &e.null.check, with);
@@ -269,27 +265,45 @@ fn distortion(e: &Evidence, b: &Ranked, responses: &super::outcome::VerdictId) -
     )
 }
 
-/// The second effect's clause: what the forward-selected pair closes beyond the named effect.
-pub(super) fn second(
+/// The added effects' clause: what forward selection's stack closes beyond the named effect.
+pub(super) fn added(
     first: super::candidate::Candidate,
-    second: super::candidate::Candidate,
-    pair: &Ranked,
+    added: &[super::candidate::Candidate],
+    stack: &Ranked,
 ) -> String {
-    let (first, second) = (first.id, second.id);
-    let what = if first == second {
-        // A frame on legs of unequal stiffness under an off-centre load has its bounce and pitch
-        // coupled: both modes move the pan vertically, so vertical channels see two frame modes
-        // whichever it is.
-        format!(
-            "a second {second} (a second mode of the frame, under the first: its bounce and pitch, or two bending modes, which vertical channels cannot tell apart; a fore-and-aft accelerometer on the seat pan, or a second vertical one off its centre, can)"
-        )
-    } else {
-        format!("a second effect, {second},")
+    const ORDINALS: [&str; 2] = ["second", "third"];
+    // A frame on legs of unequal stiffness under an off-centre load has its bounce and pitch
+    // coupled: both modes move the pan vertically, so vertical channels see two frame modes
+    // whichever it is; a riser or a floor panel under it adds modes they cannot place either.
+    const MODES: &str = " (more than one mode of the structure: a frame's bounce and pitch, two bending modes, or a riser or floor under it, which vertical channels cannot tell apart; a fore-and-aft accelerometer on the seat pan, or a second vertical one off its centre or on the floor, can)";
+    let all: Vec<_> = std::iter::once(first)
+        .chain(added.iter().copied())
+        .collect();
+    let twice = |c: &super::candidate::Candidate| all.iter().filter(|o| o.id == c.id).count() > 1;
+    let mut noted = false;
+    let parts: Vec<String> = added
+        .iter()
+        .zip(ORDINALS)
+        .map(|(c, nth)| {
+            if twice(c) {
+                let note = if noted { "" } else { MODES };
+                noted = true;
+                format!("a {nth} {}{note}", c.id)
+            } else {
+                format!("a {nth} effect, {}", c.id)
+            }
+        })
+        .collect();
+    let (verb, what) = match parts.as_slice() {
+        [one] => ("closes", one.clone()),
+        [a, b] => ("close", format!("{a} and {b}")),
+        _ => return String::new(),
     };
     format!(
-        "; {what} closes a further {:.0} % of what remains (ΔBIC {:.1} against {first} alone)",
-        100.0 * pair.fraction_closed,
-        pair.delta_bic,
+        "; {what} {verb} a further {:.0} % of what remains (ΔBIC {:.1} against {} alone)",
+        100.0 * stack.fraction_closed,
+        stack.delta_bic,
+        first.id,
     )
 }
 

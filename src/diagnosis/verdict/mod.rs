@@ -4,7 +4,7 @@
 //!
 //! The stages before it gather the evidence (the null re-fit and the ranked candidates, the
 //! held-out acceptance, the all-run judgement, the distortion and clock trends, the forward
-//! selection's second effect, the calibration findings); the text and the report render the
+//! selection's added effects, the calibration findings); the text and the report render the
 //! decision ([`super::text`]) and change nothing of it.
 
 pub(super) mod rules;
@@ -17,7 +17,7 @@ pub(super) use super::evidence::training_closed;
 pub use super::outcome::Rule;
 use super::outcome::{ChannelError, Effects, Ranked, Stage, VerdictId};
 use super::score;
-pub(super) use super::select::Second;
+pub(super) use super::select::Added;
 
 /// What the diagnosis concludes. Calibration findings (an inverted channel, a unit slip) stand
 /// beside it in [`super::Diagnosis::channel_errors`].
@@ -29,8 +29,8 @@ pub enum Verdict {
         effect: Candidate,
         /// The evidence it is named on.
         basis: Basis,
-        /// A second effect of another family found by forward selection.
-        second: Option<Candidate>,
+        /// The effects forward selection added beside it (none, one or two).
+        added: Vec<Candidate>,
     },
     /// Two candidates of different families explain the runs equally well.
     NotIdentifiable {
@@ -43,14 +43,14 @@ pub enum Verdict {
     },
     /// A structural gap remains that no candidate closes.
     Unexplained,
-    /// The best effect (with a second, if forward selection found one) closes part of the gap but
+    /// The best effect (with those forward selection added) closes part of the gap but
     /// falls short of explaining the check run ([`Shortfall`]): reported `unexplained`, with the
     /// partial candidates ([`super::Diagnosis::partial`]).
     Partial {
         /// The best effect.
         best: Candidate,
-        /// A second effect added by forward selection.
-        second: Option<Candidate>,
+        /// The effects forward selection added beside it (none, one or two).
+        added: Vec<Candidate>,
         /// How it falls short.
         shortfall: Shortfall,
     },
@@ -183,11 +183,11 @@ impl Verdict {
         }
     }
 
-    /// The second effect forward selection added, where the decision took it.
-    pub fn second(&self) -> Option<Candidate> {
+    /// The effects forward selection added, where the decision took them.
+    pub fn added(&self) -> &[Candidate] {
         match self {
-            Verdict::Named { second, .. } | Verdict::Partial { second, .. } => *second,
-            _ => None,
+            Verdict::Named { added, .. } | Verdict::Partial { added, .. } => added,
+            _ => &[],
         }
     }
 
@@ -216,8 +216,8 @@ pub(super) struct Evidence {
     pub distortion: Option<Distortion>,
     /// How the lag behind the base moves between the runs' halves.
     pub clock: Option<ClockTrend>,
-    /// Forward selection's second effect beside the effect the rules name ([`nominee`]).
-    pub second: Option<Second>,
+    /// The effects forward selection added beside the effect the rules name ([`nominee`]).
+    pub added: Option<Added>,
     /// Channels found inverted or in the wrong unit and corrected before the fit.
     pub channel_errors: Vec<ChannelError>,
 }
@@ -270,13 +270,13 @@ pub struct Decision {
 }
 
 impl Decision {
-    /// The effects named, best first: the named effect and its second, then the calibration
+    /// The effects named, best first: the named effect and those added to it, then the calibration
     /// finding when there is one.
     pub fn named(&self) -> Vec<Candidate> {
         let mut named: Vec<Candidate> = match &self.verdict {
-            Verdict::Named { effect, second, .. } => {
-                std::iter::once(*effect).chain(*second).collect()
-            }
+            Verdict::Named { effect, added, .. } => std::iter::once(*effect)
+                .chain(added.iter().copied())
+                .collect(),
             _ => Vec::new(),
         };
         if let Some(gain) = self.calibration.filter(|g| !named.contains(g)) {
@@ -314,8 +314,8 @@ fn structural(e: &Evidence) -> (Verdict, Rule) {
     }
 }
 
-/// The effect the rules name before the second effect and the shortfall are read: the one forward
-/// selection pairs a second effect with.
+/// The effect the rules name before the added effects and the shortfall are read: the one forward
+/// selection adds effects to.
 pub(super) fn nominee(e: &Evidence) -> Option<Candidate> {
     structural(e).0.effect()
 }
@@ -329,8 +329,8 @@ pub(super) fn to_replay(e: &Evidence) -> Vec<Candidate> {
 }
 
 /// The decision, in one place: the rules of [`Rule::ORDER`] in turn. The frequency-response rules
-/// and the second opinions name the verdict ([`structural`]); a named effect takes the second
-/// effect forward selection found beside it; the model with the named effect(s) must explain the
+/// and the second opinions name the verdict ([`structural`]); a named effect takes the effects
+/// forward selection added beside it; the model with the named effect(s) must explain the
 /// check run ([`shortfall`]), else the verdict is a partial explanation; with nothing structural a
 /// channel's calibration error is the finding.
 pub(super) fn decide(e: &Evidence) -> Decision {
@@ -340,24 +340,24 @@ pub(super) fn decide(e: &Evidence) -> Decision {
         _ => None,
     };
     let mut caveat = None;
-    if let Verdict::Named { effect, second, .. } = &mut verdict {
-        let pair = e
-            .second
+    if let Verdict::Named { effect, added, .. } = &mut verdict {
+        let stack = e
+            .added
             .as_ref()
-            .filter(|s| s.first == *effect && pair_beats(e, s));
-        *second = pair.map(|s| s.added);
-        let named = pair.map_or_else(
+            .filter(|s| s.first == *effect && stack_beats(e, s));
+        *added = stack.map_or_else(Vec::new, |s| s.added.clone());
+        let named = stack.map_or_else(
             || e.entry(effect).map(|r| &r.check),
-            |s| Some(&s.pair.check),
+            |s| Some(&s.entry.check),
         );
-        let linear = std::iter::once(*effect)
-            .chain(*second)
+        let linear = std::iter::once(&*effect)
+            .chain(added.iter())
             .all(|c| !c.amplitude_dependent());
         match named.and_then(|st| shortfall(&e.null.check, st)) {
             Some(s) if s.decides(linear) => {
                 verdict = Verdict::Partial {
                     best: effect,
-                    second: *second,
+                    added: std::mem::take(added),
                     shortfall: s,
                 };
                 rule = Rule::ExplainsOnlyInPart;
@@ -381,15 +381,15 @@ pub(super) fn decide(e: &Evidence) -> Decision {
     }
 }
 
-/// Whether forward selection's pair `s` explains the check run better than its named effect
+/// Whether forward selection's stack `s` explains the check run better than its named effect
 /// alone, each judged at its best (the lower of its linearisation's and its replay's reduced χ²,
-/// [`Stage::explained_chi2_red`]). The pair is found and scored on its statistical linearisation;
+/// [`Stage::explained_chi2_red`]). The stack is found and scored on its statistical linearisation;
 /// where the simulator has replayed the named effect's law (a one-sided path whose clipped force
 /// its linearisation misjudges), a second effect that only bends the linearised model toward what
 /// the replay already explains is not a second effect.
-pub(super) fn pair_beats(e: &Evidence, s: &Second) -> bool {
+pub(super) fn stack_beats(e: &Evidence, s: &Added) -> bool {
     e.entry(s.first)
-        .is_none_or(|r| s.pair.check.explained_chi2_red() < r.check.explained_chi2_red())
+        .is_none_or(|r| s.entry.check.explained_chi2_red() < r.check.explained_chi2_red())
 }
 
 /// Overdispersion ĉ = max(1, χ²/ν) of a fit (QAIC, Burnham & Anderson 2002, §2.5): when even the

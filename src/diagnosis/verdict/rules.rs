@@ -43,7 +43,7 @@ fn refitted_on_all_runs(e: &Evidence) -> Option<Verdict> {
     Some(Verdict::Named {
         effect: a.candidate,
         basis: Basis::AllRuns { refitted: true },
-        second: None,
+        added: Vec::new(),
     })
 }
 
@@ -75,7 +75,7 @@ fn amplitude_effect_on_all_runs(e: &Evidence) -> Option<Verdict> {
     Some(Verdict::Named {
         effect: candidate(b)?,
         basis: Basis::AllRuns { refitted: false },
-        second: None,
+        added: Vec::new(),
     })
 }
 
@@ -160,7 +160,7 @@ fn accepted_on_held_out(e: &Evidence) -> Option<Verdict> {
             tie: call.loser.and_then(candidate),
             alternative,
         },
-        second: None,
+        added: Vec::new(),
     })
 }
 
@@ -237,7 +237,7 @@ pub(in crate::diagnosis) fn located(e: &Evidence, responses: &Verdict) -> Option
         basis: Basis::Distortion {
             responses: responses.id(),
         },
-        second: None,
+        added: Vec::new(),
     })
 }
 
@@ -309,7 +309,7 @@ pub(in crate::diagnosis) fn replayed(e: &Evidence, responses: &Verdict) -> Optio
         basis: Basis::Replayed {
             responses: responses.id(),
         },
-        second: None,
+        added: Vec::new(),
     })
 }
 
@@ -335,6 +335,6 @@ pub(in crate::diagnosis) fn clocked(e: &Evidence, responses: &Verdict) -> Option
         basis: Basis::Clock {
             responses: responses.id(),
         },
-        second: None,
+        added: Vec::new(),
     })
 }

@@ -66,7 +66,7 @@ fn evidence(null: &Ranked, cands: &[Ranked]) -> Evidence {
         all_runs: None,
         distortion: None,
         clock: None,
-        second: None,
+        added: None,
         channel_errors: Vec::new(),
     }
 }
@@ -128,7 +128,7 @@ fn refitted_on_all_runs_names_the_all_run_judgement() {
         Verdict::Named {
             effect: c("cushion-stiffening"),
             basis: Basis::AllRuns { refitted: true },
-            second: None
+            added: Vec::new()
         }
     );
     // (4 − 1.5)/(4 − 1) = 83 %.
@@ -157,7 +157,7 @@ fn amplitude_effect_on_all_runs_needs_detection_and_a_share_of_the_training_gap(
         Some(Verdict::Named {
             effect: c("body-softening"),
             basis: Basis::AllRuns { refitted: false },
-            second: None
+            added: Vec::new()
         })
     );
     // Not detected on all runs (−8 > −10): the rule does not apply.
@@ -270,7 +270,7 @@ fn accepted_on_held_out_names_a_detected_effect_that_closes_a_quarter_of_the_gap
                 tie: None,
                 alternative: None
             },
-            second: None
+            added: Vec::new()
         }
     );
     let text = sentence(&v, Rule::AcceptedOnHeldOut, &e);
@@ -483,7 +483,7 @@ fn strap_behind_a_mount(replayed: f64) -> (Evidence, Verdict) {
             tie: None,
             alternative: None,
         },
-        second: None,
+        added: Vec::new(),
     };
     (e, responses)
 }
@@ -517,7 +517,7 @@ fn a_one_sided_path_is_judged_by_its_replay_where_the_distortion_places_it() {
             tie: None,
             alternative: None,
         },
-        second: None,
+        added: Vec::new(),
     };
     assert!(to_replay(&e, &at_site).is_empty());
     assert!(replayed(&e, &at_site).is_none());
@@ -525,13 +525,13 @@ fn a_one_sided_path_is_judged_by_its_replay_where_the_distortion_places_it() {
 
 /// Forward selection's pair of `first` and `added` whose linearised fit leaves `chi2` on the
 /// check run.
-fn pair_leaving(first: &str, added: &str, chi2: f64) -> crate::diagnosis::select::Second {
-    let mut pair = ranked(first, chi2, chi2, -500.0, -500.0, 0.5);
-    pair.id = Effects::Pair(c(first), c(added));
-    crate::diagnosis::select::Second {
+fn pair_leaving(first: &str, added: &str, chi2: f64) -> crate::diagnosis::select::Added {
+    let mut entry = ranked(first, chi2, chi2, -500.0, -500.0, 0.5);
+    entry.id = Effects::Pair(c(first), c(added));
+    crate::diagnosis::select::Added {
         first: c(first),
-        added: c(added),
-        pair,
+        added: vec![c(added)],
+        entry,
     }
 }
 
@@ -540,17 +540,17 @@ fn a_second_effect_is_kept_only_where_the_pair_beats_the_named_effects_replay() 
     // The belt, named on its replay (31), with a pair whose linearised fit leaves 47.5: the pair
     // explains less than the belt alone as the simulator judges it, so the belt stands alone.
     let (mut e, _) = strap_behind_a_mount(31.0);
-    e.second = Some(pair_leaving("lap-belt", "sensor-mount-head", 47.5));
+    e.added = Some(pair_leaving("lap-belt", "sensor-mount-head", 47.5));
     let d = decide(&e);
     assert_eq!(d.verdict.effect(), Some(c("lap-belt")));
-    assert_eq!(d.verdict.second(), None, "{:?}", d.verdict);
+    assert!(d.verdict.added().is_empty(), "{:?}", d.verdict);
     // A pair that leaves less than the belt's replay is a second effect.
-    e.second = Some(pair_leaving("lap-belt", "sensor-mount-head", 20.0));
+    e.added = Some(pair_leaving("lap-belt", "sensor-mount-head", 20.0));
     let d = decide(&e);
-    assert_eq!(d.verdict.second(), Some(c("sensor-mount-head")));
+    assert_eq!(d.verdict.added(), [c("sensor-mount-head")]);
     // A pair of another effect than the one named is never taken.
-    e.second = Some(pair_leaving("body-mode", "sensor-mount-head", 5.0));
-    assert_eq!(decide(&e).verdict.second(), None);
+    e.added = Some(pair_leaving("body-mode", "sensor-mount-head", 5.0));
+    assert!(decide(&e).verdict.added().is_empty());
 }
 
 #[test]
@@ -575,7 +575,7 @@ fn the_distortion_names_the_site_s_nonlinearity_over_a_linear_verdict() {
             basis: Basis::Distortion {
                 responses: VerdictId::Effect(c("cushion-viscoelastic"))
             },
-            second: None
+            added: Vec::new()
         })
     );
     // A sensor effect coexists with a structural nonlinearity: it stands.
@@ -585,7 +585,7 @@ fn the_distortion_names_the_site_s_nonlinearity_over_a_linear_verdict() {
             tie: None,
             alternative: None,
         },
-        second: None,
+        added: Vec::new(),
     };
     assert_eq!(located(&e, &sensor), None);
     // Unless its evidence is marginal: the null fits the check run within the noise (χ²/ν 0.9 on
@@ -624,7 +624,7 @@ fn a_friction_named_on_the_responses_stands_against_a_body_site() {
             tie: None,
             alternative: None,
         },
-        second: None,
+        added: Vec::new(),
     };
     let mut e = evidence(&null, &cands);
     e.distortion = Some(dist.clone());
@@ -682,7 +682,7 @@ fn the_distortion_names_a_support_path_only_where_all_runs_support_its_path() {
             tie: None,
             alternative: None,
         },
-        second: None,
+        added: Vec::new(),
     };
     let v = located(&e, &foam).expect("renamed");
     assert!(named(c("cushion-stiffening"))(&v), "{v:?}");

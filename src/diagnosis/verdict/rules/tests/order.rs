@@ -13,7 +13,7 @@ fn held(effect: &str) -> Verdict {
             tie: None,
             alternative: None,
         },
-        second: None,
+        added: Vec::new(),
     }
 }
 
@@ -43,7 +43,7 @@ fn refitted_on_all_runs() -> (Evidence, Verdict) {
     let v = Verdict::Named {
         effect: c("cushion-stiffening"),
         basis: Basis::AllRuns { refitted: true },
-        second: None,
+        added: Vec::new(),
     };
     (e, v)
 }
@@ -57,7 +57,7 @@ fn amplitude_effect_on_all_runs() -> (Evidence, Verdict) {
     let v = Verdict::Named {
         effect: c("body-softening"),
         basis: Basis::AllRuns { refitted: false },
-        second: None,
+        added: Vec::new(),
     };
     (e, v)
 }
@@ -125,7 +125,7 @@ fn distortion_site() -> (Evidence, Verdict) {
         basis: Basis::Distortion {
             responses: VerdictId::Effect(c("cushion-viscoelastic")),
         },
-        second: None,
+        added: Vec::new(),
     };
     (e, v)
 }
@@ -139,7 +139,7 @@ fn replayed_at_site() -> (Evidence, Verdict) {
         basis: Basis::Replayed {
             responses: VerdictId::Effect(c("sensor-mount-head")),
         },
-        second: None,
+        added: Vec::new(),
     };
     (e, v)
 }
@@ -164,7 +164,7 @@ fn clock_drift() -> (Evidence, Verdict) {
         basis: Basis::Clock {
             responses: VerdictId::Effect(c("sensor-delay")),
         },
-        second: None,
+        added: Vec::new(),
     };
     (e, v)
 }
@@ -177,7 +177,7 @@ fn explains_only_in_part() -> (Evidence, Verdict) {
     );
     let v = Verdict::Partial {
         best: c("missing-dof"),
-        second: None,
+        added: Vec::new(),
         shortfall: Shortfall::FarAboveNoise { chi2_red: 100.0 },
     };
     (e, v)
