@@ -134,11 +134,18 @@ pub(super) fn added_effects(
             .take(4)
             .collect();
         // A structure can lack more than one part of a family: after a frame or body mode, the
-        // family's other forms (a body mode after a frame, a frame after a body mode) and a form
-        // again where it repeats (a riser: the frame's second mode under the first).
+        // family's other forms (a body mode after a frame, a frame after a body mode, a mode
+        // beside the frame's load path) and a form again where it repeats (a riser: the frame's
+        // second mode under the first). A form that needs a part the stack added (a mode hung
+        // on the frame) is tried on the stack's model; one that applied to the base model only
+        // where the ranking kept it (a fit contradicting its effect is not tried again).
         if let Some(&part) = stack.iter().find(|c| c.family.adds_parts()) {
+            let model = fitting::build(base, &stack, &warm, fitting::reference_rms(tr))?;
             others.extend(candidate::all().filter(|&c| {
-                c.family == part.family && (!stack.contains(&c) || c.repeats) && ranked.contains(&c)
+                c.family == part.family
+                    && (!stack.contains(&c) || c.repeats)
+                    && c.applies_to(&model.system)
+                    && (ranked.contains(&c) || !c.applies_to(base.system()))
             }));
         }
         let stacks: Vec<Vec<Candidate>> = others

@@ -275,22 +275,31 @@ pub(super) fn added(
     // A frame on legs of unequal stiffness under an off-centre load has its bounce and pitch
     // coupled: both modes move the pan vertically, so vertical channels see two frame modes
     // whichever it is; a riser or a floor panel under it adds modes they cannot place either.
-    const MODES: &str = " (more than one mode of the structure: a frame's bounce and pitch, two bending modes, or a riser or floor under it, which vertical channels cannot tell apart; a fore-and-aft accelerometer on the seat pan, or a second vertical one off its centre or on the floor, can)";
+    const MODES: &str = " (more than one mode of the structure: a frame's bounce and pitch, two bending modes, a riser or a floor panel under it, which vertical channels cannot tell apart; a fore-and-aft accelerometer on the seat pan, or a second vertical one off its centre or on the floor, can)";
     let all: Vec<_> = std::iter::once(first)
         .chain(added.iter().copied())
         .collect();
     let twice = |c: &super::candidate::Candidate| all.iter().filter(|o| o.id == c.id).count() > 1;
+    // Another part of a family a structure can lack more than one of (a frame's second mode, a
+    // mode beside its load path): the note says what vertical channels cannot place.
+    let another_part = |c: &super::candidate::Candidate| {
+        c.family.adds_parts() && all.iter().filter(|o| o.family == c.family).count() > 1
+    };
     let mut noted = false;
     let parts: Vec<String> = added
         .iter()
         .zip(ORDINALS)
         .map(|(c, nth)| {
-            if twice(c) {
-                let note = if noted { "" } else { MODES };
+            let note = if another_part(c) && !noted {
                 noted = true;
+                MODES
+            } else {
+                ""
+            };
+            if twice(c) {
                 format!("a {nth} {}{note}", c.id)
             } else {
-                format!("a {nth} effect, {}", c.id)
+                format!("a {nth} effect, {}{note}", c.id)
             }
         })
         .collect();

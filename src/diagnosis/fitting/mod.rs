@@ -82,6 +82,11 @@ pub(super) struct Base<'a> {
 }
 
 impl<'a> Base<'a> {
+    /// The base model's nominal system: the parts a candidate can act on before any is added.
+    pub(super) fn system(&self) -> &crate::system::System {
+        self.model.system()
+    }
+
     pub(super) fn of(model: &'a Model, off_base: OffBase) -> Self {
         Base {
             model,
