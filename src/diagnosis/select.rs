@@ -122,8 +122,10 @@ pub(super) fn added_effects(
     let ranked: Vec<Candidate> = cands.iter().filter_map(|r| r.id.candidate()).collect();
     let mut stack = vec![bc];
     // The stack's entry (against `bc` alone, once something is added), its fit and its variant.
+    // The named effect's parameter count (base and its own): every stack is scored against it.
+    let k_best = warm.len();
     let mut reference = best.clone();
-    let mut kept: Option<(fitting::Fitted, Ranked)> = None;
+    let mut kept: Option<fitting::Fitted> = None;
     let mut warm = warm.clone();
     while stack.len() < MAX_EFFECTS && reference.check.chi2_red > GAP_CHI2 {
         let families: Vec<_> = stack.iter().map(|c| c.family).collect();
@@ -180,10 +182,10 @@ pub(super) fn added_effects(
         stack = stacks[i].clone();
         warm = ft.fit.u.clone();
         let extra = stack.len() - 1;
-        reference = evidence::against(best, best_len(fits, bc), stack_trial(&stack, extra, &ft), n);
-        kept = Some((ft, reference.clone()));
+        reference = evidence::against(best, k_best, stack_trial(&stack, extra, &ft), n);
+        kept = Some(ft);
     }
-    let Some((ft, _)) = kept else {
+    let Some(ft) = kept else {
         return Ok(None);
     };
     // The kept stack's figures from the simulator, its entry scored again with them.
@@ -192,15 +194,8 @@ pub(super) fn added_effects(
     Ok(Some(Added {
         first: bc,
         added: stack[1..].to_vec(),
-        entry: evidence::against(best, best_len(fits, bc), t, n),
+        entry: evidence::against(best, k_best, t, n),
     }))
-}
-
-/// The length of the named effect `bc`'s fitted parameter vector (base and its own parameters).
-fn best_len(fits: &[(Candidate, Vec<f64>)], bc: Candidate) -> usize {
-    fits.iter()
-        .find(|(c, _)| *c == bc)
-        .map_or(0, |(_, u)| u.len())
 }
 
 /// The stack `stack`'s fit `ft` as a trial against a reference that lacks its last `added`
