@@ -11,6 +11,8 @@
 //!   (the same law on the pelvis): each named the one-sided support path at its own place;
 //! - feet that lift off the floor (a preloaded pad under the pelvis that carries no tension):
 //!   named a support path onto the pelvis;
+//! - a head restraint the head leaves (the same preloaded pad from the seat back to the head):
+//!   named the one-sided path onto the head;
 //! - a base accelerometer 16.7 ms late on a field run (phase wrapping above 30 Hz): named a
 //!   logger offset, read within a millisecond.
 
@@ -279,6 +281,27 @@ fn feet_that_lift_off_are_named_a_support_path_onto_the_pelvis() {
         let verdict = doc["verdict"].as_str().unwrap_or_default();
         assert!(
             ["feet-lift-off", "thigh-support", "feet-support"].contains(&verdict),
+            "{}: {}",
+            case.display(),
+            doc["verdict_text"]
+        );
+    }
+}
+
+#[test]
+fn a_head_restraint_the_head_leaves_is_named_the_path_onto_the_head() {
+    let Some(dir) = common::input_fixtures() else {
+        return;
+    };
+    for (case, truth, doc) in diagnosed(&dir.join("head-restraint")) {
+        assert_eq!(truth["form"], "head-restraint", "{}", case.display());
+        // gen.py's pad keeps its damper on past the lift-off and gives back its spring's pull
+        // alone, where the candidate's contact drops both: not the candidate's law. A path onto
+        // the head shapes seat→head above the neck, which no path onto the torso or the pelvis
+        // can, so the place is named, not only the family.
+        assert_eq!(
+            doc["verdict"],
+            "head-restraint",
             "{}: {}",
             case.display(),
             doc["verdict_text"]

@@ -268,7 +268,7 @@ FAMILIES = {
 # Forms reached only by a study set (--form): the random rotation above stays as it was, so the
 # cases of earlier seeds are drawn the same.
 STUDY_FORMS = {"viscoelastic": ["kww"], "missing-dof": ["rocking-frame", "floor-panel"], "sensor": ["highpass-multi", "lowpass-multi"],
-               "body-stiffening": ["magnitude-stiffening"], "support-path": ["harness", "lap-belt", "feet-lift-off"]}
+               "body-stiffening": ["magnitude-stiffening"], "support-path": ["harness", "lap-belt", "feet-lift-off", "head-restraint"]}
 
 
 def prony_fractional(kf, alpha, f0, rng_lo=0.2, rng_hi=100.0, n=8):
@@ -395,6 +395,12 @@ def draw_effect(rng, family, form, strength):
             # motion; its damper stays, so the law is not the candidates' clean lift-off)
             p = {"k_N_per_m": rng.uniform(20e3, 60e3) * strength, "c_Ns_per_m": rng.uniform(300, 1500) * strength,
                  "travel_over_sigma": rng.uniform(0.4, 1.2)}
+        elif form == "head-restraint":
+            # a reclined seat's head restraint the head rests on: a preloaded foam pad from the seat
+            # back to the head (its damper always on) carrying part of the head's weight, that the
+            # head leaves once it has risen past the pad's static compression
+            p = {"k_N_per_m": rng.uniform(15e3, 60e3) * strength, "c_Ns_per_m": rng.uniform(60, 300) * strength,
+                 "travel_over_sigma": rng.uniform(0.5, 1.5)}
         else:
             p = {"k_N_per_m": rng.uniform(20e3, 60e3) * strength, "c_Ns_per_m": rng.uniform(300, 1500) * strength}
     elif family == "missing-dof":
@@ -588,6 +594,14 @@ def build_plant(subject, family, form, p, A_rms, sigma):
         kf = p["k_N_per_m"]
         links["extra"] = ("pelvis", None, kf, p["c_Ns_per_m"])
         nonlinear = ("pelvis", None, lambda e, kf=kf, travel=travel: kf * max(0.0, e - travel))
+        p = dict(p, travel_m=travel)
+    elif family == "support-path" and form == "head-restraint":
+        # the linear pad from the seat back to the head, and once the head has risen past the
+        # pad's static compression the spring's pull given back (the contact carries no tension)
+        travel = p["travel_over_sigma"] * sigma["head"]
+        kr = p["k_N_per_m"]
+        links["extra"] = ("head", None, kr, p["c_Ns_per_m"])
+        nonlinear = ("head", None, lambda e, kr=kr, travel=travel: kr * max(0.0, e - travel))
         p = dict(p, travel_m=travel)
     elif family == "support-path":
         node = "upper_torso" if form == "backrest" else "pelvis"
@@ -982,7 +996,8 @@ def outputs_for(plant, force, back=False):
            "defl_cushion": ("lin", plant.deflection_row("cushion", plant.links["cushion"][1]), 0.0),
            "defl_k4": ("lin", plant.deflection_row("pelvis", "cushion"), 0.0),
            "defl_torso": ("lin", plant.deflection_row("upper_torso", None), 0.0),
-           "defl_pelvis": ("lin", plant.deflection_row("pelvis", None), 0.0)}
+           "defl_pelvis": ("lin", plant.deflection_row("pelvis", None), 0.0),
+           "defl_head": ("lin", plant.deflection_row("head", None), 0.0)}
     if force:
         _, _, k4, c4 = plant.links["k4"]
         row = -k4 * plant.deflection_row("pelvis", "cushion") - c4 * plant.rate_row("pelvis", "cushion")
@@ -1176,7 +1191,8 @@ def make_case(case_dir, seed, index, override=None, model="reference"):
     sigma = {"cushion": float(np.std(twins_fine[1]["defl_cushion"][pre:])),
              "k4": float(np.std(twins_fine[1]["defl_k4"][pre:])),
              "torso": float(np.std(twins_fine[1]["defl_torso"][pre:])),
-             "pelvis": float(np.std(twins_fine[1]["defl_pelvis"][pre:]))}
+             "pelvis": float(np.std(twins_fine[1]["defl_pelvis"][pre:])),
+             "head": float(np.std(twins_fine[1]["defl_head"][pre:]))}
     if model != "reference":
         sigma["susp_high"] = float(np.std(twins_fine[1]["defl_susp"][pre:]))
         sigma["susp_rate_high"] = float(np.std(twins_fine[1]["defl_susp_rate"][pre:]))

@@ -26,7 +26,7 @@ FAMILY = {
     "sensor-lowpass-base": "sensor",
     "logger-offset": "sensor", "logger-drift": "sensor",
     "missing-dof": "missing-dof", "body-mode": "missing-dof", "frame-side-mode": "missing-dof",
-    "backrest": "support-path", "hands-support": "support-path", "feet-support": "support-path", "thigh-support": "support-path", "harness": "support-path", "lap-belt": "support-path", "cushion-fractional": "viscoelastic", "cushion-havriliak-negami": "viscoelastic",
+    "backrest": "support-path", "hands-support": "support-path", "feet-support": "support-path", "thigh-support": "support-path", "harness": "support-path", "lap-belt": "support-path", "head-restraint": "support-path", "cushion-fractional": "viscoelastic", "cushion-havriliak-negami": "viscoelastic",
     "suspension-friction": "suspension", "end-stop": "suspension",
     "none": "none", "unexplained": "unexplained", "not-identifiable": "not-identifiable",
 }

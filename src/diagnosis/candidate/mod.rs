@@ -205,6 +205,8 @@ pub enum Look {
     Thighs,
     /// A load path from the floor through the feet and legs onto the pelvis.
     Feet,
+    /// A load path onto the head past the neck (a head restraint).
+    Head,
 }
 
 /// Everything the diagnosis knows of one candidate: a candidate *is* its definition

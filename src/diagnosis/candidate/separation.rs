@@ -24,7 +24,7 @@ fn own(a: Candidate, b: Candidate, look: Look) -> Option<&'static str> {
 /// Whether {a, b} are a one-sided and a two-sided support path onto the same place of the body
 /// (the upper torso, the pelvis past the seat pan, or the pelvis through the feet).
 fn one_sided_beside_two_sided(a: Candidate, b: Candidate) -> bool {
-    let same_place = [Look::UpperTorso, Look::Thighs, Look::Feet]
+    let same_place = [Look::UpperTorso, Look::Thighs, Look::Feet, Look::Head]
         .into_iter()
         .any(|place| a.looks(place) && b.looks(place));
     same_place && a.looks(Look::OneSided) != b.looks(Look::OneSided)
@@ -36,7 +36,7 @@ fn when(applies: bool, m: &'static str) -> Option<&'static str> {
 }
 
 /// The pair rules, most specific first: the first that applies names the measurement.
-const SEPARATIONS: [Separation; 12] = [
+const SEPARATIONS: [Separation; 13] = [
     |a, b| {
         when(
             pair(a, b, Look::GrowsWithMagnitude, Look::SameAtEveryMagnitude),
@@ -79,6 +79,7 @@ const SEPARATIONS: [Separation; 12] = [
             "a run at a clearly different magnitude, or the path's own force: a one-sided path's share changes with the magnitude (a strap pulls only past its slack, a foot carries only while it keeps contact), a two-sided path carries the same share at every magnitude",
         )
     },
+    |a, b| own(a, b, Look::Head),
     |a, b| own(a, b, Look::UpperTorso),
     |a, b| own(a, b, Look::Thighs),
     |a, b| own(a, b, Look::Feet),
@@ -176,6 +177,11 @@ mod tests {
         assert!(m(belt, backrest).starts_with("a run without backrest contact"));
         assert!(m(harness, belt).starts_with("a run with the harness slackened"));
         assert!(m(belt, feet).starts_with("a run with the lap belt slackened"));
+        // A path onto the head against one onto the torso: by the head's own path.
+        let head = &support::HEAD_RESTRAINT;
+        for torso in [backrest, harness, hands] {
+            assert!(m(head, torso).starts_with("a run with the head off the restraint"));
+        }
         assert_eq!(
             m(&suspension::END_STOP, &viscoelastic::CUSHION_FRACTIONAL),
             REPEAT

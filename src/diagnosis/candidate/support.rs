@@ -4,6 +4,7 @@
 //! body-only and the seat-pan force misses part of the load. Linear.
 
 use super::*;
+use crate::system::Rule;
 use structure::{body_point_mass, heaviest_body_mass};
 
 /// The family's candidates, in report order.
@@ -15,6 +16,7 @@ pub static DEFINITIONS: &[Candidate] = &[
     &THIGH,
     &HARNESS,
     &LAP_BELT,
+    &HEAD_RESTRAINT,
 ];
 
 /// Damping ratio of the joints and contacts of a support limb (knee and heel pad, shoulder and
@@ -29,6 +31,9 @@ pub enum Target {
     /// The lowest body point mass, the one joined by a body link to the seat or the base (pelvis
     /// and thighs).
     LowerBody,
+    /// The body point mass the head channel `a_head_z` reads, when it is not the heaviest (a
+    /// one-mass body's head is its upper body).
+    Head,
 }
 
 /// The body coordinate of `target` in `system`; `None` when the model has no such point mass of
@@ -49,6 +54,7 @@ pub fn target(target: Target, system: &System) -> Option<usize> {
             .filter(|l| l.role == Role::Body && !is_body(&l.nodes.1))
             .find_map(|l| system.dofs.iter().position(|d| d.name == l.nodes.0))
             .filter(|&i| body_point_mass(system, i)),
+        Target::Head => head_mass(system).filter(|&i| Some(i) != heaviest_body_mass(system)),
     }?;
     let name = &system.dofs[t].name;
     let on_base_already = system
@@ -56,6 +62,18 @@ pub fn target(target: Target, system: &System) -> Option<usize> {
         .iter()
         .any(|l| on_base(l) && (&l.nodes.0 == name || &l.nodes.1 == name));
     (!on_base_already).then_some(t)
+}
+
+/// The coordinate the head channel `a_head_z` reads alone (a row of one coordinate at unit
+/// weight), when it is a body point mass.
+fn head_mass(system: &System) -> Option<usize> {
+    let ch = system.channels.iter().find(|c| c.name == "a_head_z")?;
+    match &ch.rule {
+        Rule::Kinematic { row, base } if *base == 0.0 && row.len() == 1 && row[0].1 == 1.0 => {
+            Some(row[0].0).filter(|&i| body_point_mass(system, i))
+        }
+        _ => None,
+    }
 }
 
 /// The coordinate of `t` for candidate `id`, or the error of a model without one.
@@ -311,7 +329,7 @@ fn push_strap(v: &mut Variant, id: &str, target: Target, p: &[f64]) -> Result<()
     let w = 2.0 * std::f64::consts::PI * p[0];
     let link = kv_link(id, (&s.dofs[t].name, "base"), vec![(t, -1.0)], m, p[0], 0.0);
     let role = match target {
-        Target::UpperBody => Role::Backrest,
+        Target::UpperBody | Target::Head => Role::Backrest,
         Target::LowerBody => Role::Footrest,
     };
     s.links.push(Link {
@@ -376,6 +394,49 @@ pub static LAP_BELT: Definition = Definition {
     ..Definition::COMMON
 };
 
+/// A head restraint the head rests on (a reclined seat's, or a helmet against it): a preloaded
+/// contact from the seat back to the head — a spring–damper tuned on the head's mass to
+/// `f_rest_hz`, `zeta_rest` — that carries part of the head's weight only while it stays
+/// compressed (`Law::LiftOff`, as [`FEET_LIFT_OFF`]'s heel): past `travel_m` (m) of rise of the
+/// head, the pad's static compression, the head leaves it and the path carries nothing. It acts
+/// above the neck, where every other path enters at the torso or the pelvis, so it shapes
+/// seat→head alone and barely the apparent mass; its equivalent stiffness k·P(rise < travel)
+/// falls as the run's r.m.s. grows (amplitude-dependent). A head restraint's foam carries a few
+/// tens of newtons of head weight at tens of kN/m on a 4–6 kg head (10–30 Hz): bounds 1–60 Hz
+/// and 0.05–20 mm of travel.
+pub static HEAD_RESTRAINT: Definition = Definition {
+    id: "head-restraint",
+    family: Family::SupportPath,
+    params: || {
+        vec![
+            Param::new("f_rest_hz", 1.0, 60.0, &[8.0, 20.0], true),
+            Param::new("zeta_rest", 0.02, 2.0, &[0.2], true),
+            Param::new("travel_m", 5e-5, 0.02, &[1e-3], true),
+        ]
+    },
+    applies_to: |s| target(Target::Head, s).is_some(),
+    apply: |v, p| {
+        let s = &mut v.system;
+        let t = target_or_err(HEAD_RESTRAINT.id, Target::Head, s)?;
+        let link = link_to_base(HEAD_RESTRAINT.id, s, t, p[0], p[1]);
+        s.links.push(Link {
+            role: Role::Backrest,
+            law: Some(crate::system::link::Law::LiftOff { travel: p[2] }),
+            ..link
+        });
+        Ok(())
+    },
+    magnitude: Magnitude::Dependent {
+        at: Place::SeatToBody,
+        distortion_grows: true,
+    },
+    looks: &[Look::Head, Look::OneSided],
+    told_apart_by: Some(
+        "a run with the head off the restraint, or the restraint's force (it carries the head only while the head stays on it, and shapes seat→head alone)",
+    ),
+    ..Definition::COMMON
+};
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -400,6 +461,57 @@ mod tests {
         assert!(!BACKREST.applies_to(&segments));
         assert!(!FEET.applies_to(&segments));
         assert!(!HANDS.applies_to(&segments));
+    }
+
+    #[test]
+    fn a_head_restraint_carries_the_head_on_a_contact_that_it_leaves_past_its_travel() {
+        use crate::system::link::Law;
+        let s = system("reference");
+        let h = target(Target::Head, &s).unwrap();
+        assert_eq!(s.dofs[h].name, "head");
+        let (f_hz, zeta, travel) = (15.0, 0.2, 0.001);
+        let v = HEAD_RESTRAINT.apply(&s, &[f_hz, zeta, travel]).unwrap();
+        let l = v.system.links.last().unwrap();
+        // From the head to the seat back (the base): its deflection is the head's rise.
+        assert_eq!(l.row, vec![(h, 1.0)]);
+        assert_eq!(l.nodes, ("head".to_string(), "base".to_string()));
+        assert_eq!(l.law, Some(Law::LiftOff { travel }));
+        // k = m_head·(2πf)², c = 2ζ·m_head·2πf.
+        let (m, w) = (s.m[(h, h)], 2.0 * PI * f_hz);
+        let Element::KelvinVoigt { k, c } = l.element else {
+            panic!("{:?}", l.element)
+        };
+        assert!(
+            (k / (m * w * w) - 1.0).abs() < 1e-12 && (c / (2.0 * zeta * m * w) - 1.0).abs() < 1e-12
+        );
+        // It carries the head while compressed, nothing past its static compression: its
+        // Gaussian equivalent stiffness k·P(rise < travel) falls from k towards k/2.
+        assert_eq!(
+            l.law.unwrap().force(k, c, 2.0 * travel, 0.0),
+            (k * travel, 0.0, 0.0)
+        );
+        let small = l.law.unwrap().gaussian_stiffness(k, travel / 10.0).unwrap();
+        let large = l.law.unwrap().gaussian_stiffness(k, travel * 1e3).unwrap();
+        assert!((small / k - 1.0).abs() < 1e-9 && (large / k - 0.5).abs() < 1e-3);
+        assert!(HEAD_RESTRAINT.amplitude_dependent());
+        // The seat-pan force still reads the body–seat interface alone.
+        let f = s.channel_index("f_seat_z").unwrap();
+        assert_eq!(v.system.channels[f].rule, s.channels[f].rule);
+        // A one-mass body's head is its upper body (the backrest's place); a segment model has
+        // no point-mass head.
+        let one_mass = catalog::parse(
+            "name = \"one\"\ndescription = \"one body mass\"\n[[mass]]\nname = \"torso\"\nm = 50.0\n\
+             [[link]]\nname = \"seat\"\nbetween = [\"torso\", \"base\"]\n\
+             type = \"kelvin-voigt\"\nk = 40000.0\nc = 600.0\n\
+             [measure]\nseat = \"base\"\nhead = \"torso\"\ninterface = [\"seat\"]\n",
+            "one.toml",
+        )
+        .unwrap();
+        let one = one_mass.system();
+        assert!(one.channel_index("a_head_z").is_some());
+        assert_eq!(target(Target::Head, one), None);
+        assert_eq!(head_mass(one), heaviest_body_mass(one));
+        assert!(!HEAD_RESTRAINT.applies_to(&system(catalog::PAPER_000)));
     }
 
     #[test]

@@ -163,11 +163,15 @@ pub enum Form {
     /// Feet on the floor as [`Form::Legs`], with heels that lift off: the heel pad a preloaded
     /// Hertzian contact that softens as it unloads and carries nothing once off.
     HeelLiftOff,
+    /// A head restraint the head rests on: a preloaded Hertzian pad from the seat back to the
+    /// head mass, a share of the neck's stiffness, that the head leaves past its static
+    /// compression.
+    HeadRestraint,
 }
 
 impl Form {
     /// Every form, in report order.
-    pub const ALL: [Form; 29] = [
+    pub const ALL: [Form; 30] = [
         Form::Sls,
         Form::Maxwell2,
         Form::Fractional,
@@ -197,6 +201,7 @@ impl Form {
         Form::ShoulderStraps,
         Form::LapBelt,
         Form::HeelLiftOff,
+        Form::HeadRestraint,
     ];
     /// The family of the form.
     pub fn family(self) -> Family {
@@ -223,7 +228,8 @@ impl Form {
             | Form::Hands
             | Form::ShoulderStraps
             | Form::LapBelt
-            | Form::HeelLiftOff => Family::SupportPath,
+            | Form::HeelLiftOff
+            | Form::HeadRestraint => Family::SupportPath,
         }
     }
     /// The forms of `family`.
@@ -244,6 +250,7 @@ impl Form {
             Form::ShoulderStraps => Some(&["harness"]),
             Form::LapBelt => Some(&["lap-belt"]),
             Form::HeelLiftOff => Some(&["feet-lift-off", "feet-support", "thigh-support"]),
+            Form::HeadRestraint => Some(&["head-restraint"]),
             _ => None,
         }
     }
@@ -279,6 +286,7 @@ impl Form {
             Form::ShoulderStraps => "shoulder-straps",
             Form::LapBelt => "lap-belt",
             Form::HeelLiftOff => "heel-lift-off",
+            Form::HeadRestraint => "head-restraint",
         }
     }
 }
@@ -509,6 +517,7 @@ pub fn plant(
         Form::Hands => hands::plant(u, rng, model)?,
         Form::ShoulderStraps | Form::LapBelt => strap::plant(form, t, rng, model, lines)?,
         Form::HeelLiftOff => structure::plant_lift_off(u, rng, model, lines)?,
+        Form::HeadRestraint => structure::plant_head_restraint(t, rng, model, lines)?,
     };
     Ok((planted, detail))
 }

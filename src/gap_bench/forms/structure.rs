@@ -1,5 +1,6 @@
-//! Structural truth forms: a seat-frame mode, a viscera mode, a backrest and legs on the floor (the
-//! hands on a wheel are in [`super::hands`]).
+//! Structural truth forms: a seat-frame mode, a viscera mode, a backrest, legs on the floor with or
+//! without lift-off and a head restraint the head can leave (the hands on a wheel are in
+//! [`super::hands`]).
 
 use super::*;
 
@@ -152,6 +153,48 @@ pub(super) fn plant_lift_off(
     ))
 }
 
+/// Plants [`Form::HeadRestraint`] with tangent change `t`: a preloaded Hertzian pad
+/// (`Law::HertzPad`, tangent k·√(1 − rise/travel), off past its static compression) from the seat
+/// back to the head mass the model measures, k = `t`·(the body links' stiffness on the head, the
+/// neck's), damping ratio 0.1–0.4 on the head's mass. The travel is g·σ, σ the head's r.m.s. rise
+/// over the base at the top magnitude and g 0.7–2.0, as for [`Form::HeelLiftOff`]'s heels: the
+/// head leaves the restraint more often the larger the run.
+pub(super) fn plant_head_restraint(
+    t: f64,
+    rng: &mut ChaCha8Rng,
+    model: &mut Chain,
+    lines: &[(f64, f64)],
+) -> Result<String> {
+    let h = model.measure.head.ok_or_else(|| {
+        crate::Error::parameter("head-restraint", "the bench's base model measures no head")
+    })?;
+    let (mh, neck) = (model.masses[h].m, stiffness_on(model, h));
+    let k = t * neck;
+    let f = (k / mh).sqrt() / (2.0 * PI);
+    let z = uniform(rng, 0.1, 0.4);
+    let ends = (Node::Mass(h), Node::Base);
+    model.links.push(tuned(
+        "truth-head-restraint",
+        ends,
+        mh,
+        f,
+        z,
+        Role::Backrest,
+    ));
+    let i = model.links.len() - 1;
+    let (sigma, _) = link_sigma(model, i, lines)?;
+    let g = uniform(rng, 0.7, 2.0);
+    let law = Law::HertzPad { travel: g * sigma };
+    model.links[i].law = Some(law);
+    Ok(format!(
+        "head restraint on {} ({mh:.1} kg): {:.0} kN/m ({:.0} % of the neck's, {f:.1} Hz on the head), ζ {z:.2}, left past {g:.2} σ ({:.2} mm at the top magnitude, Hertzian pad)",
+        model.masses[h].name,
+        k * 1e-3,
+        100.0 * t,
+        g * sigma * 1e3
+    ))
+}
+
 /// Index and mass (kg) of the heaviest body mass.
 pub(super) fn heaviest_body(model: &Chain) -> (usize, f64) {
     model
@@ -167,6 +210,39 @@ pub(super) fn heaviest_body(model: &Chain) -> (usize, f64) {
 mod tests {
     use super::*;
     use rand::SeedableRng;
+
+    #[test]
+    fn a_head_restraint_is_a_hertzian_pad_from_the_head_to_the_seat_back_at_a_share_of_the_neck() {
+        let base = crate::model::catalog::resolve_chain("reference").unwrap();
+        let lines: Vec<(f64, f64)> = (1..=80).map(|j| (0.5 * j as f64, 1.44 / 80.0)).collect();
+        let mut model = base.clone();
+        let t = 0.25;
+        plant_head_restraint(t, &mut ChaCha8Rng::seed_from_u64(5), &mut model, &lines).unwrap();
+        let l = model.links.last().unwrap();
+        let h = model.measure.head.unwrap();
+        assert_eq!(model.masses[h].name, "head");
+        assert_eq!((l.a, l.b), (Node::Mass(h), Node::Base));
+        // k is t times the neck's stiffness (the base model's links on the head).
+        let k = l.element.static_stiffness();
+        assert!(
+            (k / (t * stiffness_on(&base, h)) - 1.0).abs() < 1e-12,
+            "{k}"
+        );
+        // Off past g·σ of the head's rise, g in 0.7–2.0, σ from the linear model's own response.
+        let Some(Law::HertzPad { travel }) = l.law else {
+            panic!("{:?}", l.law)
+        };
+        let (sigma, _) = link_sigma(&model, model.links.len() - 1, &lines).unwrap();
+        assert!(
+            (0.7..=2.0).contains(&(travel / sigma)),
+            "{}",
+            travel / sigma
+        );
+        // The head's rise is the link's deflection: off (constant force) past the travel.
+        let law = l.law.unwrap();
+        let off = law.force(k, 0.0, 1.5 * travel, 0.0);
+        assert_eq!((off.1, off.2), (0.0, 0.0));
+    }
 
     #[test]
     fn heels_that_lift_off_are_the_legs_with_a_hertzian_pad_off_past_a_share_of_their_rise() {
