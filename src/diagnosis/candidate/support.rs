@@ -1,7 +1,8 @@
 //! A second support path (docs/gap.md §5, E7 and E9): a load path from the base to the body that
 //! bypasses the seat pan — a backrest on the upper torso, the hands on a steering wheel or grab
-//! handle, the feet on the floor, the thighs on the seat's front edge — so seat→head is no longer
-//! body-only and the seat-pan force misses part of the load. Linear.
+//! handle, the feet on the floor, the thighs on the seat's front edge, a head restraint — so
+//! seat→head is no longer body-only and the seat-pan force misses part of the load. Two-sided
+//! paths are linear; straps and contacts that act on one side only are amplitude-dependent.
 
 use super::*;
 use crate::system::Rule;
@@ -400,7 +401,7 @@ pub static LAP_BELT: Definition = Definition {
 /// compressed (`Law::LiftOff`, as [`FEET_LIFT_OFF`]'s heel): past `travel_m` (m) of rise of the
 /// head, the pad's static compression, the head leaves it and the path carries nothing. It acts
 /// above the neck, where every other path enters at the torso or the pelvis, so it shapes
-/// seat→head alone and barely the apparent mass; its equivalent stiffness k·P(rise < travel)
+/// seat→head most; its equivalent stiffness k·P(rise < travel)
 /// falls as the run's r.m.s. grows (amplitude-dependent). A head restraint's foam carries a few
 /// tens of newtons of head weight at tens of kN/m on a 4–6 kg head (10–30 Hz): bounds 1–60 Hz
 /// and 0.05–20 mm of travel.
@@ -432,7 +433,7 @@ pub static HEAD_RESTRAINT: Definition = Definition {
     },
     looks: &[Look::Head, Look::OneSided],
     told_apart_by: Some(
-        "a run with the head off the restraint, or the restraint's force (it carries the head only while the head stays on it, and shapes seat→head alone)",
+        "a run with the head off the restraint, or the restraint's force (it carries the head only while the head stays on it, and shapes seat→head most)",
     ),
     ..Definition::COMMON
 };
