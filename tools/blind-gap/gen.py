@@ -587,21 +587,15 @@ def build_plant(subject, family, form, p, A_rms, sigma):
         kb = p["k_N_per_m"]
         nonlinear = ("pelvis", None, lambda e, kb=kb, slack=slack: -kb * max(0.0, e - slack))
         p = dict(p, slack_m=slack)
-    elif family == "support-path" and form == "feet-lift-off":
-        # the linear pad from the floor to the pelvis, and once the pelvis has risen past the
-        # pad's static compression the spring's pull given back (the contact carries no tension)
-        travel = p["travel_over_sigma"] * sigma["pelvis"]
-        kf = p["k_N_per_m"]
-        links["extra"] = ("pelvis", None, kf, p["c_Ns_per_m"])
-        nonlinear = ("pelvis", None, lambda e, kf=kf, travel=travel: kf * max(0.0, e - travel))
-        p = dict(p, travel_m=travel)
-    elif family == "support-path" and form == "head-restraint":
-        # the linear pad from the seat back to the head, and once the head has risen past the
-        # pad's static compression the spring's pull given back (the contact carries no tension)
-        travel = p["travel_over_sigma"] * sigma["head"]
-        kr = p["k_N_per_m"]
-        links["extra"] = ("head", None, kr, p["c_Ns_per_m"])
-        nonlinear = ("head", None, lambda e, kr=kr, travel=travel: kr * max(0.0, e - travel))
+    elif family == "support-path" and form in ("feet-lift-off", "head-restraint"):
+        # the linear pad from the floor to the pelvis (the feet) or from the seat back to the head
+        # (a head restraint), and once that mass has risen past the pad's static compression the
+        # spring's pull given back (the contact carries no tension)
+        node = "pelvis" if form == "feet-lift-off" else "head"
+        travel = p["travel_over_sigma"] * sigma[node]
+        kp = p["k_N_per_m"]
+        links["extra"] = (node, None, kp, p["c_Ns_per_m"])
+        nonlinear = (node, None, lambda e, kp=kp, travel=travel: kp * max(0.0, e - travel))
         p = dict(p, travel_m=travel)
     elif family == "support-path":
         node = "upper_torso" if form == "backrest" else "pelvis"

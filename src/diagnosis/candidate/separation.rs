@@ -22,7 +22,7 @@ fn own(a: Candidate, b: Candidate, look: Look) -> Option<&'static str> {
 }
 
 /// Whether {a, b} are a one-sided and a two-sided support path onto the same place of the body
-/// (the upper torso, the pelvis past the seat pan, or the pelvis through the feet).
+/// (the upper torso, the pelvis past the seat pan, the pelvis through the feet, or the head).
 fn one_sided_beside_two_sided(a: Candidate, b: Candidate) -> bool {
     let same_place = [Look::UpperTorso, Look::Thighs, Look::Feet, Look::Head]
         .into_iter()

@@ -127,10 +127,9 @@ pub(super) fn plant(form: Form, u: f64, rng: &mut ChaCha8Rng, model: &mut Chain)
 
 /// Plants [`Form::HeelLiftOff`]: the legs of [`Form::Legs`] with strength `u`, their heel pad a
 /// preloaded Hertzian contact (`Law::HertzPad`, tangent k_heel·√(1 − rise/travel), off past its
-/// static compression `travel`). The travel is g·σ, σ the legs' r.m.s. rise over the floor at the
-/// top magnitude and g 0.7–2.0, so the heels are off 2–24 % of the time on the largest run (a
-/// Gaussian rise's P(rise > g·σ)) and far less on the smallest: the feet carry less of the load
-/// the larger the motion, and the pad softens before it leaves.
+/// static compression `travel`), left past g·σ of the legs' rise over the floor
+/// ([`hertz_pad_left_past`]): the feet carry less of the load the larger the motion, and the pad
+/// softens before it leaves.
 pub(super) fn plant_lift_off(
     u: f64,
     rng: &mut ChaCha8Rng,
@@ -143,22 +142,36 @@ pub(super) fn plant_lift_off(
         .ok_or_else(|| {
             crate::Error::parameter("heel-lift-off", "the legs form planted no heel pad")
         })?;
-    let (sigma, _) = link_sigma(model, heel, lines)?;
-    let g = uniform(rng, 0.7, 2.0);
-    let law = Law::HertzPad { travel: g * sigma };
-    model.links[heel].law = Some(law);
+    let (g, sigma) = hertz_pad_left_past(model, heel, rng, lines)?;
     Ok(format!(
         "{legs}; the heels lift off past {g:.2} σ ({:.2} mm at the top magnitude, Hertzian pad)",
         g * sigma * 1e3
     ))
 }
 
+/// Makes link `i` (its deflection the rise of the mass it carries) a preloaded Hertzian pad
+/// (`Law::HertzPad`) that the mass leaves past g·σ: σ the link's r.m.s. deflection at the top
+/// magnitude from the linear model's own response, g drawn in 0.7–2.0, so the mass is off 2–24 % of
+/// the time on the largest run (a Gaussian rise's P(rise > g·σ)) and far less on the smallest.
+/// Returns (g, σ in m).
+fn hertz_pad_left_past(
+    model: &mut Chain,
+    i: usize,
+    rng: &mut ChaCha8Rng,
+    lines: &[(f64, f64)],
+) -> Result<(f64, f64)> {
+    let (sigma, _) = link_sigma(model, i, lines)?;
+    let g = uniform(rng, 0.7, 2.0);
+    model.links[i].law = Some(Law::HertzPad { travel: g * sigma });
+    Ok((g, sigma))
+}
+
 /// Plants [`Form::HeadRestraint`] with tangent change `t`: a preloaded Hertzian pad
 /// (`Law::HertzPad`, tangent k·√(1 − rise/travel), off past its static compression) from the seat
 /// back to the head mass the model measures, k = `t`·(the body links' stiffness on the head, the
-/// neck's), damping ratio 0.1–0.4 on the head's mass. The travel is g·σ, σ the head's r.m.s. rise
-/// over the base at the top magnitude and g 0.7–2.0, as for [`Form::HeelLiftOff`]'s heels: the
-/// head leaves the restraint more often the larger the run.
+/// neck's), damping ratio 0.1–0.4 on the head's mass, left past g·σ of the head's rise over the
+/// base ([`hertz_pad_left_past`], as the heels): the head leaves the restraint more often the
+/// larger the run.
 pub(super) fn plant_head_restraint(
     t: f64,
     rng: &mut ChaCha8Rng,
@@ -182,10 +195,7 @@ pub(super) fn plant_head_restraint(
         Role::Backrest,
     ));
     let i = model.links.len() - 1;
-    let (sigma, _) = link_sigma(model, i, lines)?;
-    let g = uniform(rng, 0.7, 2.0);
-    let law = Law::HertzPad { travel: g * sigma };
-    model.links[i].law = Some(law);
+    let (g, sigma) = hertz_pad_left_past(model, i, rng, lines)?;
     Ok(format!(
         "head restraint on {} ({mh:.1} kg): {:.0} kN/m ({:.0} % of the neck's, {f:.1} Hz on the head), ζ {z:.2}, left past {g:.2} σ ({:.2} mm at the top magnitude, Hertzian pad)",
         model.masses[h].name,
