@@ -44,18 +44,19 @@ impl AllRuns {
 
     /// Puts the all-run fit `fitted` into the named candidate's entry of the ranking (parameters,
     /// all-run ΔBIC and fraction closed, the check run's stage and sizes against the null) and its
-    /// parameter vector into the ranking's fits, the forward selection's warm start.
+    /// parameter vector into the ranking's fits, the forward selection's warm start. `fitted` was
+    /// made on the training runs and the check run together.
     pub(super) fn adopt(
         &self,
         fitted: &Fitted,
         base: &Base,
-        check: &RunSpectra,
+        (train, check): (&[RunSpectra], &RunSpectra),
         ranking: &mut Ranking,
     ) -> Result<()> {
         let st = fitting::fitted_stage(
             base,
             &[self.candidate],
-            fitted,
+            (fitted, &all_of(train, check)),
             check,
             fitting::IsoFigures::Replayed,
         )?;
@@ -117,11 +118,7 @@ fn judge(
     check: &RunSpectra,
     warm: &[f64],
 ) -> Result<Option<(AllRuns, Fitted)>> {
-    let all: Vec<RunSpectra> = train
-        .iter()
-        .chain(std::iter::once(check))
-        .cloned()
-        .collect();
+    let all = all_of(train, check);
     let n = score::residual_count(&all).max(1) as f64;
     let null = fit_candidate(base, &[], &all, warm)?;
     let amplitude: Vec<Candidate> = candidates
@@ -160,4 +157,13 @@ fn judge(
         (delta_bic <= ACCEPT_DELTA_BIC && found.fraction_closed() >= MIN_CLOSED)
             .then_some((found, fitted))
     }))
+}
+
+/// The training runs and the check run, the runs the all-run judgement fits.
+fn all_of(train: &[RunSpectra], check: &RunSpectra) -> Vec<RunSpectra> {
+    train
+        .iter()
+        .chain(std::iter::once(check))
+        .cloned()
+        .collect()
 }

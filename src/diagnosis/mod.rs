@@ -139,7 +139,7 @@ pub fn diagnose_with(
         &ranking.null_fit.fit.u,
     )?;
     if let Some((a, fitted)) = &all_runs {
-        a.adopt(fitted, &base, ck, &mut ranking)?;
+        a.adopt(fitted, &base, (tr, ck), &mut ranking)?;
     }
     let mut evidence = Evidence {
         null: ranking.null,

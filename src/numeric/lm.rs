@@ -181,6 +181,9 @@ pub struct Fit {
     /// stiffnesses, so a figure that depends on several parameters needs the off-diagonal terms,
     /// not [`Fit::sigma_u`] alone (Bates & Watts, *Nonlinear Regression Analysis*, 1988, §2.3).
     pub covariance: Option<DMatrix<f64>>,
+    /// s² = max(cost/(n − p), 1), the scale [`Fit::covariance`] carries: a step to its 1σ contour
+    /// raises the cost by s² (`numeric::propagate`).
+    pub scale: f64,
     /// Function evaluations used.
     pub evaluations: usize,
 }
@@ -344,6 +347,7 @@ where
         cost: c,
         sigma_u,
         covariance,
+        scale: s2,
         evaluations: evals,
     })
 }

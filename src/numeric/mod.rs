@@ -1,6 +1,7 @@
 //! Numerical tools shared by calibration and the gap diagnosis, independent of any model.
 
 pub mod lm;
+pub mod propagate;
 
 /// Median of `v` (mean of the two middle values for an even count); `None` when empty.
 pub fn median(mut v: Vec<f64>) -> Option<f64> {

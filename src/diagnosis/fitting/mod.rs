@@ -20,6 +20,7 @@ use super::score;
 use crate::error::Result;
 use crate::model::{Model, Quantity};
 use crate::numeric::lm as fit;
+use crate::numeric::propagate;
 use rayon::prelude::*;
 
 mod refine;
@@ -225,6 +226,46 @@ fn near_bound(u_i: f64, lo_i: f64, hi_i: f64) -> bool {
     (u_i - lo_i) < 1e-3 * r || (hi_i - u_i) < 1e-3 * r
 }
 
+/// The residuals the fit of `cands` on `runs` minimises (their Σr² is [`fit::Fit::cost`]): the
+/// base parameters' priors (u/σ_prior), a drift rate's against the clock trend the runs' halves
+/// measured (the first candidate of the stack whose definition takes it as its prior), then each
+/// run's weighted band residuals ([`score::run_residuals`]).
+fn objective<'a>(
+    base: &'a Base,
+    cands: &'a [Candidate],
+    runs: &'a [RunSpectra],
+) -> impl Fn(&[f64]) -> Result<Vec<f64>> + Sync + 'a {
+    let nb = base.params.len();
+    let sig: Vec<f64> = base
+        .params
+        .iter()
+        .map(|(_, _, q)| prior_sigma(*q))
+        .collect();
+    let eff: Vec<Param> = effect_params(cands).concat();
+    let rms_ref = reference_rms(runs);
+    let drift_at: Option<(usize, Param, &ClockTrend)> = base.clock.as_ref().and_then(|t| {
+        let mut at = nb;
+        for c in cands {
+            if let Some(Prior::ClockDrift { param }) = c.prior {
+                return Some((at + param, eff[at - nb + param].clone(), t));
+            }
+            at += c.params().len();
+        }
+        None
+    });
+    move |u: &[f64]| -> Result<Vec<f64>> {
+        let mut r: Vec<f64> = u[..nb].iter().zip(&sig).map(|(x, s)| x / s).collect();
+        if let Some((i, p, t)) = &drift_at {
+            r.push(drift_prior(t, p.value(u[*i])));
+        }
+        let v = build(base, cands, u, rms_ref)?;
+        for run in runs {
+            score::run_residuals(run, &predict::predict(&v, run)?.as_estimated, &mut r);
+        }
+        Ok(r)
+    }
+}
+
 /// Fits the stack `cands` (empty = null) jointly with the base parameters on `train`; `warm` gives
 /// the starting base parameters and any leading effect parameters (forward selection), the rest
 /// start from each parameter's multistart values.
@@ -235,37 +276,9 @@ pub(super) fn fit_candidate(
     warm: &[f64],
 ) -> Result<Fitted> {
     let nb = base.params.len();
-    let sig: Vec<f64> = base
-        .params
-        .iter()
-        .map(|(_, _, q)| prior_sigma(*q))
-        .collect();
     let eff: Vec<Param> = started_from_evidence(base, cands);
-    let rms_ref = reference_rms(train);
-    // Where a drift rate sits in `u`, when the runs' halves measured one: the first candidate of
-    // the stack whose definition takes the clock trend as its prior.
-    let drift_at: Option<(usize, &Param, &ClockTrend)> = base.clock.as_ref().and_then(|t| {
-        let mut at = nb;
-        for c in cands {
-            if let Some(Prior::ClockDrift { param }) = c.prior {
-                return Some((at + param, &eff[at - nb + param], t));
-            }
-            at += c.params().len();
-        }
-        None
-    });
     let (lo, hi) = bounds(base, cands);
-    let f = |u: &[f64]| -> Result<Vec<f64>> {
-        let mut r: Vec<f64> = u[..nb].iter().zip(&sig).map(|(x, s)| x / s).collect();
-        if let Some((i, p, t)) = drift_at {
-            r.push(drift_prior(t, p.value(u[i])));
-        }
-        let v = build(base, cands, u, rms_ref)?;
-        for run in train {
-            score::run_residuals(run, &predict::predict(&v, run)?.as_estimated, &mut r);
-        }
-        Ok(r)
-    };
+    let f = objective(base, cands, train);
     // Multistart over the effect parameters not warm-started.
     let mut at = warm.to_vec();
     at.resize(nb + eff.len(), 0.0);
@@ -295,7 +308,7 @@ pub(super) fn fit_candidate(
     }
     let fit = fit.expect("at least one start");
     Ok(Fitted {
-        variant: build(base, cands, &fit.u, rms_ref)?,
+        variant: build(base, cands, &fit.u, reference_rms(train))?,
         params: estimates(base, cands, &fit),
         fit,
         stage: None,
@@ -376,6 +389,7 @@ where
         cost: ft.cost,
         sigma_u,
         covariance,
+        scale: ft.scale,
         evaluations: ft.evaluations,
     })
 }
@@ -416,7 +430,13 @@ pub(super) fn refine_null(
         },
     );
     if let Some(check) = check {
-        best.stage = Some(fitted_stage(base, &[], &best, check, IsoFigures::Replayed)?);
+        best.stage = Some(fitted_stage(
+            base,
+            &[],
+            (&best, train),
+            check,
+            IsoFigures::Replayed,
+        )?);
     }
     Ok(best)
 }
@@ -534,50 +554,43 @@ fn weighted(v: &Variant, check: &RunSpectra) -> Result<Weighted> {
     ))
 }
 
-/// Standard errors of the seat a_w gap and SEAT of the fit `ft` of `cands` on `check`: the
-/// gradients by forward differences of a tenth of each parameter's standard error, propagated
+/// Standard errors of the seat a_w gap and SEAT of the fit `ft` of `cands` (made on `runs`) on
+/// `check`: the fit's covariance propagated to them ([`numeric::propagate::standard_errors`]),
 /// through the full covariance (the marginal errors alone miss that masses trade against
-/// stiffnesses). `None` when the covariance is singular.
+/// stiffnesses) and checked along the axes that carry most of their variance against the fit's
+/// own cost: a mode the runs pin only near its optimum (a second frame mode above the judged
+/// band) would otherwise be moved by its linear σ into the band, where the runs exclude it.
+/// `None` when the covariance is singular.
 fn iso_sigma(
     base: &Base,
     cands: &[Candidate],
-    ft: &Fitted,
+    (ft, runs): (&Fitted, &[RunSpectra]),
     check: &RunSpectra,
-    at: &Weighted,
 ) -> Result<Option<IsoSigma>> {
     let Some(cov) = &ft.fit.covariance else {
         return Ok(None);
     };
-    let u = &ft.fit.u;
     let (lo, hi) = bounds(base, cands);
-    let mut g_aw = vec![0.0; u.len()];
-    let mut g_seat = vec![0.0; u.len()];
-    for i in 0..u.len() {
-        let s = ft.fit.sigma_u[i];
-        if !(s.is_finite() && s > 0.0) {
-            continue;
-        }
-        // A step inside the parameter's range, toward its interior: a parameter the data barely
-        // pin (σ wider than its range, as a second filter section far above the band) stepped by
-        // a tenth of σ would leave the range, where the model is another model and the
-        // difference quotient no gradient.
-        let mut h = (0.1 * s).min(0.1 * (hi[i] - lo[i]));
-        if u[i] + h > hi[i] {
-            h = -h;
-        }
-        let mut v = u.clone();
-        v[i] += h;
-        let w = weighted(&build(base, cands, &v, ft.variant.rms_ref)?, check)?;
-        g_aw[i] = (w.aw_gap_percent - at.aw_gap_percent) / h;
-        g_seat[i] = (w.seat_model - at.seat_model) / h;
-    }
-    let quad = |g: &[f64]| {
-        let g = nalgebra::DVector::from_column_slice(g);
-        (g.transpose() * cov * &g)[(0, 0)].max(0.0).sqrt()
+    let at = propagate::Optimum {
+        u: &ft.fit.u,
+        lo: &lo,
+        hi: &hi,
+        cost: ft.fit.cost,
+        covariance: cov,
+        scale: ft.fit.scale,
     };
+    let residuals = objective(base, cands, runs);
+    let s = propagate::standard_errors(
+        &at,
+        |u| residuals(u).map(|r| fit::cost(&r)),
+        |u| {
+            let w = weighted(&build(base, cands, u, ft.variant.rms_ref)?, check)?;
+            Ok(vec![w.aw_gap_percent, w.seat_model])
+        },
+    )?;
     Ok(Some(IsoSigma {
-        aw_percent: quad(&g_aw),
-        seat_points: quad(&g_seat),
+        aw_percent: s[0],
+        seat_points: s[1],
     }))
 }
 
@@ -592,20 +605,20 @@ pub(super) enum IsoFigures {
     Linearised,
 }
 
-/// The stage on `check` of the fit `ft` of `cands`, with the standard errors of its ISO figures
+/// The stage on `check` of the fit `ft` of `cands` made on `runs`, with the standard errors of its ISO figures
 /// when its residual is within reach of the noise: beyond [`super::thresholds::EXPLAINED_CHI2`]
 /// the covariance s²(JᵀJ)⁻¹ no longer describes the parameters' scatter, the figures being off by
 /// the form, not the fit. An amplitude-dependent stack's a_w and SEAT are taken as `figures` says.
 pub(super) fn fitted_stage(
     base: &Base,
     cands: &[Candidate],
-    ft: &Fitted,
+    (ft, runs): (&Fitted, &[RunSpectra]),
     check: &RunSpectra,
     figures: IsoFigures,
 ) -> Result<Stage> {
     let mut st = stage(&ft.variant, check)?;
     if st.chi2_red <= super::thresholds::EXPLAINED_CHI2 {
-        st.iso_sigma = iso_sigma(base, cands, ft, check, &st.weighted)?;
+        st.iso_sigma = iso_sigma(base, cands, (ft, runs), check)?;
     }
     if figures == IsoFigures::Replayed {
         replay_figures(base, cands, &ft.variant, check, &mut st)?;
@@ -653,7 +666,7 @@ pub(super) fn fit_each(
         .map(|s| {
             let mut ft = fit_candidate(base, s, runs, warm)?;
             ft.stage = check
-                .map(|(c, figures)| fitted_stage(base, s, &ft, c, figures))
+                .map(|(c, figures)| fitted_stage(base, s, (&ft, runs), c, figures))
                 .transpose()?;
             Ok(ft)
         })
