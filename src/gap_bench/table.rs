@@ -83,17 +83,26 @@ pub struct IsoToward {
     /// ([`crate::diagnosis::ISO_AWAY`]: 1 % of a_w, 1 SEAT point, below which a shift is not of
     /// practical size); the rest are the cases the verdict itself flags.
     pub within_practical: usize,
-    /// Of the named verdicts, those whose effects are all linear, and how many of them are
-    /// `toward` against the re-fitted model.
-    pub linear: (usize, usize),
-    /// Of the named verdicts, those naming an amplitude-dependent effect (their a_w and SEAT are
-    /// replayed through the fitted nonlinear model, [`super::IsoGaps::amplitude_dependent`]), and how many of
-    /// them are `toward` against the re-fitted model.
-    pub amplitude_dependent: (usize, usize),
+    /// The named verdicts whose effects are all linear.
+    pub linear: Kind,
+    /// The named verdicts naming an amplitude-dependent effect (their a_w and SEAT are replayed
+    /// through the fitted nonlinear model, [`super::IsoGaps::amplitude_dependent`]).
+    pub amplitude_dependent: Kind,
     /// Median remaining |a_w gap| with the named effect(s), %.
     pub median_aw_gap_percent: Option<f64>,
     /// Median remaining |SEAT gap| with the named effect(s), points.
     pub median_seat_gap_points: Option<f64>,
+}
+
+/// One kind of named effect's cases in [`IsoToward`], against the re-fitted model.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+pub struct Kind {
+    /// Cases naming this kind of effect.
+    pub cases: usize,
+    /// Of those, `toward` ([`IsoToward::toward`]: neither gap grows by more than [`TIE`]).
+    pub toward: usize,
+    /// Of those, `within_practical` ([`IsoToward::within_practical`]).
+    pub within_practical: usize,
 }
 
 /// Change of an ISO gap (% or points) read as a tie: the figures' own rounding in the report.
@@ -131,8 +140,12 @@ fn toward_of(named: &[&IsoGaps]) -> IsoToward {
         let of: Vec<&&IsoGaps> = (named.iter())
             .filter(|g| g.amplitude_dependent == amplitude_dependent)
             .collect();
-        let toward = of.iter().filter(|g| moves_toward(g, 1, (TIE, TIE))).count();
-        (of.len(), toward)
+        let count = |tie: (f64, f64)| of.iter().filter(|g| moves_toward(g, 1, tie)).count();
+        Kind {
+            cases: of.len(),
+            toward: count((TIE, TIE)),
+            within_practical: count(crate::diagnosis::ISO_AWAY),
+        }
     };
     let within_sigma = within(1, &|g| {
         let [s_aw, s_seat] = g.sigma.unwrap_or([0.0, 0.0]);
@@ -451,7 +464,7 @@ impl Summary {
         );
         let t = &self.iso_toward;
         out += &format!(
-            "Named verdicts moving the check run's seat a_w and SEAT toward the measurement (neither gap growing by more than {TIE}) against the model as given: {} of {} ({}); against the re-fitted base model: {} ({}), or {} ({}) where a growth within twice the named model's own standard error (from its fitted parameters' covariance) counts as a tie; neither growing against the re-fitted model by the diagnosis's practical size ({} % a_w, {} SEAT point): {} ({}); median remaining |a_w gap| {} %, |SEAT gap| {} points. Against the re-fitted model by the kind of effect named: linear effects {} of {} ({}); amplitude-dependent effects, whose a_w and SEAT come from a replay of the check run's measured base through the fitted nonlinear model, {} of {} ({}).\n\n",
+            "Named verdicts moving the check run's seat a_w and SEAT toward the measurement (neither gap growing by more than {TIE}) against the model as given: {} of {} ({}); against the re-fitted base model: {} ({}), or {} ({}) where a growth within twice the named model's own standard error (from its fitted parameters' covariance) counts as a tie; neither growing against the re-fitted model by the diagnosis's practical size ({} % a_w, {} SEAT point): {} ({}); median remaining |a_w gap| {} %, |SEAT gap| {} points. Against the re-fitted model by the kind of effect named (growth within {TIE}; within the practical size): linear effects {} of {} ({}; {} ({})); amplitude-dependent effects, whose a_w and SEAT come from a replay of the check run's measured base through the fitted nonlinear model, {} of {} ({}; {} ({})).\n\n",
             t.toward_nominal,
             t.named,
             f(share(t.toward_nominal, t.named)),
@@ -465,12 +478,22 @@ impl Summary {
             f(share(t.within_practical, t.named)),
             f(t.median_aw_gap_percent),
             f(t.median_seat_gap_points),
-            t.linear.1,
-            t.linear.0,
-            f(share(t.linear.1, t.linear.0)),
-            t.amplitude_dependent.1,
-            t.amplitude_dependent.0,
-            f(share(t.amplitude_dependent.1, t.amplitude_dependent.0)),
+            t.linear.toward,
+            t.linear.cases,
+            f(share(t.linear.toward, t.linear.cases)),
+            t.linear.within_practical,
+            f(share(t.linear.within_practical, t.linear.cases)),
+            t.amplitude_dependent.toward,
+            t.amplitude_dependent.cases,
+            f(share(
+                t.amplitude_dependent.toward,
+                t.amplitude_dependent.cases
+            )),
+            t.amplitude_dependent.within_practical,
+            f(share(
+                t.amplitude_dependent.within_practical,
+                t.amplitude_dependent.cases
+            )),
         );
         let pair = |x: Option<(f64, f64)>, d: usize| {
             x.map_or("–".to_string(), |(a, b)| format!("{a:.d$} → {b:.d$}"))
@@ -538,17 +561,24 @@ mod tests {
     fn toward_counts_each_kind_of_effect_against_the_re_fitted_model() {
         // Gaps nominal, re-fitted, named (% a_w): a linear effect closing, one moving 0.05 away
         // (a tie at the report's rounding) and one moving 0.5 away; an amplitude-dependent effect
-        // moving 0.3 away from the re-fit but toward the measurement from the nominal model.
+        // moving 0.3 away from the re-fit but toward the measurement from the nominal model, and
+        // one moving 1.5 away (beyond the practical size of 1 %).
         let named = [
             gaps([4.0, 1.0, 0.2], false),
             gaps([4.0, 0.2, -0.25], false),
             gaps([4.0, 0.2, 0.7], false),
             gaps([4.0, -0.1, -0.4], true),
+            gaps([4.0, 0.1, 1.6], true),
         ];
         let refs: Vec<&IsoGaps> = named.iter().collect();
         let t = toward_of(&refs);
-        assert_eq!((t.named, t.toward, t.toward_nominal), (4, 2, 4));
-        assert_eq!(t.linear, (3, 2));
-        assert_eq!(t.amplitude_dependent, (1, 0));
+        assert_eq!((t.named, t.toward, t.toward_nominal), (5, 2, 5));
+        let kind = |cases, toward, within_practical| Kind {
+            cases,
+            toward,
+            within_practical,
+        };
+        assert_eq!(t.linear, kind(3, 2, 3));
+        assert_eq!(t.amplitude_dependent, kind(2, 0, 1));
     }
 }
