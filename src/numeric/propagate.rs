@@ -86,8 +86,8 @@ where
         }
     }
     let eig = SymmetricEigen::new(at.covariance.clone());
-    // terms[k][j]: axis k's share of figure j's variance, first order.
-    let axes: Vec<(f64, Vec<f64>)> = (0..p)
+    // The 1σ step √λ_k·e_k along each principal axis of positive variance.
+    let axes: Vec<Vec<f64>> = (0..p)
         .filter(|&k| eig.eigenvalues[k] > 0.0 && eig.eigenvalues[k].is_finite())
         .map(|k| {
             let root = eig.eigenvalues[k].sqrt();
@@ -97,12 +97,13 @@ where
                 .iter()
                 .map(|e| root * e)
                 .collect();
-            (0.0, step)
+            step
         })
         .collect();
+    // terms[k][j]: axis k's share of figure j's variance, first order.
     let mut terms: Vec<Vec<f64>> = axes
         .iter()
-        .map(|(_, step)| {
+        .map(|step| {
             g.iter()
                 .map(|gj| gj.iter().zip(step).map(|(a, b)| a * b).sum::<f64>().powi(2))
                 .collect()
@@ -142,7 +143,7 @@ where
         }
         let mut change = vec![0.0; m];
         for side in [1.0, -1.0] {
-            let dir: Vec<f64> = axes[k].1.iter().map(|e| side * e).collect();
+            let dir: Vec<f64> = axes[k].iter().map(|e| side * e).collect();
             let v = walk(at, &dir, &cost)?;
             let fv = figures(&v)?;
             for j in 0..m {
