@@ -37,19 +37,29 @@ pub struct Args {
     /// Plot file format.
     #[arg(long, default_value = "png", value_parser = ["png", "svg"])]
     plot_format: String,
-    /// Replace existing plot files.
+    /// Write the corrected model to this model file (TOML, docs/models.md): the base model as
+    /// re-fitted with the named structural effects as model elements and a `[provenance]` table;
+    /// effects of the measuring chain are listed there as corrections, not built in. With the
+    /// verdict `unexplained` or `not-identifiable` the file is the re-fitted model with a warning.
+    #[arg(long, value_name = "FILE.toml")]
+    write_model: Option<PathBuf>,
+    /// Replace existing plot files and the --write-model file.
     #[arg(long)]
     force: bool,
 }
 
 pub fn run(args: Args) -> wbv::Result<()> {
-    if args.force && args.plot.is_none() {
+    if args.force && args.plot.is_none() && args.write_model.is_none() {
         return Err(wbv::Error::parameter(
             "--force",
-            "applies to the plots; give --plot DIR",
+            "applies to the plots and the model file; give --plot DIR or --write-model FILE",
         ));
     }
     let ow = Overwrite::from_force(args.force);
+    // Refuse an overwrite before the diagnosis runs.
+    if let Some(path) = &args.write_model {
+        wbv::io::atomic::check_overwrite(path, ow)?;
+    }
     let plot = match &args.plot {
         // Refuse an overwrite before the diagnosis runs.
         Some(dir) => {
@@ -75,6 +85,23 @@ pub fn run(args: Args) -> wbv::Result<()> {
     let check = load(&args.check)?;
     let d = diagnose_with(&model, &train, &check, &loggers)?;
     let mut written = Vec::new();
+    if let Some(path) = &args.write_model {
+        let status = d.model_status.as_ref();
+        let text = d.model.as_ref().ok_or_else(|| {
+            let why = status.and_then(|s| s.not_written.clone());
+            wbv::Error::parameter("--write-model", why.unwrap_or_default())
+        })?;
+        if let Some(w) = status.and_then(|s| s.warning.as_ref()) {
+            eprintln!("warning: {w}");
+        }
+        wbv::io::atomic::write_atomic(path, ow, |out| {
+            std::io::Write::write_all(out, text.as_bytes()).map_err(wbv::io::atomic::io_err(path))
+        })?;
+        eprintln!("wrote {}", path.display());
+        written.extend(wbv::report::json::Written::existing(std::slice::from_ref(
+            path,
+        ))?);
+    }
     if let Some((dir, ext)) = &plot {
         plot::write_as(&d, dir, ext, ow)?;
         eprintln!("wrote {}", dir.display());

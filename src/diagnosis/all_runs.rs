@@ -75,7 +75,7 @@ impl AllRuns {
             r.check = st;
         }
         if let Some(f) = ranking.fits.iter_mut().find(|(c, _)| *c == self.candidate) {
-            f.1 = fitted.fit.u.clone();
+            f.1 = fitted.fit.clone();
         }
         Ok(())
     }

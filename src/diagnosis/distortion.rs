@@ -112,6 +112,22 @@ impl Site {
         }
     }
 
+    /// Whether `system` already holds a nonlinear law at this site: on a seat link (cushion,
+    /// suspension, frame) for the support, on a body link for the occupant, anywhere where the
+    /// site is not located. A model with its own law there distorts the runs as they do.
+    pub fn modelled_in(self, system: &crate::system::System) -> bool {
+        use crate::system::Role;
+        system
+            .links
+            .iter()
+            .filter(|l| l.law.is_some())
+            .any(|l| match self {
+                Site::Support => matches!(l.role, Role::Cushion | Role::Suspension | Role::Frame),
+                Site::Body => l.role == Role::Body,
+                Site::Unlocated => true,
+            })
+    }
+
     /// Words for reports.
     pub fn describe(self) -> &'static str {
         match self {
@@ -136,6 +152,19 @@ pub struct Distortion {
     /// with magnitude ([`BODY_PHASE_SHARE`]): the reason the occupant was not the site.
     #[serde(default, deserialize_with = "super::json::optional_path")]
     pub phase_stays: Option<super::json::Name>,
+    /// Whether the model under diagnosis already holds a nonlinear law at [`Distortion::site`]
+    /// ([`Site::modelled_in`]): the growth is then what the model itself predicts, not evidence of
+    /// an unmodelled effect (a corrected model diagnosed on the runs it came from).
+    #[serde(default, skip_serializing_if = "std::ops::Not::not")]
+    pub site_in_model: bool,
+}
+
+impl Distortion {
+    /// The site of a nonlinearity the model does not hold: [`Distortion::site`] unless the model
+    /// already has a law there ([`Distortion::site_in_model`]).
+    pub fn unmodelled_site(&self) -> Option<Site> {
+        self.site.filter(|_| !self.site_in_model)
+    }
 }
 
 /// Mean ln NSR of path `p` in `r` around each frequency of `grid` (within ± `half` Hz: the
@@ -316,6 +345,7 @@ pub fn trend(runs: &[&RunSpectra]) -> Option<Distortion> {
         paths,
         site,
         phase_stays,
+        site_in_model: false,
     })
 }
 

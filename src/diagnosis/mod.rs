@@ -14,6 +14,7 @@ pub mod acquisition;
 mod all_runs;
 pub mod candidate;
 pub mod clock;
+mod corrected;
 pub mod distortion;
 pub use crate::numeric::lm as fit;
 mod evidence;
@@ -41,6 +42,7 @@ mod thresholds;
 mod verdict;
 
 pub use candidate::separating_measurement;
+pub use corrected::ModelStatus;
 pub use outcome::{
     BandCoverage, ChannelError, DataFault, Diagnosis, Estimate, IsoSigma, PartialEffect, Ranked,
     RunSummary, Stage, VerdictId,
@@ -153,8 +155,10 @@ pub fn diagnose_with(
     };
     // The simulator's judgement of the laws whose linearisation cannot be trusted where the
     // distortion places a nonlinearity the verdict so far does not name (`rules::replayed`).
+    // The parameters the replay refined, per candidate: the corrected model's where it is named.
+    let mut refined: Vec<(Candidate, Vec<f64>)> = Vec::new();
     for c in verdict::to_replay(&evidence) {
-        select::replay_refined(
+        let r = select::replay_refined(
             &base,
             &evidence.null,
             &mut evidence.cands,
@@ -163,6 +167,7 @@ pub fn diagnose_with(
             tr,
             ck,
         )?;
+        refined.extend(r.map(|u| (c, u)));
     }
     // Forward selection: up to two effects added beside the effect the rules name.
     if let Some(first) = verdict::nominee(&evidence) {
@@ -177,7 +182,7 @@ pub fn diagnose_with(
         .is_some_and(|s| verdict::stack_beats(&evidence, s));
     if let Some(first) = verdict::nominee(&evidence).filter(|c| c.amplitude_dependent() && !stacked)
     {
-        select::replay_refined(
+        let r = select::replay_refined(
             &base,
             &evidence.null,
             &mut evidence.cands,
@@ -186,8 +191,37 @@ pub fn diagnose_with(
             tr,
             ck,
         )?;
+        refined.extend(r.map(|u| (first, u)));
     }
     let decision = verdict::decide(&evidence);
+    // The system the verdict accepts, before its stack's entry is moved into the outcome.
+    let stack = corrected::accepted_stack(&decision.verdict);
+    let (stack, fit) = match (stack.len(), &evidence.added) {
+        (0, _) => (stack, &ranking.null_fit.fit),
+        (1, _) => match ranking.fits.iter().find(|(c, _)| *c == stack[0]) {
+            Some((_, f)) => (stack, f),
+            None => (Vec::new(), &ranking.null_fit.fit),
+        },
+        (_, Some(a)) => (stack, &a.fit),
+        (_, None) => (Vec::new(), &ranking.null_fit.fit),
+    };
+    let accepted = corrected::Accepted {
+        refined: (stack.len() == 1)
+            .then(|| refined.iter().rev().find(|(c, _)| *c == stack[0]))
+            .flatten()
+            .map(|(_, u)| u.clone()),
+        stack,
+        fit: fit.clone(),
+    };
+    let (corrected_system, schedule) =
+        corrected::system(&base, &accepted, fitting::reference_rms(tr), ck.base_rms)?;
+    let (base_estimates, effect_estimates) = corrected::estimates(&base, &accepted);
+    let provenance = corrected::Provenance {
+        accepted: &accepted,
+        base: base_estimates,
+        effects: effect_estimates,
+        schedule: schedule.map(|s| (s, ck.base_rms)),
+    };
     let partial = match &decision.verdict {
         Verdict::Partial { best, added, .. } => outcome::partial_effects(
             &evidence.cands,
@@ -206,7 +240,7 @@ pub fn diagnose_with(
         .added
         .filter(|_| !decision.verdict.added().is_empty())
         .map(|s| s.entry);
-    Ok(Diagnosis {
+    let mut d = Diagnosis {
         verdict: decision.verdict.id(),
         decided_by: Some(decision.rule),
         verdict_text,
@@ -229,5 +263,10 @@ pub fn diagnose_with(
         null: evidence.null,
         candidates: evidence.cands,
         second,
-    })
+        model: None,
+        model_status: None,
+    };
+    let (file, status) = corrected::model(&d, &system.name, &corrected_system, &provenance);
+    (d.model, d.model_status) = (file, Some(status));
+    Ok(d)
 }

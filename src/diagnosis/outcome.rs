@@ -454,6 +454,15 @@ pub struct Diagnosis {
     /// candidates, best first, and what each closes on the check run.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub partial: Vec<PartialEffect>,
+    /// The corrected model, a model file (TOML, docs/models.md): the re-fitted base with the
+    /// named structural effects (`wbv gap --write-model`, [`super::corrected`]). `None` where none
+    /// can be written ([`ModelStatus::not_written`](super::ModelStatus)) and in files from before
+    /// wbv wrote it.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub model: Option<String>,
+    /// Whether the verdict accepted the corrected model, its warning, or why it is not written.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub model_status: Option<super::ModelStatus>,
 }
 
 /// A candidate that closes part of a gap it does not explain.

@@ -127,6 +127,10 @@ pub(super) fn prepare<'a>(
             d.site = None;
         }
     }
+    // A model that holds a law at the site predicts the growth itself.
+    if let Some(d) = &mut distortion {
+        d.site_in_model = d.site.is_some_and(|s| s.modelled_in(system));
+    }
     for r in tr.iter_mut().chain(std::iter::once(&mut ck)) {
         warnings.extend(r.offset_notes.iter().cloned());
         if r.df_hz > measure::RESOLUTION_HZ * 1.01 {

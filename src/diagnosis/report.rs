@@ -128,8 +128,13 @@ fn where_(out: &mut String, d: &Diagnosis) {
                 .collect::<Vec<_>>()
                 .join(", "),
             x.site.map_or(String::new(), |s| format!(
-                ": a nonlinearity {}",
-                s.describe()
+                ": a nonlinearity {}{}",
+                s.describe(),
+                if x.site_in_model {
+                    ", where the model already holds a nonlinear law"
+                } else {
+                    ""
+                }
             ))
         );
     }

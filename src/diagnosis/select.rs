@@ -20,6 +20,8 @@ pub(super) struct Added {
     /// The stack's entry (the named effect and the added ones), scored against the named effect
     /// alone.
     pub entry: Ranked,
+    /// The stack's fit (base parameters, then each effect's).
+    pub fit: crate::numeric::lm::Fit,
 }
 
 /// The null re-fit and the candidates ranked against it.
@@ -30,8 +32,9 @@ pub(super) struct Ranking {
     pub null: Ranked,
     /// The candidates, best held-out ΔBIC first.
     pub cands: Vec<Ranked>,
-    /// Each candidate's fitted parameter vector: the forward selection's warm start.
-    pub fits: Vec<(Candidate, Vec<f64>)>,
+    /// Each candidate's fit (its parameter vector is the forward selection's warm start; its
+    /// standard errors the corrected model's, [`super::corrected`]).
+    pub fits: Vec<(Candidate, crate::numeric::lm::Fit)>,
 }
 
 /// The null re-fit on the training runs `tr`: the base parameters alone, from their nominal values.
@@ -66,7 +69,6 @@ pub(super) fn rank(
         if fitting::contradicts(base, &[c], &f.fit.u) {
             continue;
         }
-        fits.push((c, f.fit.u));
         trials.push(Trial {
             effects: Effects::One(c),
             extra: c.params().len(),
@@ -74,6 +76,7 @@ pub(super) fn rank(
             params: f.params,
             stage: f.stage.expect("evaluated on the check run"),
         });
+        fits.push((c, f.fit));
     }
     let null = Trial {
         effects: Effects::Null,
@@ -102,12 +105,12 @@ pub(super) const MAX_EFFECTS: usize = 3;
 /// jointly with the stack, from its optimum; the one with the lowest BIC is added if it is
 /// detected against the stack (ΔBIC ≤ [`ACCEPT_DELTA_BIC`]) and closes ≥ [`MIN_CLOSED`] of what the
 /// stack leaves — the held-out rule, with the stack as the reference. `cands` and `fits` are the
-/// ranked candidates and their fitted parameter vectors (`bc`'s is the first warm start). Returns
+/// ranked candidates and their fits (`bc`'s parameter vector is the first warm start). Returns
 /// the added effects and the final stack's entry, its figures from the simulator where it holds an
 /// amplitude-dependent effect, scored against `bc` alone.
 pub(super) fn added_effects(
     base: &Base,
-    (cands, fits): (&[Ranked], &[(Candidate, Vec<f64>)]),
+    (cands, fits): (&[Ranked], &[(Candidate, crate::numeric::lm::Fit)]),
     bc: Candidate,
     tr: &[RunSpectra],
     ck: &RunSpectra,
@@ -119,6 +122,7 @@ pub(super) fn added_effects(
     let Some((_, warm)) = fits.iter().find(|(c, _)| *c == bc) else {
         return Ok(None);
     };
+    let warm = &warm.u;
     let ranked: Vec<Candidate> = cands.iter().filter_map(|r| r.id.candidate()).collect();
     let mut stack = vec![bc];
     // The stack's entry (against `bc` alone, once something is added), its fit and its variant.
@@ -195,6 +199,7 @@ pub(super) fn added_effects(
         first: bc,
         added: stack[1..].to_vec(),
         entry: evidence::against(best, k_best, t, n),
+        fit: ft.fit,
     }))
 }
 
@@ -219,28 +224,28 @@ fn stack_trial(stack: &[Candidate], added: usize, ft: &fitting::Fitted) -> Trial
 /// ([`fitting::refine_by_replay`]):
 /// its entry among `cands` gets the seat a_w and SEAT of that replay and the replayed BLA's
 /// reduced χ² (`Stage::replayed_chi2_red`), and its sizes against the null entry are taken again
-/// ([`evidence::sizes`]). `fits` are the ranked candidates' fitted
-/// parameter vectors on `tr`.
+/// ([`evidence::sizes`]). `fits` are the ranked candidates' fits on `tr`. Returns the refined
+/// parameter vector, `None` where the entry was replayed already or is not ranked.
 pub(super) fn replay_refined(
     base: &Base,
     null: &Ranked,
     cands: &mut [Ranked],
-    fits: &[(Candidate, Vec<f64>)],
+    fits: &[(Candidate, crate::numeric::lm::Fit)],
     first: Candidate,
     tr: &[RunSpectra],
     ck: &RunSpectra,
-) -> Result<()> {
-    let (Some(entry), Some((_, u))) = (
+) -> Result<Option<Vec<f64>>> {
+    let (Some(entry), Some((_, f))) = (
         cands.iter_mut().find(|r| r.id == Effects::One(first)),
         fits.iter().find(|(c, _)| *c == first),
     ) else {
-        return Ok(());
+        return Ok(None);
     };
     if entry.check.replayed_chi2_red.is_some() {
-        return Ok(()); // replayed already, for the simulator's second opinion
+        return Ok(None); // replayed already, for the simulator's second opinion
     }
     let far = entry.check.chi2_red > super::thresholds::EXPLAINED_CHI2;
-    let refined = fitting::refine_by_replay(base, &[first], u, tr, far)?;
+    let refined = fitting::refine_by_replay(base, &[first], &f.u, tr, far)?;
     let v = fitting::build(base, &[first], &refined, fitting::reference_rms(tr))?;
     // One replay of the check run gives the seat figures and the replayed BLA; the paths a replay
     // does not yield (a backrest force) keep the linearised prediction.
@@ -252,5 +257,5 @@ pub(super) fn replay_refined(
     let (aw, seat, _) = evidence::sizes(&entry.check, &null.check);
     entry.aw_change_percent = aw;
     entry.seat_change_points = seat;
-    Ok(())
+    Ok(Some(refined))
 }

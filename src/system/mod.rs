@@ -20,10 +20,12 @@
 //! [`System::dynamic_matrix`] and [`System::state_space`]).
 
 pub mod dynamics;
+pub mod law_params;
 pub mod linear;
 pub mod link;
 
 pub use dynamics::Dynamics;
+pub use law_params::{LawParam, Range};
 pub use linear::StateSpace;
 pub use link::{Element, Law};
 
@@ -150,7 +152,8 @@ pub const BACKREST_FORCE: &str = "f_back_z";
 
 /// The vertical force of the backrest on the body, `f_back_z = −Σ t_l` over the links of role
 /// [`Role::Backrest`] (N, up positive, static load removed): a chain link's tension `t` pulls its
-/// upper end, the body, down (`model::chain::system`). It is what the load cells of an
+/// upper end, the body, down (`model::chain::system`); a link whose upper node is the base (a strap
+/// from the seat back pulling the body below it) adds `+t_l`, its push on its lower end. It is what the load cells of an
 /// instrumented backrest read in the vertical direction (Nawayseh & Griffin, "Tri-axial forces at
 /// the seat and backrest during whole-body vertical vibration", JSV 277 (2004) 309–326); a seat
 /// without a backrest reads zero.
@@ -162,7 +165,9 @@ pub fn backrest_force(links: &[Link]) -> Channel {
         rule: Rule::Force {
             links: (links.iter().enumerate())
                 .filter(|(_, l)| l.role == Role::Backrest)
-                .map(|(i, _)| (i, -1.0))
+                // A link whose upper node is the base (a strap from the seat back, pulling the
+                // body below it down) pushes its lower node, the body, up with its tension.
+                .map(|(i, l)| (i, if l.nodes.0 == "base" { 1.0 } else { -1.0 }))
                 .collect(),
         },
     }

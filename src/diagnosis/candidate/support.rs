@@ -328,7 +328,8 @@ fn push_strap(v: &mut Variant, id: &str, target: Target, p: &[f64]) -> Result<()
     let t = target_or_err(id, target, s)?;
     let m = s.m[(t, t)];
     let w = 2.0 * std::f64::consts::PI * p[0];
-    let link = kv_link(id, (&s.dofs[t].name, "base"), vec![(t, -1.0)], m, p[0], 0.0);
+    // The base is the link's upper node: its deflection −x_t is the body point's fall.
+    let link = kv_link(id, ("base", &s.dofs[t].name), vec![(t, -1.0)], m, p[0], 0.0);
     let role = match target {
         Target::UpperBody | Target::Head => Role::Backrest,
         Target::LowerBody => Role::Footrest,

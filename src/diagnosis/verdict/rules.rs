@@ -205,7 +205,7 @@ fn unexplained(_: &Evidence) -> Option<Verdict> {
 /// its training ĉ. A support path is the site's candidate only where its fit over all runs is no
 /// worse than the null's.
 pub(in crate::diagnosis) fn located(e: &Evidence, responses: &Verdict) -> Option<Verdict> {
-    let site = e.distortion.as_ref()?.site?;
+    let site = e.distortion.as_ref()?.unmodelled_site()?;
     let named = responses.effect();
     let marginal = |c: Candidate| {
         score::chi2_within_noise(e.null.check.chi2_red, e.null.check.residuals)
@@ -269,7 +269,7 @@ fn one_sided_at(e: &Evidence, site: Site) -> impl Iterator<Item = &Ranked> {
 /// nonlinearity at a site the verdict does not name and a structural gap remains, the site's
 /// one-sided paths ([`one_sided_at`]), and the named effect when it is amplitude-dependent.
 pub(in crate::diagnosis) fn to_replay(e: &Evidence, responses: &Verdict) -> Vec<Candidate> {
-    let Some(site) = e.distortion.as_ref().and_then(|d| d.site) else {
+    let Some(site) = e.distortion.as_ref().and_then(|d| d.unmodelled_site()) else {
         return Vec::new();
     };
     let named = responses.effect();
@@ -295,7 +295,7 @@ pub(in crate::diagnosis) fn to_replay(e: &Evidence, responses: &Verdict) -> Vec<
 /// reduced χ² lowest is named when it beats the verdict's by [`IDENTIFIABLE_MARGIN`] in the BIC's
 /// units, n·Δ(χ²/ν) over n residuals, read in units of the path's own overdispersion ĉ.
 pub(in crate::diagnosis) fn replayed(e: &Evidence, responses: &Verdict) -> Option<Verdict> {
-    let site = e.distortion.as_ref()?.site?;
+    let site = e.distortion.as_ref()?.unmodelled_site()?;
     if responses.effect().is_some_and(|c| site.admits(c)) {
         return None;
     }

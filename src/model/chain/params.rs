@@ -1,9 +1,10 @@
 //! Named model parameters (`mass.<name>.m`, `link.<name>.k`, …) for sweeps, sensitivity studies,
 //! calibration and the gap diagnosis. Values are SI: kg, N/m, N·s/m, N/m³, m, N, m/s.
 
-use super::{Chain, Element, Law};
+use super::{Chain, Element};
 use crate::error::{Error, Result};
 use crate::model::Quantity;
+use crate::system::Range;
 
 /// Every parameter path of `model`, in model order.
 pub fn list(model: &Chain) -> Vec<String> {
@@ -17,19 +18,12 @@ pub fn list(model: &Chain) -> Vec<String> {
             Element::KelvinVoigt { .. } | Element::Maxwell { .. } => &["k", "c"],
             Element::Zener { .. } => &["k", "k_m", "c_m"],
         };
-        let law: &[&str] = match l.law {
-            None => &[],
-            Some(Law::Cubic { .. }) => &["k3"],
-            Some(Law::Softening { .. }) => &["d_ref"],
-            Some(Law::Friction { .. }) => &["f_c", "v_ref"],
-            Some(Law::EndStop { .. } | Law::Bottoming { .. }) => &["gap", "k_stop"],
-            Some(Law::PreloadExp { .. }) => &["d_e"],
-            Some(Law::LiftOff { .. } | Law::HertzPad { .. }) => &["travel"],
-            Some(Law::HertzStop { .. }) => &["gap", "k_h"],
-            Some(Law::Contact { .. } | Law::Exponential { .. }) => &["d0"],
-            Some(Law::Bilinear { .. }) => &["d_knee", "ratio"],
-        };
-        for f in fields.iter().chain(law) {
+        let law: Vec<&str> = l
+            .law
+            .iter()
+            .flat_map(|w| w.params().iter().map(|p| p.key))
+            .collect();
+        for f in fields.iter().chain(&law) {
             out.push(format!("link.{}.{f}", l.name));
         }
     }
@@ -66,30 +60,10 @@ fn slot<'a>(model: &'a mut Chain, path: &str) -> Result<&'a mut f64> {
                 (Element::Zener { c_m, .. }, "c_m") => return Ok(c_m),
                 _ => {}
             }
-            match (&mut link.law, parts[2]) {
-                (Some(Law::Cubic { k3 }), "k3") => Ok(k3),
-                (Some(Law::Softening { d_ref }), "d_ref") => Ok(d_ref),
-                (Some(Law::Friction { f_c, .. }), "f_c") => Ok(f_c),
-                (Some(Law::Friction { v_ref, .. }), "v_ref") => Ok(v_ref),
-                (
-                    Some(
-                        Law::EndStop { gap, .. }
-                        | Law::Bottoming { gap, .. }
-                        | Law::HertzStop { gap, .. },
-                    ),
-                    "gap",
-                ) => Ok(gap),
-                (Some(Law::HertzStop { k_h, .. }), "k_h") => Ok(k_h),
-                (Some(Law::EndStop { k_stop, .. } | Law::Bottoming { k_stop, .. }), "k_stop") => {
-                    Ok(k_stop)
-                }
-                (Some(Law::PreloadExp { d_e }), "d_e") => Ok(d_e),
-                (Some(Law::LiftOff { travel } | Law::HertzPad { travel }), "travel") => Ok(travel),
-                (Some(Law::Contact { d0 } | Law::Exponential { d0 }), "d0") => Ok(d0),
-                (Some(Law::Bilinear { d_knee, .. }), "d_knee") => Ok(d_knee),
-                (Some(Law::Bilinear { ratio, .. }), "ratio") => Ok(ratio),
-                _ => Err(unknown()),
-            }
+            let law = link.law.as_mut().ok_or_else(unknown)?;
+            let at = law.params().iter().position(|p| p.key == parts[2]);
+            at.map(|i| law.values_mut().swap_remove(i))
+                .ok_or_else(unknown)
         }
         _ => Err(unknown()),
     }
@@ -112,6 +86,26 @@ pub fn scatter(model: &Chain) -> Vec<(String, Quantity)> {
     out
 }
 
+/// The values parameter `path` may take: masses, Maxwell and Zener arms positive, a law's
+/// parameters as its vocabulary says ([`crate::system::LawParam`]), everything else non-negative.
+fn range(model: &Chain, path: &str) -> Range {
+    let parts: Vec<&str> = path.split('.').collect();
+    if parts[0] == "mass" || path.ends_with(".k_m") || path.ends_with(".c_m") {
+        return Range::Positive;
+    }
+    let law = (parts.len() == 3 && parts[0] == "link")
+        .then(|| model.link_index(parts[1]))
+        .flatten()
+        .and_then(|i| model.links[i].law);
+    law.and_then(|l| {
+        l.params()
+            .iter()
+            .find(|p| p.key == parts[2])
+            .map(|p| p.range)
+    })
+    .unwrap_or(Range::NonNegative)
+}
+
 /// The value of parameter `path`.
 pub fn get(model: &Chain, path: &str) -> Result<f64> {
     let mut m = model.clone();
@@ -121,22 +115,13 @@ pub fn get(model: &Chain, path: &str) -> Result<f64> {
 /// Sets parameter `path` to `value`, refusing values that make the model unphysical (masses and
 /// Maxwell/Zener arms must stay positive, everything else non-negative).
 pub fn set(model: &mut Chain, path: &str, value: f64) -> Result<()> {
-    let must_be_positive = path.starts_with("mass.")
-        || path.ends_with(".k_m")
-        || path.ends_with(".c_m")
-        || path.ends_with(".d_ref")
-        || path.ends_with(".v_ref")
-        || path.ends_with(".travel");
-    if !value.is_finite() || value < 0.0 || (must_be_positive && value == 0.0) {
+    let range = range(model, path);
+    if !range.allows(value) {
         return Err(Error::parameter(
             path,
             format!(
-                "{value} is not allowed; expected a {} finite number",
-                if must_be_positive {
-                    "positive"
-                } else {
-                    "non-negative"
-                }
+                "{value} is not allowed; expected a finite number {}",
+                range.words()
             ),
         ));
     }

@@ -231,3 +231,138 @@ impl Chain {
         }
     }
 }
+
+/// Why a [`System`] is not a chain model ([`Chain::from_system`]).
+fn not_a_chain(system: &System, why: impl std::fmt::Display) -> crate::error::Error {
+    crate::error::Error::parameter(
+        "model",
+        format!(
+            "`{}` is not a chain of masses that a model file can hold ({why}); model files are written \
+             for chain models only, not for the planar model",
+            system.name
+        ),
+    )
+}
+
+impl Chain {
+    /// The chain model whose [`Chain::system`] is `system`, the inverse of that assembly: one mass
+    /// per coordinate (a diagonal `M`, every coordinate a base-relative translation with `r = 1`),
+    /// each link the row `e_upper − e_lower` of its named nodes, and the measured points read off
+    /// the channels (`a_seat_z` a coordinate or the base, `a_head_z` a coordinate, `f_seat_z` the
+    /// interface links with weight −1). This is how a system that candidates of the gap diagnosis
+    /// edited (added masses, links and laws) becomes a model file again. Refuses, naming why, a
+    /// system that is not a chain: a segment (planar) model, forces not carried by links, or a
+    /// channel a chain file cannot state.
+    pub fn from_system(
+        system: &System,
+        description: &str,
+        source: &str,
+    ) -> crate::error::Result<Chain> {
+        let n = system.dof();
+        if !system.links_only() {
+            return Err(not_a_chain(system, "forces not carried by links"));
+        }
+        let mut masses = Vec::with_capacity(n);
+        for (i, d) in system.dofs.iter().enumerate() {
+            let coupled = (0..n).any(|j| j != i && system.m[(i, j)] != 0.0);
+            if d.unit != Unit::Metre || coupled || system.r[i] != 1.0 || system.r_x[i] != 0.0 {
+                return Err(not_a_chain(
+                    system,
+                    format_args!("coordinate `{}` is not a vertical point mass", d.name),
+                ));
+            }
+            masses.push(super::Mass {
+                name: d.name.clone(),
+                m: system.m[(i, i)],
+                role: d.role,
+            });
+        }
+        let node = |name: &str| -> Option<Node> {
+            if name == "base" {
+                return Some(Node::Base);
+            }
+            masses.iter().position(|m| m.name == name).map(Node::Mass)
+        };
+        let mut links = Vec::with_capacity(system.links.len());
+        for l in &system.links {
+            let (Some(a), Some(b)) = (node(&l.nodes.0), node(&l.nodes.1)) else {
+                return Err(not_a_chain(
+                    system,
+                    format_args!("link `{}` names no mass", l.name),
+                ));
+            };
+            let mut expected = row(a, b);
+            let mut got = l.row.clone();
+            expected.sort_by_key(|e| e.0);
+            got.sort_by_key(|e| e.0);
+            if got != expected {
+                return Err(not_a_chain(
+                    system,
+                    format_args!("link `{}` is not the difference of its two nodes", l.name),
+                ));
+            }
+            links.push(super::Link {
+                name: l.name.clone(),
+                a,
+                b,
+                element: l.element,
+                law: l.law,
+                role: l.role,
+            });
+        }
+        let kinematic_point = |name: &str| -> crate::error::Result<Option<Node>> {
+            let Some(c) = system.channels.iter().find(|c| c.name == name) else {
+                return Ok(None);
+            };
+            match &c.rule {
+                Rule::Kinematic { row, base } if row.is_empty() && *base == 1.0 => {
+                    Ok(Some(Node::Base))
+                }
+                Rule::Kinematic { row, base }
+                    if *base == 0.0 && row.len() == 1 && row[0].1 == 1.0 =>
+                {
+                    Ok(Some(Node::Mass(row[0].0)))
+                }
+                _ => Err(not_a_chain(
+                    system,
+                    format_args!("channel `{name}` is not one point's motion"),
+                )),
+            }
+        };
+        let seat = kinematic_point("a_seat_z")?
+            .ok_or_else(|| not_a_chain(system, "no a_seat_z channel"))?;
+        let head = match kinematic_point("a_head_z")? {
+            None => None,
+            Some(Node::Mass(i)) => Some(i),
+            Some(Node::Base) => return Err(not_a_chain(system, "the head channel reads the base")),
+        };
+        let interface = match system.channels.iter().find(|c| c.name == "f_seat_z") {
+            None => Vec::new(),
+            Some(Channel {
+                rule: Rule::Force { links },
+                ..
+            }) if links.iter().all(|&(_, w)| w == -1.0) => links.iter().map(|&(l, _)| l).collect(),
+            Some(_) => {
+                return Err(not_a_chain(
+                    system,
+                    "f_seat_z is not a sum of link tensions",
+                ));
+            }
+        };
+        Ok(Chain {
+            name: system.name.clone(),
+            description: description.to_string(),
+            source: source.to_string(),
+            masses,
+            links,
+            measure: super::Measure {
+                seat,
+                head,
+                interface,
+            },
+            kind: super::Kind::System,
+            top: None,
+            text: String::new(),
+        })
+    }
+}

@@ -3,9 +3,10 @@
 
 use super::Checker;
 use super::damping_from_ratio;
-use super::spec::LinkSpec;
+use super::spec::{LawSpec, LinkSpec};
 use crate::error::Result;
 use crate::model::chain::{Element, Law, Link, Mass};
+use crate::system::law_params::LAWS;
 
 /// Link `i` of the file, checked against the `masses` already read; errors name `link[i] (name)`
 /// and the key.
@@ -23,13 +24,6 @@ pub(super) fn link(cx: &Checker<'_>, i: usize, ls: &LinkSpec, masses: &[Mass]) -
         return Err(cx.err(
             format!("{key}.between"),
             "a link must join two different nodes".into(),
-        ));
-    }
-    // f_back_z = −t reads the force on the upper node: the body leans on the backrest below it.
-    if ls.role.as_deref() == Some("backrest") && a == crate::model::chain::Node::Base {
-        return Err(cx.err(
-            format!("{key}.between"),
-            "a backrest link runs from the body (upper) to the frame or base (lower)".into(),
         ));
     }
     let damping = |ck: &str, c: Option<f64>, k: f64| -> Result<f64> {
@@ -95,31 +89,7 @@ pub(super) fn link(cx: &Checker<'_>, i: usize, ls: &LinkSpec, masses: &[Mass]) -
                     "nonlinear laws apply to kelvin-voigt links only".into(),
                 ));
             }
-            let lk = format!("{key}.law");
-            Some(match l.kind.as_str() {
-                "cubic" => Law::Cubic {
-                    k3: cx.non_negative(format!("{lk}.k3"), l.k3.unwrap_or(f64::NAN), "N/m³")?,
-                },
-                "softening" => Law::Softening {
-                    d_ref: cx.positive(format!("{lk}.d_ref"), l.d_ref, "m")?,
-                },
-                "friction" => Law::Friction {
-                    f_c: cx.non_negative(format!("{lk}.f_c"), l.f_c.unwrap_or(f64::NAN), "N")?,
-                    v_ref: cx.positive(format!("{lk}.v_ref"), l.v_ref, "m/s")?,
-                },
-                "end-stop" => Law::EndStop {
-                    gap: cx.positive(format!("{lk}.gap"), l.gap, "m")?,
-                    k_stop: cx.positive(format!("{lk}.k_stop"), l.k_stop, "N/m")?,
-                },
-                other => {
-                    return Err(cx.err(
-                        format!("{lk}.type"),
-                        format!(
-                            "unknown law `{other}`; expected cubic, softening, friction or end-stop"
-                        ),
-                    ));
-                }
-            })
+            Some(law(cx, &format!("{key}.law"), l)?)
         }
     };
     Ok(Link {
@@ -128,6 +98,57 @@ pub(super) fn link(cx: &Checker<'_>, i: usize, ls: &LinkSpec, masses: &[Mass]) -
         b,
         element,
         law,
-        role: cx.role(format!("{key}.role"), &ls.role, true)?,
+        role: cx.role(format!("{key}.role"), &ls.role)?,
     })
+}
+
+/// The nonlinear law of `[link.law]` (its key `lk` names it in errors): a word of the law
+/// vocabulary ([`crate::system::law_params::LAWS`]) and exactly that law's parameters, each in its
+/// range.
+fn law(cx: &Checker<'_>, lk: &str, l: &LawSpec) -> Result<Law> {
+    let Some((_, params)) = LAWS.iter().find(|(w, _)| *w == l.kind) else {
+        return Err(cx.err(
+            format!("{lk}.type"),
+            format!("unknown law `{}`; expected one of {}", l.kind, Law::words()),
+        ));
+    };
+    let expected = || {
+        params
+            .iter()
+            .map(|p| format!("{} ({})", p.key, p.unit))
+            .collect::<Vec<_>>()
+            .join(", ")
+    };
+    if let Some(k) = l
+        .values
+        .keys()
+        .find(|k| !params.iter().any(|p| p.key == *k))
+    {
+        return Err(cx.err(
+            format!("{lk}.{k}"),
+            format!("unknown key for law `{}`; expected {}", l.kind, expected()),
+        ));
+    }
+    let mut values = Vec::with_capacity(params.len());
+    for p in *params {
+        let key = format!("{lk}.{}", p.key);
+        let v = l.values.get(p.key).copied().ok_or_else(|| {
+            cx.err(
+                key.clone(),
+                format!("missing; law `{}` takes {}", l.kind, expected()),
+            )
+        })?;
+        if !p.range.allows(v) {
+            return Err(cx.err(
+                key,
+                format!(
+                    "{v} is not allowed; expected a number {} in {}",
+                    p.range.words(),
+                    p.unit
+                ),
+            ));
+        }
+        values.push(v);
+    }
+    Ok(Law::from_values(&l.kind, &values).expect("a word of the vocabulary with its parameters"))
 }

@@ -24,6 +24,9 @@
 mod link;
 mod measure;
 mod spec;
+mod write;
+
+pub use write::write;
 
 use super::{Chain, Kind, Mass, Node, Role};
 use crate::error::{Error, Result};
@@ -78,22 +81,21 @@ impl Checker<'_> {
         }
     }
 
-    /// The role of a mass or link (`body` when not given); a link may also be a `backrest` (from
-    /// the body to the seat frame: its force is recorded as `f_back_z`).
-    fn role(&self, key: String, r: &Option<String>, link: bool) -> Result<Role> {
+    /// The role of a mass or link (`body` when not given): any [`Role`] word. A link of role
+    /// `backrest` runs from the body to the seat frame and its force is recorded as `f_back_z`; a
+    /// support path's parts are `footrest` (feet, legs, a lap belt) and `handle` (a wheel or grip).
+    fn role(&self, key: String, r: &Option<String>) -> Result<Role> {
         match r.as_deref() {
-            None | Some("body") => Ok(Role::Body),
-            Some("cushion") => Ok(Role::Cushion),
-            Some("suspension") => Ok(Role::Suspension),
-            Some("frame") => Ok(Role::Frame),
-            Some("backrest") if link => Ok(Role::Backrest),
-            Some(other) => Err(self.err(
-                key,
-                format!(
-                    "unknown role `{other}`; expected body, cushion, suspension or frame{}",
-                    if link { " (or backrest)" } else { "" }
-                ),
-            )),
+            None => Ok(Role::Body),
+            Some(word) => Role::parse(word).ok_or_else(|| {
+                self.err(
+                    key,
+                    format!(
+                        "unknown role `{word}`; expected body, cushion, suspension, frame, \
+                         backrest, footrest or handle"
+                    ),
+                )
+            }),
         }
     }
 
@@ -188,7 +190,7 @@ pub fn parse(text: &str, file: &str, resolve: &dyn Fn(&str) -> Result<Chain>) ->
         masses.push(Mass {
             name: ms.name.clone(),
             m: cx.positive(format!("{key}.m"), Some(ms.m), "kg")?,
-            role: cx.role(format!("{key}.role"), &ms.role, false)?,
+            role: cx.role(format!("{key}.role"), &ms.role)?,
         });
     }
 

@@ -17,6 +17,12 @@ pub(super) struct FileSpec {
     #[serde(rename = "link", default)]
     pub(super) links: Vec<LinkSpec>,
     pub(super) measure: Option<MeasureSpec>,
+    /// Where the model came from (written by `wbv gap --write-model`: runs, verdict, standard
+    /// errors, corrections of the measurement): information for the reader, never read into the
+    /// model.
+    #[serde(default)]
+    #[allow(dead_code)]
+    pub(super) provenance: Option<toml::Table>,
 }
 
 #[derive(Debug, Deserialize)]
@@ -46,17 +52,14 @@ pub(super) struct LinkSpec {
     pub(super) law: Option<LawSpec>,
 }
 
+/// `[link.law]`: its `type` and the law's parameters by key (checked against the law's
+/// vocabulary, [`crate::system::law_params`], so an unknown key is refused by name).
 #[derive(Debug, Deserialize)]
-#[serde(deny_unknown_fields)]
 pub(super) struct LawSpec {
     #[serde(rename = "type")]
     pub(super) kind: String,
-    pub(super) k3: Option<f64>,
-    pub(super) d_ref: Option<f64>,
-    pub(super) f_c: Option<f64>,
-    pub(super) v_ref: Option<f64>,
-    pub(super) gap: Option<f64>,
-    pub(super) k_stop: Option<f64>,
+    #[serde(flatten)]
+    pub(super) values: std::collections::BTreeMap<String, f64>,
 }
 
 #[derive(Debug, Deserialize)]

@@ -458,6 +458,7 @@ fn located_at(site: Site) -> Distortion {
         paths: Vec::new(),
         site: Some(site),
         phase_stays: None,
+        site_in_model: false,
     }
 }
 
@@ -532,6 +533,15 @@ fn pair_leaving(first: &str, added: &str, chi2: f64) -> crate::diagnosis::select
         first: c(first),
         added: vec![c(added)],
         entry,
+        // The rules read the entry only; the fit is the corrected model's.
+        fit: crate::numeric::lm::Fit {
+            u: Vec::new(),
+            cost: 0.0,
+            sigma_u: Vec::new(),
+            covariance: None,
+            scale: 1.0,
+            evaluations: 0,
+        },
     }
 }
 
