@@ -452,7 +452,7 @@ fn weighting_filter(dt: f64) -> Result<WeightingFilter> {
     WeightingFilter::new(Weighting::Wk, 1.0 / dt).map_err(|e| {
         Error::parameter(
             "--dt",
-            format!("{dt} s: the running ISO 2631-1 outputs need it: {e}"),
+            format!("{dt} s is too coarse for the running ISO 2631-1 outputs ({e})"),
         )
     })
 }
