@@ -556,7 +556,7 @@ pub unsafe extern "C" fn fmi2GetDirectionalDerivative(
 ) -> Status {
     with(c, "fmi2GetDirectionalDerivative", |_| {
         Err(wbv::Error::parameter(
-            "fmi2GetDirectionalDerivative",
+            "directional derivatives",
             "not provided by this FMU (providesDirectionalDerivative=false)",
         ))
     })
@@ -573,7 +573,7 @@ pub unsafe extern "C" fn fmi2SetRealInputDerivatives(
 ) -> Status {
     with(c, "fmi2SetRealInputDerivatives", |_| {
         Err(wbv::Error::parameter(
-            "fmi2SetRealInputDerivatives",
+            "input derivatives",
             "not provided by this FMU (canInterpolateInputs=false)",
         ))
     })
@@ -590,7 +590,7 @@ pub unsafe extern "C" fn fmi2GetRealOutputDerivatives(
 ) -> Status {
     with(c, "fmi2GetRealOutputDerivatives", |_| {
         Err(wbv::Error::parameter(
-            "fmi2GetRealOutputDerivatives",
+            "output derivatives",
             "not provided by this FMU (maxOutputDerivativeOrder=0)",
         ))
     })
@@ -614,7 +614,7 @@ pub unsafe extern "C" fn fmi2DoStep(
 pub unsafe extern "C" fn fmi2CancelStep(c: *mut c_void) -> Status {
     with(c, "fmi2CancelStep", |_| {
         Err(wbv::Error::parameter(
-            "fmi2CancelStep",
+            "cancel",
             "steps are synchronous; there is no step to cancel",
         ))
     })
