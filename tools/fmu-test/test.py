@@ -126,7 +126,9 @@ EXTRACTED = {}
 def slave(fmu, logged=None, params=()):
     """An initialised instance; every instance of one FMU loads the same extracted library."""
     md = read_model_description(str(fmu))
-    unzipped = EXTRACTED.setdefault(str(fmu), extract(str(fmu)))
+    if str(fmu) not in EXTRACTED:
+        EXTRACTED[str(fmu)] = extract(str(fmu), unzipdir=str(WORK / f"x{len(EXTRACTED)}"))
+    unzipped = EXTRACTED[str(fmu)]
     s = FMU2Slave(guid=md.guid, unzipDirectory=unzipped,
                   modelIdentifier=md.coSimulation.modelIdentifier, instanceName="seat")
     s.instantiate(callbacks=logged.callbacks if logged else None)
@@ -236,6 +238,13 @@ other.freeFMUstate(restored)
 other.terminate()
 other.freeInstance()
 s.terminate()
+s.reset()
+s.setupExperiment(startTime=0.0)
+s.enterInitializationMode()
+s.exitInitializationMode()
+run_from(s, 0.0, 0, 200)
+check(np.array_equal(first, run_from(s, t, 200)), "reset: terminate, reset, initialise, the same run again bit for bit")
+s.terminate()
 s.freeInstance()
 
 # 5. Faults through the low-level API.
@@ -272,7 +281,7 @@ s.terminate()
 s.freeInstance()
 logged2 = Logged()
 md = read_model_description(str(fmu))
-s2 = FMU2Slave(guid=md.guid, unzipDirectory=extract(str(fmu)),
+s2 = FMU2Slave(guid=md.guid, unzipDirectory=EXTRACTED[str(fmu)],
                modelIdentifier=md.coSimulation.modelIdentifier, instanceName="bad-param")
 s2.instantiate(callbacks=logged2.callbacks)
 s2.setupExperiment(startTime=0.0)
