@@ -10,6 +10,7 @@ pub mod analysis;
 pub mod diagnosis;
 pub mod error;
 pub mod excitation;
+pub mod fmu;
 pub mod gap_bench;
 pub mod integrator;
 pub mod io;

@@ -307,6 +307,11 @@ fn every_subcommand_prints_one_json_document() {
             &["written", "samples", "sample_rate_hz"],
         ),
         (
+            "fmu",
+            args(&["fmu", "--out", "seat.fmu", "--json"]),
+            &["written", "guid", "variables", "parameters"],
+        ),
+        (
             "inspect",
             args(&["inspect", "run", "--json"]),
             &["topics", "provenance", "attachments", "duration_s"],

@@ -18,7 +18,7 @@ pub enum Averaging {
 /// Sums of a signal fed in blocks: count, Σa², Σa⁴ and max |a|, from which r.m.s., VDV, MSDV, peak
 /// and crest factor follow. Accumulated in sample order, so any split of the signal gives the same
 /// figures bit for bit.
-#[derive(Debug, Clone, Copy, Default, PartialEq)]
+#[derive(Debug, Clone, Copy, Default, PartialEq, Serialize, Deserialize)]
 pub struct Moments {
     /// Number of samples fed.
     pub count: usize,
@@ -78,7 +78,7 @@ impl Moments {
 
 /// The running r.m.s. of ISO 2631-1 6.3.1 fed in blocks, tracking its maximum (the MTVV). The
 /// linear window keeps the last τ·fs samples, so memory does not grow with the duration.
-#[derive(Debug, Clone)]
+#[derive(Debug, Clone, Serialize, Deserialize)]
 pub struct RunningRms {
     averaging: Averaging,
     /// Linear: window length in samples; the window's samples (ring) and their running Σa².

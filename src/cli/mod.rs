@@ -6,6 +6,7 @@ mod calibrate;
 mod excitations;
 mod export;
 mod exposure;
+mod fmu;
 mod foam;
 mod frf;
 mod gap;
@@ -60,6 +61,8 @@ enum Command {
     StateSpace(export::StateSpaceArgs),
     /// A weighting's digital filter as second-order sections (scipy `sos` layout) as JSON.
     Weighting(export::WeightingArgs),
+    /// An FMI 2.0 Co-Simulation FMU of a model, for vehicle simulations (docs/fmu.md).
+    Fmu(fmu::Args),
     /// List the built-in base excitations.
     Excitations(excitations::ListArgs),
     /// Write a base excitation as a measured-run CSV (t_s, a_base_z) to inspect it.
@@ -368,6 +371,7 @@ pub fn main() -> ExitCode {
         Command::Excitations(a) => excitations::list(a),
         Command::StateSpace(a) => export::state_space(a),
         Command::Weighting(a) => export::weighting(a),
+        Command::Fmu(a) => fmu::run(a),
         Command::ExcitationExport(a) => excitations::export(a),
         Command::Inspect(a) => inspect::run(a),
         Command::Sweep(a) => sweep::run(a),

@@ -78,7 +78,7 @@ impl Method {
 
 /// The state of a model: base-relative displacements `x` (m), velocities `v` (m/s), accelerations
 /// `a` (m/s²), arm forces `q` (N) and their rates `qdot` (N/s).
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct State {
     /// Displacements relative to the base, m.
     pub x: Vec<f64>,

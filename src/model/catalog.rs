@@ -240,6 +240,15 @@ impl Model {
         }
     }
 
+    /// The SI unit of parameter `path` ([`chain::params::unit`], [`planar::params::unit`]);
+    /// `None` for a path this kind of model does not have.
+    pub fn param_unit(&self, path: &str) -> Option<&'static str> {
+        match &self.definition {
+            Definition::Chain(_) => chain::params::unit(path),
+            Definition::Planar(_) => planar::params::unit(path),
+        }
+    }
+
     /// The value of parameter `path` (SI units).
     pub fn get(&self, path: &str) -> Result<f64> {
         match &self.definition {
@@ -378,6 +387,52 @@ pub fn resolve(spec: &str) -> Result<Model> {
                 .join(", ")
         ),
     ))
+}
+
+/// The model files a model argument is made of, `(name, TOML text)` each: one for a built-in name
+/// or a file, one per component for a stack (`a+b`). [`from_parts`] builds the same model from
+/// them without the catalogue or the files (an FMU carries them as resources).
+pub fn parts(spec: &str) -> Result<Vec<(String, String)>> {
+    resolve(spec)?;
+    let file = |part: &str| -> Result<(String, String)> {
+        if let Some((name, text)) = BUILTIN.iter().find(|(n, _)| *n == part) {
+            return Ok((name.to_string(), text.to_string()));
+        }
+        let path = Path::new(part);
+        let text = std::fs::read_to_string(path).map_err(|e| Error::io(path, e))?;
+        Ok((part.to_string(), text))
+    };
+    if spec.contains('+') && builtin(spec).is_none() && !Path::new(spec).exists() {
+        spec.split('+').map(file).collect()
+    } else {
+        Ok(vec![file(spec)?])
+    }
+}
+
+/// The model of `parts` ([`parts`]): one model file, or the stack of several chain files, named
+/// `name`.
+pub fn from_parts(name: &str, parts: &[(String, String)]) -> Result<Model> {
+    let mut model = match parts {
+        [] => return Err(Error::parameter("--model", "no model file")),
+        [(part, text)] => parse(text, part)?,
+        _ => {
+            let chains = parts
+                .iter()
+                .map(|(part, text)| match parse(text, part)?.definition {
+                    Definition::Chain(c) => Ok(*c),
+                    Definition::Planar(_) => Err(Error::parameter(
+                        "--model",
+                        format!("`{part}` is a planar model and cannot be stacked"),
+                    )),
+                })
+                .collect::<Result<Vec<_>>>()?;
+            chain::stack::stack(&chains)
+                .map(Model::from_chain)
+                .map_err(|e| Error::parameter("--model", e))?
+        }
+    };
+    model.name = name.to_string();
+    Ok(model)
 }
 
 /// Resolves a model argument that must be a chain (a stack component).

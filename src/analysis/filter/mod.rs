@@ -23,7 +23,7 @@ pub use oversample::{Interpolator, MIN_ANALYSIS_RATE_HZ, oversampling};
 pub use settle::{FIT_S, WeightingChain, predict_past};
 
 /// One digital second-order section H(z) = (b0 + b1 z⁻¹ + b2 z⁻²)/(1 + a1 z⁻¹ + a2 z⁻²).
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct Biquad {
     /// Numerator coefficients b0, b1, b2.
     pub b: [f64; 3],
@@ -253,7 +253,7 @@ impl WeightingFilter {
 
 /// A [`WeightingFilter`] that keeps its state between blocks: weighting a signal in any split
 /// gives the same samples, bit for bit, as weighting it whole.
-#[derive(Debug, Clone)]
+#[derive(Debug, Clone, serde::Serialize, serde::Deserialize)]
 pub struct FilterStream {
     sections: Vec<Biquad>,
     state: Vec<[f64; 2]>,

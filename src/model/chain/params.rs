@@ -140,3 +140,21 @@ impl Chain {
         set(self, path, value)
     }
 }
+
+/// The SI unit of parameter `path` of a chain (`kg`, `N/m`, `N·s/m`, `N/m³`, `N/m^1.5`, `m`,
+/// `m/s`, `N`, `1`), from its last part; `None` for a path no chain has.
+pub fn unit(path: &str) -> Option<&'static str> {
+    let field = path.rsplit('.').next()?;
+    Some(match (path.split('.').next()?, field) {
+        ("mass", "m") => "kg",
+        ("link", "k" | "k_m" | "k_stop") => "N/m",
+        ("link", "c" | "c_m") => "N·s/m",
+        ("link", "k3") => "N/m³",
+        ("link", "k_h") => "N/m^1.5",
+        ("link", "d_ref" | "gap" | "d_e" | "travel" | "d0" | "d_knee") => "m",
+        ("link", "v_ref") => "m/s",
+        ("link", "f_c") => "N",
+        ("link", "ratio") => "1",
+        _ => return None,
+    })
+}

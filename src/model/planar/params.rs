@@ -187,3 +187,24 @@ fn set_slot(spec: &mut Spec, path: &str, value: f64) -> Result<()> {
     *slot(spec, path)? = value;
     Ok(())
 }
+
+/// The SI unit of parameter `path` of a planar model (`kg`, `kg·m²`, `N·m/rad`, `N·m·s/rad`,
+/// `N/m`, `N·s/m`, `m`, `m²`, `Hz`, `Pa`, `1`); `None` for a path no planar model has.
+pub fn unit(path: &str) -> Option<&'static str> {
+    let field = path.rsplit('.').next()?;
+    Some(match (path.split('.').next()?, field) {
+        ("segment", "m") => "kg",
+        ("segment", "inertia") => "kg·m²",
+        ("joint", "k") => "N·m/rad",
+        ("joint", "c") => "N·m·s/rad",
+        ("contact", "k_n" | "k_t") => "N/m",
+        ("contact", "c_n" | "c_t") => "N·s/m",
+        ("contact", "cushion_share") => "1",
+        ("contact", "tissue_thickness") | ("cushion", "thickness") => "m",
+        ("cushion", "area") => "m²",
+        ("cushion", "loss_factor" | "tissue_loss_factor") => "1",
+        ("cushion", "f_ref") => "Hz",
+        ("cushion", "tissue_mu") => "Pa",
+        _ => return None,
+    })
+}
