@@ -6,11 +6,14 @@ use std::path::Path;
 /// Errors of the wbv library. `Display` gives one line suitable for a terminal.
 #[derive(Debug, thiserror::Error)]
 pub enum Error {
-    /// A model definition (TOML) is invalid: `file`, the dotted `key` and what was expected.
-    #[error("{file}: {key}: {message}")]
+    /// A model definition (TOML) is invalid: `file`, the line where it is known, the dotted `key`
+    /// and what was expected.
+    #[error("{file}{}: {key}: {message}", line.map(|l| format!(":{l}")).unwrap_or_default())]
     Model {
         /// The model file as given.
         file: String,
+        /// The line (1-based) of the key at fault, where it is known.
+        line: Option<usize>,
         /// The dotted TOML key at fault, e.g. `seat.stiffness`.
         key: String,
         /// What was expected.

@@ -357,9 +357,14 @@ pub fn builtin(name: &str) -> Option<Result<Model>> {
         .map(|(n, text)| parse(text, &format!("models/{n}.toml (built-in)")))
 }
 
-/// Resolves a model argument: a built-in name, a path to a TOML file, or components joined by `+`
-/// (an occupant followed by seat components, e.g. `wan-schimmels-4dof+cushion-zener`).
+/// Resolves a model argument: a built-in name, a path to a TOML file, components joined by `+`
+/// (an occupant followed by seat components, e.g. `wan-schimmels-4dof+cushion-zener`), or a
+/// model file's text itself (it has a line break; the Python binding passes the `model` of
+/// `wbv.gap(...)` this way).
 pub fn resolve(spec: &str) -> Result<Model> {
+    if spec.contains('\n') {
+        return parse(spec, "model (TOML text)");
+    }
     if spec.contains('+') && builtin(spec).is_none() && !Path::new(spec).exists() {
         let parts = spec
             .split('+')

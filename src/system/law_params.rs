@@ -12,6 +12,8 @@ pub enum Range {
     Positive,
     /// A finite number ≥ 0.
     NonNegative,
+    /// A finite number ≥ 1 (an exponent of a stiffening power law).
+    AtLeastOne,
 }
 
 impl Range {
@@ -21,6 +23,7 @@ impl Range {
             && match self {
                 Range::Positive => v > 0.0,
                 Range::NonNegative => v >= 0.0,
+                Range::AtLeastOne => v >= 1.0,
             }
     }
 
@@ -29,6 +32,7 @@ impl Range {
         match self {
             Range::Positive => "> 0",
             Range::NonNegative => "≥ 0",
+            Range::AtLeastOne => "≥ 1",
         }
     }
 }
@@ -48,7 +52,7 @@ const fn p(key: &'static str, unit: &'static str, range: Range) -> LawParam {
     LawParam { key, unit, range }
 }
 
-use Range::{NonNegative, Positive};
+use Range::{AtLeastOne, NonNegative, Positive};
 
 /// Every law's model-file word and parameters, in [`Law`]'s order: the table [`Law::word`],
 /// [`Law::params`], [`Law::values`] and [`Law::from_values`] read.
@@ -80,6 +84,10 @@ pub const LAWS: &[(&str, &[LawParam])] = &[
     ("lift-off", &[p("travel", "m", Positive)]),
     ("hertz-pad", &[p("travel", "m", Positive)]),
     ("preload-exp", &[p("d_e", "m", Positive)]),
+    (
+        "power-foam",
+        &[p("sag", "m", Positive), p("n", "1", AtLeastOne)],
+    ),
 ];
 
 impl Law {
@@ -98,6 +106,7 @@ impl Law {
             Law::LiftOff { .. } => 9,
             Law::HertzPad { .. } => 10,
             Law::PreloadExp { .. } => 11,
+            Law::PowerFoam { .. } => 12,
         }
     }
 
@@ -123,6 +132,7 @@ impl Law {
             Law::HertzStop { gap, k_h } => vec![gap, k_h],
             Law::LiftOff { travel } | Law::HertzPad { travel } => vec![travel],
             Law::PreloadExp { d_e } => vec![d_e],
+            Law::PowerFoam { sag, n } => vec![sag, n],
         }
     }
 
@@ -168,6 +178,10 @@ impl Law {
             "lift-off" => Law::LiftOff { travel: at(0) },
             "hertz-pad" => Law::HertzPad { travel: at(0) },
             "preload-exp" => Law::PreloadExp { d_e: at(0) },
+            "power-foam" => Law::PowerFoam {
+                sag: at(0),
+                n: at(1),
+            },
             _ => return None,
         })
     }
@@ -212,6 +226,7 @@ mod tests {
             Law::LiftOff { travel: 0.002 },
             Law::HertzPad { travel: 0.003 },
             Law::PreloadExp { d_e: 0.02 },
+            Law::PowerFoam { sag: 0.01, n: 2.5 },
         ]
     }
 

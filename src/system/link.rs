@@ -200,6 +200,19 @@ pub enum Law {
         /// Characteristic compression of the exponential foam law, m (Deng, Davies & Bajaj 2003 [W13]).
         d_e: f64,
     },
+    /// A preloaded foam whose force is a power of its total compression, F = F₀·(D/D₀)ⁿ, about its
+    /// static sag D₀ (m), with F₀ = k·D₀/n so that it is tangent to `k` at rest: the deviation
+    /// `f = min(F₀·[1 − (1 − d/D₀)ⁿ] + c·v, F₀)`: tangent `k·(1 − d/D₀)^(n−1)` and damping `c`
+    /// while the foam pushes on the occupant, and no force at all once it would pull (risen past
+    /// the sag, or leaving it faster than it relaxes: the preload F₀ used up). For n > 1 it is stiffer in compression and softer in extension,
+    /// the asymmetry of a foam loaded by the body's weight (the power law of a flexible foam's
+    /// densifying compression, Gibson & Ashby, *Cellular Solids*, 2nd ed. 1997, §5.3).
+    PowerFoam {
+        /// Static compression of the foam under the occupant, m.
+        sag: f64,
+        /// Exponent of the force's power law in the compression (≥ 1; 1 is linear up to lift-off).
+        n: f64,
+    },
 }
 
 impl Law {
@@ -276,6 +289,19 @@ impl Law {
                 // Capped argument as for `Exponential` (compression is d < 0).
                 let e = (-d / d_e).clamp(-60.0, 60.0).exp();
                 (k * d_e * (1.0 - e) + c * v, k * e, c)
+            }
+            Law::PowerFoam { sag, n } => {
+                // The foam pushes while its force F₀·restⁿ − c·v is positive: the deviation is
+                // the smaller of its contact law and F₀ (as `LiftOff`'s), continuous at lift-off.
+                let f0 = k * sag / n;
+                let rest = (1.0 - d / sag).max(0.0);
+                let tangent = k * rest.powf(n - 1.0);
+                let f = f0 * (1.0 - rest * tangent / k) + c * v;
+                if f < f0 {
+                    (f, tangent, c)
+                } else {
+                    (f0, 0.0, 0.0)
+                }
             }
             Law::Bilinear { d_knee, ratio } => {
                 if d.abs() <= d_knee {

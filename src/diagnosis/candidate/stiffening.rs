@@ -6,7 +6,12 @@ use super::*;
 use crate::system::Law;
 
 /// The family's candidates, in report order.
-pub static DEFINITIONS: &[Candidate] = &[&CUSHION_STIFFENING, &CUSHION_CONTACT, &CUSHION_BOTTOMING];
+pub static DEFINITIONS: &[Candidate] = &[
+    &CUSHION_STIFFENING,
+    &CUSHION_CONTACT,
+    &CUSHION_BOTTOMING,
+    &CUSHION_POWER_FOAM,
+];
 
 /// A nonlinearity between base and seat whose distortion grows with magnitude.
 const SUPPORT_NONLINEAR: Magnitude = Magnitude::Dependent {
@@ -89,6 +94,36 @@ pub static CUSHION_BOTTOMING: Definition = Definition {
     ..Definition::COMMON
 };
 
+/// A preloaded foam whose force is a power of its total compression (`Law::PowerFoam`): stiffer
+/// in compression and softer in extension about the static sag, and off once the occupant rises
+/// past it. A foam loaded by the body's weight is asymmetric this way (a symmetric law, cubic or
+/// contact, stiffens on both sides); at the magnitudes where the pad nearly unloads its equivalent
+/// stiffness falls again, which no stiffening-only law can follow. One sag and exponent for every
+/// cushion link (they share the seat's deflection).
+pub static CUSHION_POWER_FOAM: Definition = Definition {
+    id: "cushion-power-foam",
+    family: Family::CushionStiffening,
+    // The sag from 0.5 mm to 10 cm (a seat foam sags 5–40 mm under a seated body); the exponent
+    // from linear (1) to a densifying foam's 6.
+    params: || {
+        vec![
+            Param::new("sag_m", 5e-4, 0.1, &[0.004, 0.02], true),
+            Param::new("n", 1.0, 6.0, &[2.0], false),
+        ]
+    },
+    applies_to: |s| !cushion_links(s).is_empty(),
+    apply: |v, p| {
+        let s = &mut v.system;
+        for i in cushion_or_err(CUSHION_POWER_FOAM.id, s)? {
+            s.links[i].law = Some(Law::PowerFoam { sag: p[0], n: p[1] });
+        }
+        Ok(())
+    },
+    magnitude: SUPPORT_NONLINEAR,
+    looks: &[Look::GrowsWithMagnitude, Look::SeatPathOnly],
+    ..Definition::COMMON
+};
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -112,5 +147,34 @@ mod tests {
         }
         assert_eq!(CUSHION_BOTTOMING.family, Family::CushionStiffening);
         assert!(CUSHION_BOTTOMING.amplitude_dependent());
+    }
+
+    #[test]
+    fn a_power_foam_is_tangent_at_rest_stiffer_in_compression_and_off_past_its_sag() {
+        let (k, c, sag, n) = (80e3, 500.0, 0.01, 3.0);
+        let law = Law::PowerFoam { sag, n };
+        // Closed form of F₀·[1 − (1 − d/D₀)ⁿ], F₀ = k·D₀/n.
+        let f = |d: f64| k * sag / n * (1.0 - (1.0 - d / sag).powf(n));
+        for d in [-0.02, -0.005, 0.0, 0.004, 0.009] {
+            let (got, kd, cv) = law.force(k, c, d, 0.1);
+            assert!((got - (f(d) + c * 0.1)).abs() < 1e-9 * k * sag, "{d}");
+            assert!((kd - k * (1.0 - d / sag).powf(n - 1.0)).abs() < 1e-9 * k);
+            assert_eq!(cv, c);
+        }
+        assert_eq!(law.tangent_at_rest(k, c), (k, c));
+        assert!(law.force(k, c, -0.005, 0.0).1 > k && law.force(k, c, 0.005, 0.0).1 < k);
+        assert_eq!(law.force(k, c, 0.012, 0.3), (k * sag / n, 0.0, 0.0));
+        // Continuous where it lets go: leaving fast enough unloads it before the sag.
+        let v_off = (k * sag / n - f(0.009)) / c;
+        assert_eq!(
+            law.force(k, c, 0.009, v_off * 1.01),
+            (k * sag / n, 0.0, 0.0)
+        );
+        assert!((law.force(k, c, 0.009, v_off * 0.99).0 - k * sag / n).abs() < 0.02 * k * sag / n);
+        let s = catalog::resolve("reference").unwrap().system().clone();
+        let v = CUSHION_POWER_FOAM.apply(&s, &[sag, n]).unwrap();
+        for i in cushion_links(&s) {
+            assert_eq!(v.system.links[i].law, Some(law));
+        }
     }
 }

@@ -93,6 +93,7 @@ struct MeasureSpec {
 pub fn parse(text: &str, file: &str) -> Result<(Planar, (String, String, String))> {
     let (spec, head) = parse_spec(text, file)?;
     let planar = Planar::build(spec).map_err(|e| Error::Model {
+        line: None,
         file: file.to_string(),
         key: "(equilibrium)".into(),
         message: e.to_string(),
@@ -150,6 +151,7 @@ impl Check<'_> {
     /// The error of the value at `key`.
     fn err(&self, key: String, message: String) -> Error {
         Error::Model {
+            line: None,
             file: self.file.to_string(),
             key,
             message,

@@ -40,15 +40,17 @@ pub fn damping_from_ratio(zeta: f64, k: f64, m_ref: f64) -> f64 {
     2.0 * zeta * (k * m_ref).sqrt()
 }
 
-/// Errors of one model file (naming the file and the key) and the checks of its values.
+/// Errors of one model file (naming the file, the line and the key) and the checks of its values.
 struct Checker<'a> {
     file: &'a str,
+    text: &'a str,
 }
 
 impl Checker<'_> {
     fn err(&self, key: String, message: String) -> Error {
         Error::Model {
             file: self.file.to_string(),
+            line: line_of(self.text, &key),
             key,
             message,
         }
@@ -117,10 +119,44 @@ impl Checker<'_> {
     }
 }
 
+/// The line (1-based) of the dotted `key` of an error in `text`: segments `name`, or
+/// `name[i] (label)` for the i-th entry of an array of tables (`link[4] (cushion).law.n`); the
+/// deepest segment found names the line (a missing key, its table's). `None` where the text does
+/// not parse or the key's first segment is not a key of the file (`line 3`, `(file)`).
+fn line_of(text: &str, key: &str) -> Option<usize> {
+    use toml::de::{DeTable, DeValue};
+    let root = DeTable::parse(text).ok()?;
+    let mut table = root.get_ref();
+    let mut at = None;
+    for seg in key.split('.') {
+        let (name, index) = match seg.split_once('[') {
+            Some((n, rest)) => (n, rest.split(']').next()?.parse::<usize>().ok()),
+            None => (seg, None),
+        };
+        let Some(value) = table.get(name) else { break };
+        at = Some(value.span().start);
+        let value = match (value.get_ref(), index) {
+            (DeValue::Array(a), Some(i)) => match a.get(i) {
+                Some(v) => {
+                    at = Some(v.span().start);
+                    v.get_ref()
+                }
+                None => break,
+            },
+            (v, _) => v,
+        };
+        match value {
+            DeValue::Table(t) => table = t,
+            _ => break,
+        }
+    }
+    at.map(|start| text[..start.min(text.len())].matches('\n').count() + 1)
+}
+
 /// Parses and validates chain-model TOML `text`; `file` names it in errors; `stack` entries are
 /// resolved by `resolve` (the catalog's, for built-in names and files).
 pub fn parse(text: &str, file: &str, resolve: &dyn Fn(&str) -> Result<Chain>) -> Result<Chain> {
-    let cx = Checker { file };
+    let cx = Checker { file, text };
     let spec: FileSpec = toml::from_str(text).map_err(|e| {
         let line = e
             .span()
@@ -261,7 +297,7 @@ interface = ["lower"]
     fn errors_name_file_key_and_expectation() {
         let e = bad("m = 2.0", "m = -2.0");
         assert!(
-            e.starts_with("bad.toml: mass[0] (top).m:") && e.contains("positive"),
+            e.starts_with("bad.toml:6: mass[0] (top).m:") && e.contains("positive"),
             "{e}"
         );
         let e = bad("m = 3.0", "m = 0.0");
@@ -282,5 +318,48 @@ interface = ["lower"]
         assert!(e.starts_with("bad.toml: line") && e.contains("kk"), "{e}");
         let e = bad("reference_mass = 5.0", "");
         assert!(e.contains("reference_mass"), "{e}");
+    }
+
+    #[test]
+    fn a_law_out_of_its_range_or_unknown_names_the_line_and_the_range() {
+        let with_law = |law: &str| GOOD.replacen("c = 10.0\n", &format!("c = 10.0\n{law}\n"), 1);
+        let err = |law: &str| {
+            parse(
+                &with_law(law),
+                "law.toml",
+                &crate::model::catalog::resolve_chain,
+            )
+            .unwrap_err()
+            .to_string()
+        };
+        let e = err("[link.law]\ntype = \"power-foam\"\nsag = 0.01\nn = 0.5");
+        assert!(
+            e.starts_with("law.toml:19: link[0] (upper).law.n:") && e.contains("≥ 1"),
+            "{e}"
+        );
+        let e = err("[link.law]\ntype = \"quartic\"\nk4 = 1.0");
+        assert!(
+            e.starts_with("law.toml:17: link[0] (upper).law.type:")
+                && e.contains("unknown law `quartic`")
+                && e.contains("power-foam"),
+            "{e}"
+        );
+        let e = err("[link.law]\ntype = \"cubic\"\nk4 = 1.0");
+        assert!(
+            e.contains("law.k4") && e.contains("expected k3 (N/m³)"),
+            "{e}"
+        );
+        let e = err("[link.law]\ntype = \"end-stop\"\ngap = 0.01");
+        assert!(e.contains("law.k_stop") && e.contains("missing"), "{e}");
+        let ok = parse(
+            &with_law("[link.law]\ntype = \"lift-off\"\ntravel = 0.002"),
+            "ok.toml",
+            &crate::model::catalog::resolve_chain,
+        )
+        .unwrap();
+        assert_eq!(
+            ok.links[0].law,
+            Some(crate::system::Law::LiftOff { travel: 0.002 })
+        );
     }
 }
