@@ -193,7 +193,19 @@ def test_gap_on_arrays_equals_the_command_on_files(tmp_path, wbv_bin):
     assert got["verdict"] == doc["verdict"] and got["named"] == doc["named"]
     # Runs given as arrays are named by their place in the call, files by their path.
     assert [r["source"] for r in got["runs"]] == [str(tmp_path / "low.csv"), "runs[1]", "check"]
-    assert_same(doc, got, rel=1e-9, skip={"source"})
+    assert_same(doc, got, rel=1e-9, skip={"source", "model"})
+    # The corrected model (docs/gap.md §10): the command's file but for the runs' names, and a
+    # model text every call takes (`--write-model` writes the same bytes as the JSON's `model`).
+    named = ("source", "training_runs", "check_run")
+    same = lambda t: [l for l in t.splitlines() if not l.startswith(named)]
+    assert same(got["model"]) == same(doc["model"]) and "[provenance]" in got["model"]
+    written = cli_json(wbv_bin, "gap", "--model", "reference", "--run", tmp_path / "low.csv",
+                       "--run", tmp_path / "high.csv", "--check", tmp_path / "mid.csv",
+                       "--write-model", tmp_path / "corrected.toml")
+    assert (tmp_path / "corrected.toml").read_text() == written["model"]
+    by_text = wbv.simulate(got["model"], "random", 5, 3, rms=1.0)
+    by_file = wbv.simulate(str(tmp_path / "corrected.toml"), "random", 5, 3, rms=1.0)
+    assert np.array_equal(by_text.channels["a_seat_z"], by_file.channels["a_seat_z"])
 
 
 def test_seat_test_simulated_equals_the_command(wbv_bin):

@@ -2,7 +2,7 @@
 //! evidence it was made on, followed by the second effect, the check run's ISO figures and any
 //! calibration finding. Nothing here changes the decision or re-tests a threshold to word it.
 
-use super::outcome::{ChannelError, PartialEffect, Ranked, Stage};
+use super::outcome::{ChannelError, PartialEffect, Ranked, Rule, Stage};
 use super::score;
 use super::thresholds::{EXPLAINED_CHI2, MIN_CLOSED};
 use super::verdict::{
@@ -77,6 +77,7 @@ pub(super) fn sentence(d: &Decision, e: &Evidence) -> String {
             "a structural gap remains that {} explains only in part",
             best.id
         ),
+        Verdict::Unexplained if d.rule == Rule::DistortionSite => located_without_form(e),
         Verdict::Unexplained => match set_aside {
             Some(b) => format!(
                 "a structural gap remains (reduced χ² {d0:.2} after the re-fit); {} is detected (ΔBIC {:.1}) but closes only {:.0} % of it",
@@ -217,6 +218,39 @@ fn held_out(
             ""
         }
     ) + &tie_note
+}
+
+/// A nonlinearity the distortion places but no form at its site explains ([`Rule::DistortionSite`]
+/// with the verdict `unexplained`): where it is and how it grows, and the site's best.
+fn located_without_form(e: &Evidence) -> String {
+    let dist = e.distortion.as_ref().expect("located by the distortion");
+    let site = dist.site.expect("a located site");
+    let paths = dist
+        .paths
+        .iter()
+        .map(|p| format!("{} {:+.1} dB", p.path, p.rise_db))
+        .collect::<Vec<_>>()
+        .join(", ");
+    let best = e
+        .cands
+        .iter()
+        .filter(|r| r.id.candidate().is_some_and(|c| site.admits(c)))
+        .min_by(|a, b| a.delta_bic_all.total_cmp(&b.delta_bic_all))
+        .map_or(String::new(), |b| {
+            format!(
+                "; the best form there, {}, does not explain the runs (ΔBIC {:+.1} over all runs, {:+.1} on the check run, closes {:.0} % of its gap)",
+                b.id,
+                b.delta_bic_all,
+                b.delta_bic,
+                100.0 * b.fraction_closed
+            )
+        });
+    format!(
+        "a nonlinearity {} that no candidate's form explains: its distortion, the incoherent-to-coherent power ratio (1 − γ²)/γ², grows from the run at {:.2} to the one at {:.2} m/s² on {paths}, which no linear effect does{best}; the law there is not among the candidates (docs/gap.md §5)",
+        site.describe(),
+        dist.magnitudes.0,
+        dist.magnitudes.1,
+    )
 }
 
 /// Named on the distortion's evidence.

@@ -61,9 +61,15 @@ pub fn input_fixtures() -> Option<std::path::PathBuf> {
 /// `wbv gap --model reference … --json` on a case tools/blind-gap/gen.py wrote: its `cmd.json`
 /// arguments, the case's files given by their paths.
 pub fn gap_case(case: &std::path::Path) -> std::process::Output {
+    gap_case_with(case, "reference", &[])
+}
+
+/// `wbv gap --model MODEL … --json EXTRA…` on a case tools/blind-gap/gen.py wrote (see
+/// [`gap_case`]).
+pub fn gap_case_with(case: &std::path::Path, model: &str, extra: &[&str]) -> std::process::Output {
     let cmd: Vec<String> =
         serde_json::from_str(&std::fs::read_to_string(case.join("cmd.json")).unwrap()).unwrap();
-    let mut args: Vec<String> = vec!["gap".into(), "--model".into(), "reference".into()];
+    let mut args: Vec<String> = vec!["gap".into(), "--model".into(), model.into()];
     for a in cmd {
         let p = case.join(&a);
         args.push(if p.is_file() {
@@ -73,6 +79,7 @@ pub fn gap_case(case: &std::path::Path) -> std::process::Output {
         });
     }
     args.push("--json".into());
+    args.extend(extra.iter().map(|a| a.to_string()));
     let refs: Vec<&str> = args.iter().map(String::as_str).collect();
     wbv(&refs)
 }
