@@ -1142,6 +1142,16 @@ def make_case(case_dir, seed, index, override=None, model="reference"):
         form = "none" if family == "none" else (
             override.get("form") or str(np.random.default_rng([seed, index, 5]).choice(FAMILIES[family])))
     mags = [(0.25, 1.0, 0.5), (0.4, 1.6, 0.8)][int(rng.integers(2))]
+    if override and override.get("magnitudes"):
+        mags = tuple(override["magnitudes"])
+    elif override and override.get("extrapolate"):
+        # a check run at a magnitude the training runs do not bracket (its own stream, so every
+        # other draw stays the random case's): case i % 3 == 0 at 1.5-2x the high run, 1 at
+        # 0.5-0.7x the low run, 2 inside, about the training runs' geometric mean
+        xr = np.random.default_rng([seed, index, 31])
+        lo, hi = mags[0], mags[1]
+        mags = (lo, hi, [hi * xr.uniform(1.5, 2.0), lo * xr.uniform(0.5, 0.7),
+                         math.sqrt(lo * hi) * xr.uniform(0.8, 1.25)][index % 3])
     T = rng.uniform(60, 180)
     durs = [max(60.0, round(T * rng.uniform(0.97, 1.03), 2)) for _ in mags]
     spectrum = draw_spectrum(rng, fs) if model == "reference" else draw_spectrum_s1(rng, fs)
@@ -1364,6 +1374,11 @@ def main():
     ap.add_argument("--coarse-logger", metavar="CH=CODES",
                     help="channel CH recorded by a coarse converter whose step makes the first (quietest) "
                          "run span CODES codes (e.g. a_head_z=10: an 8-bit logger on a quiet run)")
+    ap.add_argument("--magnitudes", metavar="LOW,HIGH,CHECK",
+                    help="base r.m.s. of the two training runs and the check run, m/s^2")
+    ap.add_argument("--extrapolate", action="store_true",
+                    help="check runs outside the training magnitudes: a third at 1.5-2x the high run, "
+                         "a third at 0.5-0.7x the low run, a third inside")
     a = ap.parse_args()
     override = None
     if a.form:
@@ -1396,6 +1411,10 @@ def main():
         override = dict(override or {}, coarse=(ch, float(codes)))
     if a.backrest_force:
         override = dict(override or {}, backrest_force=True)
+    if a.magnitudes:
+        override = dict(override or {}, magnitudes=[float(x) for x in a.magnitudes.split(",")])
+    if a.extrapolate:
+        override = dict(override or {}, extrapolate=True)
     os.makedirs(a.outdir, exist_ok=True)
     for i in range(a.first, a.first + a.cases):
         d = os.path.join(a.outdir, "case-%03d" % i)

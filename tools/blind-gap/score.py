@@ -18,7 +18,7 @@ import time
 FAMILY = {
     "body-softening": "softening", "body-softening-magnitude": "softening",
     "cushion-stiffening": "stiffening", "cushion-contact": "stiffening",
-    "cushion-bottoming": "stiffening",
+    "cushion-bottoming": "stiffening", "cushion-power-foam": "stiffening",
     "cushion-viscoelastic": "viscoelastic",
     "sensor-delay": "sensor", "sensor-lowpass": "sensor", "sensor-gain": "sensor",
     "sensor-highpass": "sensor", "sensor-force": "sensor", "sensor-mount-force": "sensor",
@@ -26,7 +26,7 @@ FAMILY = {
     "sensor-lowpass-base": "sensor",
     "logger-offset": "sensor", "logger-drift": "sensor",
     "missing-dof": "missing-dof", "body-mode": "missing-dof", "frame-side-mode": "missing-dof",
-    "backrest": "support-path", "hands-support": "support-path", "feet-support": "support-path", "thigh-support": "support-path", "harness": "support-path", "lap-belt": "support-path", "head-restraint": "support-path", "cushion-fractional": "viscoelastic", "cushion-havriliak-negami": "viscoelastic",
+    "backrest": "support-path", "hands-support": "support-path", "feet-support": "support-path", "thigh-support": "support-path", "harness": "support-path", "lap-belt": "support-path", "head-restraint": "support-path", "feet-lift-off": "support-path", "cushion-fractional": "viscoelastic", "cushion-havriliak-negami": "viscoelastic",
     "suspension-friction": "suspension", "end-stop": "suspension",
     "none": "none", "unexplained": "unexplained", "not-identifiable": "not-identifiable",
 }
@@ -160,6 +160,35 @@ def frac(k, n):
     return "%d/%d (%.0f %%)" % (k, n, 100.0 * k / n) if n else "-"
 
 
+def confusion(judged):
+    """Planted family against named verdict (the first named effect, or none/unexplained/...), and
+    each named candidate's false naming: the share of the cases whose planted family is not the
+    candidate's in which it was named anyway."""
+    ok = [j for j in judged if j["verdict"] != "error"]
+    fams = sorted({j["truth_family"] for j in ok})
+    named = sorted({j["verdict"] for j in ok})
+    lines = ["Confusion: planted family (rows) against the named verdict (columns); last column each "
+             "verdict's false naming where its family was not planted:", ""]
+    lines.append("| planted \\ named | " + " | ".join(named) + " |")
+    lines.append("|---" * (len(named) + 1) + "|")
+    for f in fams:
+        row = [sum(1 for j in ok if j["truth_family"] == f and j["verdict"] == v) for v in named]
+        lines.append("| %s | " % f + " | ".join(str(x) if x else "" for x in row) + " |")
+    lines.append("")
+    lines.append("| named | family | named where not planted | rate |")
+    lines.append("|---|---|---|---|")
+    for v in named:
+        vf = fam(v)
+        if vf in ("none", "unexplained", "not-identifiable"):
+            continue
+        elsewhere = [j for j in ok if j["truth_family"] != vf]
+        wrong = sum(1 for j in elsewhere if j["verdict"] == v)
+        lines.append("| %s | %s | %d / %d | %.3f |" % (v, vf, wrong, len(elsewhere),
+                                                    wrong / len(elsewhere) if elsewhere else 0.0))
+    lines.append("")
+    return lines
+
+
 def markdown(rows, judged, seed):
     lines = []
     n = len(judged)
@@ -257,6 +286,7 @@ def markdown(rows, judged, seed):
         if j["warnings"]:
             lines.append("  - warnings: " + " | ".join(str(w) for w in j["warnings"]))
     lines.append("")
+    lines.extend(confusion(judged))
     lines.append("Per case (top 3 by check-run ΔBIC):")
     lines.append("")
     lines.append("| case | truth | detect % | spectrum | verdict | top 3 (ΔBIC) |")
