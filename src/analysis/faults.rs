@@ -212,9 +212,23 @@ fn neighbouring_codes(codes: &[f64], a: f64, b: f64) -> bool {
 pub fn rails(x: &[f64], spikes: &[Fault], long: &[Range<usize>]) -> Vec<(f64, usize)> {
     let in_spike = |i: usize| spikes.iter().any(|f| f.samples.contains(&i));
     let clean = || (0..x.len()).filter(move |&i| !in_spike(i)).map(|i| x[i]);
-    let (lo, hi) = clean().fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), v| {
-        (lo.min(v), hi.max(v))
-    });
+    // The extremes and how many samples equal each, in one pass.
+    let (lo, n_lo, hi, n_hi) = clean().fold(
+        (f64::INFINITY, 0usize, f64::NEG_INFINITY, 0usize),
+        |(lo, n_lo, hi, n_hi), v| {
+            let n_lo = if v < lo {
+                1
+            } else {
+                n_lo + usize::from(v == lo)
+            };
+            let n_hi = if v > hi {
+                1
+            } else {
+                n_hi + usize::from(v == hi)
+            };
+            (lo.min(v), n_lo, hi.max(v), n_hi)
+        },
+    );
     if lo >= hi {
         return Vec::new();
     }
@@ -237,7 +251,15 @@ pub fn rails(x: &[f64], spikes: &[Fault], long: &[Range<usize>]) -> Vec<(f64, us
     let at_edge = |v: f64| {
         edge.is_none_or(|(median, sigma)| (v - median).abs() >= CLIPPED_EDGE_SIGMAS * sigma)
     };
-    let count = |v: f64| clean().filter(|&y| y == v).count();
+    let count = |v: f64| {
+        if v == lo {
+            n_lo
+        } else if v == hi {
+            n_hi
+        } else {
+            clean().filter(|&y| y == v).count()
+        }
+    };
     // Separate stretches at `v`: samples at `v` whose predecessor is not.
     let visits = |v: f64| {
         (0..x.len())
@@ -259,11 +281,14 @@ pub fn rails(x: &[f64], spikes: &[Fault], long: &[Range<usize>]) -> Vec<(f64, us
         .chain(candidates.into_iter().filter(|&v| at_edge(v)))
         .filter_map(|v| {
             let n = count(v);
-            let piles_up = [below(v), above(v)]
-                .into_iter()
-                .flatten()
-                .all(|w| n as f64 > CLIPPED_PILE_UP * count(w) as f64);
-            (n >= CLIPPED_SAMPLES && piles_up && visits(v) >= CLIPPED_VISITS).then_some((v, n))
+            // The cheap tests first: most channels' extremes are one sample each.
+            let piles_up = || {
+                [below(v), above(v)]
+                    .into_iter()
+                    .flatten()
+                    .all(|w| n as f64 > CLIPPED_PILE_UP * count(w) as f64)
+            };
+            (n >= CLIPPED_SAMPLES && visits(v) >= CLIPPED_VISITS && piles_up()).then_some((v, n))
         })
         .collect()
 }
@@ -290,27 +315,48 @@ fn spikes(x: &[f64], fs: f64, held: &[Range<usize>]) -> Vec<Fault> {
     if n < 5 {
         return Vec::new();
     }
+    // The median of the neighbours: inside, of four on the stack (the two middle ones of the four
+    // sorted); at the ends, of the two or three that exist.
+    let edge = |i: usize| {
+        let mut nb: Vec<f64> = [i.wrapping_sub(2), i.wrapping_sub(1), i + 1, i + 2]
+            .into_iter()
+            .filter(|&j| j < n)
+            .map(|j| x[j])
+            .collect();
+        nb.sort_by(f64::total_cmp);
+        let m = nb.len();
+        let med = if m.is_multiple_of(2) {
+            0.5 * (nb[m / 2 - 1] + nb[m / 2])
+        } else {
+            nb[m / 2]
+        };
+        x[i] - med
+    };
+    // The two middle ones of four: the larger of the two pairs' minima and the smaller of their
+    // maxima (their sum does not depend on their order; a zero's sign may differ from a sort's,
+    // which no |d| sees).
+    let inside = |i: usize| {
+        let (a, b) = (x[i - 2].min(x[i - 1]), x[i - 2].max(x[i - 1]));
+        let (c, e) = (x[i + 1].min(x[i + 2]), x[i + 1].max(x[i + 2]));
+        x[i] - 0.5 * (a.max(c) + b.min(e))
+    };
     let d: Vec<f64> = (0..n)
         .map(|i| {
-            let mut nb: Vec<f64> = [i.wrapping_sub(2), i.wrapping_sub(1), i + 1, i + 2]
-                .into_iter()
-                .filter(|&j| j < n)
-                .map(|j| x[j])
-                .collect();
-            nb.sort_by(f64::total_cmp);
-            let m = nb.len();
-            let med = if m.is_multiple_of(2) {
-                0.5 * (nb[m / 2 - 1] + nb[m / 2])
+            if (2..n - 2).contains(&i) {
+                inside(i)
             } else {
-                nb[m / 2]
-            };
-            x[i] - med
+                edge(i)
+            }
         })
         .collect();
+    // 1.4826 × the median |v| (the upper median of an even count): selected, not sorted.
     let spread = |v: &[f64]| {
         let mut a: Vec<f64> = v.iter().map(|e| e.abs()).collect();
-        a.sort_by(f64::total_cmp);
-        1.4826 * a.get(a.len() / 2).copied().unwrap_or(0.0)
+        let mid = a.len() / 2;
+        if a.is_empty() {
+            return 0.0;
+        }
+        1.4826 * *a.select_nth_unstable_by(mid, f64::total_cmp).1
     };
     let global = spread(&d);
     if global <= 0.0 {
@@ -336,7 +382,8 @@ fn spikes(x: &[f64], fs: f64, held: &[Range<usize>]) -> Vec<Fault> {
         .chunks(block)
         .map(|c| {
             let m = c.iter().sum::<f64>() / c.len() as f64;
-            (c.iter().map(|v| (v - m).powi(2)).sum::<f64>() / c.len() as f64).sqrt()
+            // (v − m)² as a product: what `powi(2)` computes, without its call.
+            (c.iter().map(|v| (v - m) * (v - m)).sum::<f64>() / c.len() as f64).sqrt()
         })
         .collect();
     let far = |i: usize| {

@@ -137,10 +137,39 @@ impl RunningRms {
         r
     }
 
-    /// Feeds a block.
+    /// Feeds a block: [`RunningRms::next`] of every sample, with the same sums. The maximum is
+    /// taken of the mean square and its root drawn once: the square root and the division by the
+    /// window are correctly rounded and never decreasing, so the root of the largest mean square
+    /// is the largest root, bit for bit.
     pub fn push(&mut self, x: &[f64]) {
-        for &v in x {
-            self.next(v);
+        match self.averaging {
+            Averaging::Linear => {
+                let (n, mut slot) = (self.n, self.seen % self.n);
+                let mut top = 0.0f64;
+                for &v in x {
+                    self.sum += v * v;
+                    if self.seen >= n {
+                        let old = self.window[slot];
+                        self.sum -= old * old;
+                    }
+                    self.window[slot] = v;
+                    self.seen += 1;
+                    slot += 1;
+                    if slot == n {
+                        slot = 0;
+                    }
+                    top = top.max(self.sum.max(0.0));
+                }
+                self.max = self.max.max((top / n as f64).sqrt());
+            }
+            Averaging::Exponential => {
+                let mut top = 0.0f64;
+                for &v in x {
+                    self.mean_square = self.decay * self.mean_square + (1.0 - self.decay) * v * v;
+                    top = top.max(self.mean_square);
+                }
+                self.max = self.max.max(top.sqrt());
+            }
         }
     }
 

@@ -117,8 +117,11 @@ pub struct Report {
     /// the exposure is [`Options::exposure_hours`], or 8 h when none is given.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub iso2631_5: Option<Shocks>,
-    /// The spinal response's peaks of `a_seat_z` (ISO 2631-5 clause 5.3), whether assessed or
-    /// not: what a working day of several records adds up (`wbv::analysis::exposure`). Not serialized.
+    /// The spinal response's peaks of `a_seat_z` (ISO 2631-5 clause 5.3): what a working day of
+    /// several records adds up (`wbv::analysis::exposure`). A report built block by block
+    /// ([`super::ReportBuilder`]) always has them; [`Report::from_signals`] computes them only when
+    /// it assesses ISO 2631-5 ([`Report::iso2631_5`]), and a day computes the rest
+    /// (`wbv::report::exposure::day_of`). Not serialized.
     #[serde(skip)]
     pub seat_spine: Option<Peaks>,
     /// Frequency-weighted one-third-octave band r.m.s. 0.5–80 Hz of each channel, m/s²: band

@@ -39,7 +39,7 @@
 
 use crate::analysis::filter::{FIT_S, predict_past};
 use crate::error::{Error, Result};
-use nalgebra::{DMatrix, DVector};
+use nalgebra::{DMatrix, DVector, SMatrix, SVector};
 use num_complex::Complex64;
 use serde::{Deserialize, Serialize};
 use std::f64::consts::PI;
@@ -228,17 +228,25 @@ fn state_space() -> (DMatrix<f64>, DVector<f64>, DVector<f64>, f64) {
 /// Franklin, Powell & Workman, *Digital Control of Dynamic Systems*, 3rd ed., §6.3.2): with
 /// M = exp([[A, B, 0], [0, 0, 1], [0, 0, 0]]·T), Φ = M₁₁, Γ₁ = M₁₂, Γ₂ = M₁₃,
 /// x_{k+1} = Φx_k + Γ₁u_k + Γ₂(u_{k+1} − u_k), y_k = Cx_k + Du_k.
+///
+/// The matrices have the model's fixed size ([`STATES`]), so a step allocates nothing; nalgebra
+/// multiplies them in the same order as the dynamic ones it was first written with (column by
+/// column, the same dot product), so the response is the same bit for bit (test
+/// `fixed_size_steps_equal_dynamic_ones`).
 #[derive(Debug, Clone)]
 pub struct SpineFilter {
-    phi: DMatrix<f64>,
-    g1: DVector<f64>,
-    g2: DVector<f64>,
-    c: DVector<f64>,
+    phi: SMatrix<f64, STATES, STATES>,
+    g1: SVector<f64, STATES>,
+    g2: SVector<f64, STATES>,
+    c: SVector<f64, STATES>,
     d: f64,
-    x: DVector<f64>,
+    x: SVector<f64, STATES>,
     prev: f64,
     fs: f64,
 }
+
+/// Number of states of Formula 1's state space: two per pole pair.
+pub const STATES: usize = 2 * POLES.len();
 
 impl SpineFilter {
     /// The filter at `fs` Hz, at rest.
@@ -260,12 +268,12 @@ impl SpineFilter {
         m[(n, n + 1)] = 1.0;
         let e = m.exp();
         Ok(SpineFilter {
-            phi: e.view((0, 0), (n, n)).into_owned(),
-            g1: e.view((0, n), (n, 1)).column(0).into_owned(),
-            g2: e.view((0, n + 1), (n, 1)).column(0).into_owned(),
-            c,
+            phi: e.fixed_view::<STATES, STATES>(0, 0).into_owned(),
+            g1: e.fixed_view::<STATES, 1>(0, n).into_owned(),
+            g2: e.fixed_view::<STATES, 1>(0, n + 1).into_owned(),
+            c: c.fixed_rows::<STATES>(0).into_owned(),
             d,
-            x: DVector::zeros(n),
+            x: SVector::zeros(),
             prev: 0.0,
             fs,
         })
@@ -281,8 +289,7 @@ impl SpineFilter {
 
     /// The spinal response A_z at the next input sample `u` (m/s² in, m/s² out).
     pub fn step(&mut self, u: f64) -> f64 {
-        let x = &self.phi * &self.x + &self.g1 * self.prev + &self.g2 * (u - self.prev);
-        self.x = x;
+        self.x = self.phi * self.x + self.g1 * self.prev + self.g2 * (u - self.prev);
         self.prev = u;
         self.c.dot(&self.x) + self.d * u
     }
@@ -400,6 +407,14 @@ pub struct Peaks {
 }
 
 impl Peaks {
+    /// The peaks of the whole record `x` (seat z, m/s²) sampled at `fs` Hz: [`SpineDose`] fed
+    /// with it at once (any split gives the same peaks).
+    pub fn of_record(x: &[f64], fs: f64) -> Result<Peaks> {
+        let mut dose = SpineDose::new(fs)?;
+        dose.push(x);
+        Ok(dose.finish())
+    }
+
     /// D_z of these peaks (Formula 3), m/s².
     pub fn dose(&self) -> f64 {
         dose_of_sum(self.sum6)
@@ -681,6 +696,46 @@ mod tests {
             parts.push(c);
         }
         assert_eq!(whole.finish(), parts.finish());
+    }
+
+    /// The response through nalgebra's dynamic matrices, as `SpineFilter::step` was first written.
+    fn dynamic_response(fs: f64, x: &[f64]) -> Vec<f64> {
+        let f = SpineFilter::new(fs).unwrap();
+        let phi = DMatrix::from_column_slice(STATES, STATES, f.phi.as_slice());
+        let g1 = DVector::from_column_slice(f.g1.as_slice());
+        let g2 = DVector::from_column_slice(f.g2.as_slice());
+        let c = DVector::from_column_slice(f.c.as_slice());
+        let mut s = DVector::<f64>::zeros(STATES);
+        let mut prev = 0.0;
+        x.iter()
+            .map(|&u| {
+                let next = &phi * &s + &g1 * prev + &g2 * (u - prev);
+                s = next;
+                prev = u;
+                c.dot(&s) + f.d * u
+            })
+            .collect()
+    }
+
+    #[test]
+    fn fixed_size_steps_equal_dynamic_ones() {
+        let fs = 1000.0;
+        let x: Vec<f64> = (0..20_000)
+            .map(|i| {
+                let t = i as f64 / fs;
+                (2.0 * PI * 4.0 * t).sin()
+                    + 0.3 * (2.0 * PI * 37.0 * t + 1.0).sin()
+                    + if i % 5000 == 900 { 15.0 } else { 0.0 }
+            })
+            .collect();
+        let fixed = SpineFilter::new(fs).unwrap().response(&x);
+        let dynamic = dynamic_response(fs, &x);
+        assert!(
+            fixed
+                .iter()
+                .zip(&dynamic)
+                .all(|(a, b)| a.to_bits() == b.to_bits())
+        );
     }
 
     #[test]

@@ -33,7 +33,8 @@ pub struct Args {
     /// Replace existing plot files.
     #[arg(long)]
     force: bool,
-    /// Print the time spent loading the run and analysing it to standard error.
+    /// Print the time spent loading the run and analysing it to standard error (wall, and CPU
+    /// seconds of every thread where the platform reports them).
     #[arg(long)]
     timing: bool,
 }
@@ -64,9 +65,12 @@ pub fn run(args: Args) -> wbv::Result<()> {
         None => None,
     };
     let start = std::time::Instant::now();
+    let cpu = wbv::io::memory::cpu_seconds;
+    let cpu_start = cpu();
     let input = wbv::measurement::read(&args.path, &args.input.options()?)?;
     let signals = input.signals;
     let loaded = start.elapsed().as_secs_f64();
+    let cpu_loaded = cpu();
     let welch = WelchOptions {
         window: Window::Hann,
         segment: Segment::ResolutionHz(args.resolution),
@@ -88,9 +92,15 @@ pub fn run(args: Args) -> wbv::Result<()> {
         }
     }
     if args.timing {
+        let cpu_s = |a: Option<f64>, b: Option<f64>| match (a, b) {
+            (Some(a), Some(b)) => format!(" ({:.4} CPU-s)", b - a),
+            _ => String::new(),
+        };
         eprintln!(
-            "timing: load {loaded:.4} s, analysis {:.4} s ({} samples × {} channels)",
+            "timing: load {loaded:.4} s{}, analysis {:.4} s{} ({} samples × {} channels)",
+            cpu_s(cpu_start, cpu_loaded),
             start.elapsed().as_secs_f64() - loaded,
+            cpu_s(cpu_loaded, cpu()),
             signals.len(),
             signals.names.len()
         );

@@ -4,6 +4,7 @@
 
 use super::esc;
 use crate::analysis::exposure::{self, Day, Operation, ShockSettings};
+use crate::analysis::spine::Peaks;
 use crate::analysis::{Options, Report};
 use crate::error::{Error, Result};
 use std::fmt::Write as _;
@@ -72,9 +73,9 @@ pub fn day_of(
     }
     let mut assessed = Vec::with_capacity(operations.len());
     let mut notes = Vec::new();
-    for (name, hours, read) in operations {
+    for (name, hours, read) in &operations {
         let opts = Options {
-            exposure_hours: Some(hours),
+            exposure_hours: Some(*hours),
             units_assumed: read.undeclared.clone(),
             shocks: *shocks,
             ..Options::default()
@@ -82,7 +83,14 @@ pub fn day_of(
         let report = Report::from_signals(&read.signals, &opts)?;
         notes.extend(read.notes.iter().cloned());
         notes.extend(report.warnings.iter().cloned());
-        assessed.push(Operation::from_report(&name, hours, &report)?);
+        assessed.push(Operation::from_report(name, *hours, &report)?);
+    }
+    // A report computes its record's spinal response only when it assesses ISO 2631-5 itself; the
+    // day shows every operation's D_z and adds them up when one crest factor exceeds 9.
+    for (op, (_, _, read)) in assessed.iter_mut().zip(&operations) {
+        if let (None, Some(x)) = (op.spine, read.signals.get("a_seat_z")) {
+            op.spine = Some(Peaks::of_record(x, read.signals.sample_rate_hz)?);
+        }
     }
     Ok((exposure::assess(&assessed, shocks)?, notes))
 }

@@ -119,6 +119,11 @@ impl ChannelAnalyzer {
         })
     }
 
+    /// Stops computing the spinal response ([`super::ReportBuilder::defer_spine`]).
+    pub(super) fn drop_spine(&mut self) {
+        self.spine = None;
+    }
+
     /// The three chains of a block are independent — spectrum, weighted figures, Wf motion-sickness
     /// dose — so they run side by side (each block is thousands of samples, far more than a
     /// task's overhead); every figure is computed exactly as in sequence.

@@ -4,12 +4,20 @@
 //! report of a recorded run equals the one computed during the simulation bit for bit.
 
 use super::filter::MIN_ANALYSIS_RATE_HZ;
-use super::report::{Options, Report};
+use super::report::{ChannelReport, Options, Report};
 use super::spectrum::{Segment, Welch};
+use super::spine::Peaks;
 use crate::error::{Error, Result};
 use crate::signals::Signals;
 
 mod channel;
+
+/// Samples per channel that [`Report::from_signals`] hands the builder at a time: the chains'
+/// blocks (input, weighted, Wf) then stay in the processor's cache.
+const BLOCK: usize = 1 << 15;
+
+/// The channel whose spinal response ISO 2631-5 assesses: the seat's vertical axis.
+pub(crate) const SEAT_Z: &str = "a_seat_z";
 
 use channel::ChannelAnalyzer;
 pub(crate) use channel::weighting_for;
@@ -26,6 +34,9 @@ pub struct ReportBuilder {
     welch: Welch,
     channels: Vec<ChannelAnalyzer>,
     received: usize,
+    /// Whether the seat's ISO 2631-5 spinal response is left to [`ReportBuilder::finish_with`]'s
+    /// caller (who holds the whole record), to be computed only when the report assesses it.
+    spine_deferred: bool,
 }
 
 impl ReportBuilder {
@@ -105,7 +116,19 @@ impl ReportBuilder {
             welch,
             channels,
             received: 0,
+            spine_deferred: false,
         })
+    }
+
+    /// Leaves the seat's ISO 2631-5 spinal response out of the blocks: the caller of
+    /// [`ReportBuilder::finish_with`], who holds the whole record, computes it when the report
+    /// assesses it. The spine filter (12 states a sample) is then not run on the records whose
+    /// crest factor sends nothing to ISO 2631-5.
+    pub(crate) fn defer_spine(&mut self) {
+        self.spine_deferred = true;
+        for ch in &mut self.channels {
+            ch.drop_spine();
+        }
     }
 
     /// Names the run `source` in errors and in the report (for a clone of a template builder).
@@ -152,6 +175,16 @@ impl ReportBuilder {
 
     /// The report of everything pushed.
     pub fn finish(self) -> Result<Report> {
+        self.finish_with(|_| Ok(None))
+    }
+
+    /// The report of everything pushed; when the spine was deferred
+    /// ([`ReportBuilder::defer_spine`]), `spine` gets the channels' figures and returns the seat's
+    /// spinal response peaks if it computes them.
+    pub(crate) fn finish_with(
+        self,
+        spine: impl FnOnce(&[ChannelReport]) -> Result<Option<Peaks>>,
+    ) -> Result<Report> {
         if self.received == 0 {
             return Err(Error::data(&self.source, None, "the run has no samples"));
         }
@@ -163,12 +196,16 @@ impl ReportBuilder {
             .collect::<Result<Vec<_>>>()?
             .into_iter()
             .unzip();
+        let mut seat_spine = spines.into_iter().flatten().next();
+        if self.spine_deferred && seat_spine.is_none() {
+            seat_spine = spine(&channels)?;
+        }
         Ok(Report::assemble(
             &self.source,
             self.fs,
             duration_s,
             channels,
-            spines.into_iter().flatten().next(),
+            seat_spine,
             &self.opts,
         ))
     }
@@ -185,20 +222,42 @@ impl Report {
             signals.len(),
             opts,
         )?;
-        builder.push(&signals.data.iter().map(Vec::as_slice).collect::<Vec<_>>())?;
-        let mut report = builder.finish()?;
+        // The spine's response only when the report assesses it (ISO 2631-5 is asked for, or the
+        // seat's crest factor exceeds 9): the same peaks the blocks would have given.
+        builder.defer_spine();
+        // In blocks that stay in the cache (any split gives the same report bit for bit): the
+        // chains' intermediate samples of a whole hour would not.
+        let mut at = 0;
+        while at < signals.len() {
+            let end = (at + BLOCK).min(signals.len());
+            builder.push(&signals.data.iter().map(|c| &c[at..end]).collect::<Vec<_>>())?;
+            at = end;
+        }
+        let mut report = builder.finish_with(|channels| {
+            let crest = channels
+                .iter()
+                .find(|c| c.name == SEAT_Z)
+                .map(|c| c.crest_factor);
+            match (opts.shocks.trigger(crest), signals.get(SEAT_Z)) {
+                (Some(_), Some(x)) => Peaks::of_record(x, signals.sample_rate_hz).map(Some),
+                _ => Ok(None),
+            }
+        })?;
         // Acquisition faults in the analysed channels (a logger's dropouts, clipping, spikes):
         // the figures include them, the reader is told where they are.
-        for c in &report.channels {
-            if let Some(x) = signals.get(&c.name) {
-                let found = crate::analysis::faults::summaries(&c.name, x, signals.sample_rate_hz);
-                report.warnings.extend(found.into_iter().map(|w| {
-                    format!(
-                        "{w}: the figures include them; cut or repair the record to leave them out"
-                    )
-                }));
-            }
-        }
+        // One channel per thread, the warnings in the channels' order.
+        use rayon::prelude::*;
+        let found: Vec<Vec<String>> = report
+            .channels
+            .par_iter()
+            .map(|c| match signals.get(&c.name) {
+                Some(x) => crate::analysis::faults::summaries(&c.name, x, signals.sample_rate_hz),
+                None => Vec::new(),
+            })
+            .collect();
+        report.warnings.extend(found.into_iter().flatten().map(|w| {
+            format!("{w}: the figures include them; cut or repair the record to leave them out")
+        }));
         Ok(report)
     }
 }
@@ -236,7 +295,14 @@ mod tests {
                 let cols: Vec<&[f64]> = s.data.iter().map(|c| &c[w[0]..w[1]]).collect();
                 b.push(&cols).unwrap();
             }
-            prop_assert_eq!(b.finish().unwrap(), whole);
+            // The blocks carry the spine's peaks always; `from_signals` only when it assesses them.
+            let mut got = b.finish().unwrap();
+            prop_assert!(got.seat_spine.is_some());
+            if whole.iso2631_5.is_none() {
+                prop_assert!(whole.seat_spine.is_none());
+                got.seat_spine = None;
+            }
+            prop_assert_eq!(got, whole);
         }
     }
 

@@ -13,9 +13,11 @@
 
 use super::{Column, Options, Raw, TIME_NAMES, Timing};
 use crate::error::{Error, Result};
+use std::borrow::Cow;
 
-/// Decodes bytes to text (see the module comment); returns the text and a note when not UTF-8.
-pub(crate) fn decode(bytes: &[u8], source: &str) -> Result<(String, Option<String>)> {
+/// Decodes bytes to text (see the module comment); returns the text (borrowed when it is UTF-8)
+/// and a note when not UTF-8.
+pub(crate) fn decode<'a>(bytes: &'a [u8], source: &str) -> Result<(Cow<'a, str>, Option<String>)> {
     if bytes.starts_with(&[0xFF, 0xFE]) || bytes.starts_with(&[0xFE, 0xFF]) {
         return Err(Error::data(
             source,
@@ -25,9 +27,9 @@ pub(crate) fn decode(bytes: &[u8], source: &str) -> Result<(String, Option<Strin
     }
     let bytes = bytes.strip_prefix(&[0xEF, 0xBB, 0xBF]).unwrap_or(bytes);
     match std::str::from_utf8(bytes) {
-        Ok(s) => Ok((s.to_string(), None)),
+        Ok(s) => Ok((Cow::Borrowed(s), None)),
         Err(_) => Ok((
-            bytes.iter().map(|&b| b as char).collect(),
+            Cow::Owned(bytes.iter().map(|&b| b as char).collect()),
             Some(format!("{source}: not UTF-8; read as Latin-1")),
         )),
     }
@@ -110,11 +112,34 @@ pub(crate) fn printed_resolution(cell: &str) -> f64 {
 /// `text` with Windows line ends (`\r\n`) read as `\n`, for [`csv_records`]: the `csv` crate's
 /// line numbers count a CRLF record end short.
 pub(crate) fn lf_line_ends(text: String) -> String {
-    if text.contains('\r') {
-        text.replace("\r\n", "\n")
-    } else {
-        text
+    match lf(&text) {
+        Cow::Borrowed(_) => text,
+        Cow::Owned(t) => t,
     }
+}
+
+/// [`lf_line_ends`] of borrowed text: copied only when it has a `\r`.
+fn lf(text: &str) -> Cow<'_, str> {
+    if text.contains('\r') {
+        Cow::Owned(text.replace("\r\n", "\n"))
+    } else {
+        Cow::Borrowed(text)
+    }
+}
+
+/// The `csv` crate's reader as wbv reads every CSV text ([`csv_records`], the data rows of a
+/// measurement): rows of any length, `delimiter` between fields, lines starting with `comment`
+/// skipped, fields trimmed of ASCII white space by the crate (`trim`: `csv::Trim::All`) or by the
+/// caller (`csv::Trim::None`, then `str::trim_ascii`, the same trim without the crate's copy of
+/// every record).
+fn reader(text: &str, delimiter: u8, comment: Option<u8>, trim: csv::Trim) -> csv::Reader<&[u8]> {
+    csv::ReaderBuilder::new()
+        .has_headers(false)
+        .flexible(true)
+        .delimiter(delimiter)
+        .comment(comment)
+        .trim(trim)
+        .from_reader(text.as_bytes())
 }
 
 /// The one way wbv reads CSV text (measurements here, PSD tables in `crate::excitation::table`)
@@ -134,14 +159,7 @@ pub(crate) fn csv_records<'a>(
     csv::StringRecord,
     impl Iterator<Item = Result<csv::StringRecord>> + 'a,
 )> {
-    let mut records = csv::ReaderBuilder::new()
-        .has_headers(false)
-        .flexible(true)
-        .delimiter(delimiter)
-        .comment(comment)
-        .trim(csv::Trim::All)
-        .from_reader(text.as_bytes())
-        .into_records();
+    let mut records = reader(text, delimiter, comment, csv::Trim::All).into_records();
     let header = match records.next() {
         Some(Ok(h)) => h,
         Some(Err(e)) => {
@@ -159,56 +177,70 @@ pub(crate) fn csv_records<'a>(
 }
 
 /// Reads delimited text into raw columns (time, when present, is one of them).
+///
+/// The data rows are read on several threads when the file is large and has no quotes (so that
+/// every line end ends a record): the text is cut at line ends into [`CHUNK_BYTES`] pieces, each
+/// read by its own `csv` reader, and the pieces joined in order ([`Rows::join`]) to exactly what
+/// one reader gives: the same samples, notes and first error.
 pub(crate) fn read(bytes: &[u8], source: &str, opts: &Options) -> Result<Raw> {
     let (text, enc_note) = decode(bytes, source)?;
-    let text = lf_line_ends(text);
+    let text = lf(&text);
     let first = text
         .lines()
         .find(|l| !l.trim().is_empty() && !l.starts_with('#'))
         .ok_or_else(|| Error::data(source, Some(1), "empty file; expected a header line"))?;
     let delim = sniff_delimiter(first);
-    let (header, records) = csv_records(
-        &text,
-        source,
-        delim,
-        Some(b'#'),
-        "empty file",
-        "cannot read the header",
-    )?;
-    let header_line = line_of(&header).max(1);
-    let (mut columns, trailing_empty) = header_columns(&header, source, header_line)?;
-    let ncol = columns.len();
-    let mut res: Vec<Option<Vec<f64>>> = columns
-        .iter()
-        .map(|c| is_time(c, opts).then(Vec::new))
-        .collect();
-    let mut lines = Vec::new();
-    let mut first_data = true;
-    let mut decimal_commas = false;
-    for rec in records {
-        let rec = rec?;
-        let line = line_of(&rec);
-        let Some(n) = field_count(&rec, ncol, trailing_empty) else {
-            continue; // blank line
-        };
-        if n != ncol {
+    let mut head = reader(&text, delim, Some(b'#'), csv::Trim::All);
+    let mut header = csv::StringRecord::new();
+    match head.read_record(&mut header) {
+        Ok(true) => {}
+        Ok(false) => return Err(Error::data(source, Some(1), "empty file")),
+        Err(e) => {
             return Err(Error::data(
                 source,
-                Some(line),
-                format!("{n} fields, expected {ncol} as in the header"),
+                Some(1),
+                format!("cannot read the header: {e}"),
             ));
         }
-        if first_data && rec.iter().take(n).all(|c| !looks_numeric(c)) {
-            // A units row.
-            first_data = false;
-            units_row(&mut columns, &rec, source, line)?;
-            continue;
-        }
-        first_data = false;
-        let cells = rec.iter().take(n);
-        decimal_commas |= push_samples(&mut columns, &mut res, cells, source, line);
-        lines.push(line);
     }
+    let header_line = line_of(&header).max(1);
+    // Where the data rows start: the byte and line after the header record.
+    let (data_at, data_line) = (head.position().byte() as usize, head.position().line());
+    let (mut columns, trailing_empty) = header_columns(&header, source, header_line)?;
+    let layout = Layout {
+        source,
+        delim,
+        trailing_empty,
+        names: columns.iter().map(|c| c.name.clone()).collect(),
+        timed: columns.iter().map(|c| is_time(c, opts)).collect(),
+    };
+    let data = &text[data_at.min(text.len())..];
+    let pieces = pieces(data);
+    let rows: Vec<Rows> = if pieces.len() > 1 {
+        use rayon::prelude::*;
+        // Each piece's first file line: the line ends before it.
+        let ends: Vec<usize> = pieces
+            .par_iter()
+            .map(|p| p.bytes().filter(|&b| b == b'\n').count())
+            .collect();
+        let firsts: Vec<usize> = ends
+            .iter()
+            .scan(data_line as usize, |line, n| {
+                let first = *line;
+                *line += n;
+                Some(first)
+            })
+            .collect();
+        pieces
+            .par_iter()
+            .zip(firsts)
+            .enumerate()
+            .map(|(i, (p, line))| Rows::read(p, line, i == 0, &layout))
+            .collect()
+    } else {
+        vec![Rows::read(data, data_line as usize, true, &layout)]
+    };
+    let (res, lines, decimal_commas) = Rows::join(rows, &mut columns, source)?;
     for (c, r) in columns.iter_mut().zip(res) {
         c.resolution = r;
     }
@@ -221,6 +253,195 @@ pub(crate) fn read(bytes: &[u8], source: &str, opts: &Options) -> Result<Raw> {
         lines: Some(lines),
         notes,
     })
+}
+
+/// Least bytes of data rows one thread reads (below twice this a file is read on one thread).
+pub const CHUNK_BYTES: usize = 4 << 20;
+
+/// The data text cut at line ends into pieces of about [`CHUNK_BYTES`] or more, enough to keep
+/// every thread busy; one piece when the text is small or has a quote (a quoted
+/// field may hold a line end).
+fn pieces(data: &str) -> Vec<&str> {
+    let threads = rayon::current_num_threads().max(1);
+    if data.len() < 2 * CHUNK_BYTES || threads == 1 || data.contains('"') {
+        return vec![data];
+    }
+    let size = (data.len() / (4 * threads)).max(CHUNK_BYTES);
+    let mut out = Vec::new();
+    let mut at = 0;
+    while at < data.len() {
+        let mut end = (at + size).min(data.len());
+        if end < data.len() {
+            end = data[end..].find('\n').map_or(data.len(), |i| end + i + 1);
+        }
+        out.push(&data[at..end]);
+        at = end;
+    }
+    out
+}
+
+/// The joined pieces: the time columns' resolutions, every data row's line, whether a decimal
+/// comma was read.
+type Joined = (Vec<Option<Vec<f64>>>, Vec<usize>, bool);
+
+/// What every piece's reader needs of the header: the file's name for errors, the delimiter,
+/// whether lines end in one, the columns' names and which are time columns.
+struct Layout<'a> {
+    source: &'a str,
+    delim: u8,
+    trailing_empty: bool,
+    names: Vec<String>,
+    timed: Vec<bool>,
+}
+
+/// The data rows of one piece of the text, read as one reader reads them after the header: the
+/// samples of each column, the time columns' printed resolutions, each row's file line, and the
+/// first unreadable cell of each column.
+struct Rows {
+    /// Samples per column (those before the column's first unreadable cell in this piece).
+    data: Vec<Vec<f64>>,
+    /// Printed resolution of each sample of a time column.
+    res: Vec<Option<Vec<f64>>>,
+    /// The file line of each data row.
+    lines: Vec<usize>,
+    /// The first cell of each column that is not a number.
+    bad: Vec<Option<Error>>,
+    /// Whether a number of the column was read with a decimal comma (before its bad cell).
+    comma: Vec<bool>,
+    /// The units row (first piece only) and its line.
+    units: Option<(csv::StringRecord, usize)>,
+    /// The error that stopped the reading of this piece (a malformed line).
+    error: Option<Error>,
+}
+
+impl Rows {
+    /// Reads `piece`, whose first line is file line `line`; `first` for the piece right after the
+    /// header (whose first row may be a units row).
+    fn read(piece: &str, line: usize, first: bool, layout: &Layout) -> Rows {
+        let (ncol, source) = (layout.names.len(), layout.source);
+        let mut rows = Rows {
+            data: vec![Vec::new(); ncol],
+            res: layout.timed.iter().map(|&t| t.then(Vec::new)).collect(),
+            lines: Vec::new(),
+            bad: (0..ncol).map(|_| None).collect(),
+            comma: vec![false; ncol],
+            units: None,
+            error: None,
+        };
+        let mut rd = reader(piece, layout.delim, Some(b'#'), csv::Trim::None);
+        let mut rec = csv::StringRecord::new();
+        let mut first_data = first;
+        loop {
+            match rd.read_record(&mut rec) {
+                Ok(true) => {}
+                Ok(false) => break,
+                Err(e) => {
+                    let at = e.position().map(|p| p.line() as usize + line - 1);
+                    rows.error = Some(Error::data(source, at, format!("malformed line: {e}")));
+                    break;
+                }
+            }
+            let at = line_of(&rec) + line - 1;
+            let field = |i: usize| rec.get(i).map(str::trim_ascii);
+            let Some(n) = field_count(rec.len(), field, ncol, layout.trailing_empty) else {
+                continue; // blank line
+            };
+            if n != ncol {
+                rows.error = Some(Error::data(
+                    source,
+                    Some(at),
+                    format!("{n} fields, expected {ncol} as in the header"),
+                ));
+                break;
+            }
+            if first_data && rec.iter().take(n).all(|c| !looks_numeric(c)) {
+                first_data = false;
+                let mut units: csv::StringRecord = rec.iter().map(str::trim_ascii).collect();
+                units.set_position(rec.position().cloned());
+                rows.units = Some((units, at));
+                continue;
+            }
+            first_data = false;
+            rows.push(&rec, n, at, layout);
+            rows.lines.push(at);
+        }
+        rows
+    }
+
+    /// Appends the cells of a data row at file line `at` to their columns (with their printed
+    /// resolution to a time column's). A cell that is not a number marks its column bad, which
+    /// then takes no more samples.
+    fn push(&mut self, rec: &csv::StringRecord, n: usize, at: usize, layout: &Layout) {
+        for (k, cell) in rec.iter().map(str::trim_ascii).take(n).enumerate() {
+            if self.bad[k].is_some() {
+                continue;
+            }
+            // With `,` between fields a cell holds a comma only inside quotes: a decimal comma
+            // there as with tab or `;`.
+            match parse_number(cell, true) {
+                Some(v) => {
+                    self.comma[k] |= cell.contains(',');
+                    self.data[k].push(v);
+                    if let Some(r) = self.res[k].as_mut() {
+                        r.push(printed_resolution(cell));
+                    }
+                }
+                None => {
+                    self.bad[k] = Some(Error::data(
+                        layout.source,
+                        Some(at),
+                        format!(
+                            "column `{}`: `{cell}` is not a number (expected a decimal point or a \
+                             decimal comma, not both)",
+                            layout.names[k]
+                        ),
+                    ));
+                }
+            }
+        }
+    }
+
+    /// Joins the pieces, in order, into the columns: each column's samples up to its first
+    /// unreadable cell (then none, and that cell's error), and returns the time columns'
+    /// resolutions, every row's line and whether a decimal comma was read; the first error that
+    /// stopped a piece (after the units row's, which comes before it) is the file's.
+    fn join(pieces: Vec<Rows>, columns: &mut [Column], source: &str) -> Result<Joined> {
+        let ncol = columns.len();
+        let mut res: Vec<Option<Vec<f64>>> = vec![None; ncol];
+        let mut lines = Vec::with_capacity(pieces.iter().map(|p| p.lines.len()).sum());
+        let total: usize = pieces.iter().map(|p| p.lines.len()).sum();
+        for c in columns.iter_mut() {
+            c.data = Vec::with_capacity(total);
+        }
+        let mut comma = false;
+        for mut p in pieces {
+            if let Some((rec, at)) = p.units.take() {
+                units_row(columns, &rec, source, at)?;
+            }
+            for k in 0..ncol {
+                let c = &mut columns[k];
+                if c.bad.is_some() {
+                    continue;
+                }
+                comma |= p.comma[k];
+                if let Some(r) = p.res[k].take() {
+                    res[k].get_or_insert_with(Vec::new).extend(r);
+                }
+                match p.bad[k].take() {
+                    Some(e) => {
+                        c.bad = Some(e);
+                        c.data = Vec::new();
+                    }
+                    None => c.data.extend_from_slice(&p.data[k]),
+                }
+            }
+            lines.extend_from_slice(&p.lines);
+            if let Some(e) = p.error {
+                return Err(e);
+            }
+        }
+        Ok((res, lines, comma))
+    }
 }
 
 /// The 1-based file line a record starts on (0 when the `csv` crate gives none).
@@ -284,14 +505,20 @@ fn is_time(c: &Column, opts: &Options) -> bool {
             .any(|(ch, src)| ch == "t_s" && (c.name == *src || c.aliases.contains(src)))
 }
 
-/// The number of fields of a record, not counting the empty one after a trailing delimiter
-/// (`ncol + 1` of them when the header had one too); None for a blank line.
-fn field_count(rec: &csv::StringRecord, ncol: usize, trailing_empty: bool) -> Option<usize> {
-    let mut n = rec.len();
-    if trailing_empty && n == ncol + 1 && rec.get(ncol).is_some_and(str::is_empty) {
+/// The number of fields of a record of `len` (trimmed) fields `field(i)`, not counting the empty
+/// one after a trailing delimiter (`ncol + 1` of them when the header had one too); None for a
+/// blank line.
+fn field_count<'r>(
+    len: usize,
+    field: impl Fn(usize) -> Option<&'r str>,
+    ncol: usize,
+    trailing_empty: bool,
+) -> Option<usize> {
+    let mut n = len;
+    if trailing_empty && n == ncol + 1 && field(ncol).is_some_and(str::is_empty) {
         n = ncol;
     }
-    if n == 1 && rec.get(0).is_some_and(str::is_empty) {
+    if n == 1 && field(0).is_some_and(str::is_empty) {
         None
     } else {
         Some(n)
@@ -330,50 +557,6 @@ fn units_row(
     Ok(())
 }
 
-/// Appends the data line's cells to their columns, with their printed resolution to the time
-/// column's (`res`). A cell that is not a number marks its column bad (an error only if the
-/// column is used), which then takes no more samples. Returns whether a number was read with a
-/// decimal comma.
-fn push_samples<'r>(
-    columns: &mut [Column],
-    res: &mut [Option<Vec<f64>>],
-    cells: impl Iterator<Item = &'r str>,
-    source: &str,
-    line: usize,
-) -> bool {
-    let mut comma = false;
-    for (k, cell) in cells.enumerate() {
-        let c = &mut columns[k];
-        if c.bad.is_some() {
-            continue;
-        }
-        // With `,` between fields a cell holds a comma only inside quotes: a decimal comma there
-        // as with tab or `;`.
-        match parse_number(cell, true) {
-            Some(v) => {
-                comma |= cell.contains(',');
-                c.data.push(v);
-                if let Some(r) = res[k].as_mut() {
-                    r.push(printed_resolution(cell));
-                }
-            }
-            None => {
-                c.bad = Some(Error::data(
-                    source,
-                    Some(line),
-                    format!(
-                        "column `{}`: `{cell}` is not a number (expected a decimal point or a \
-                         decimal comma, not both)",
-                        c.name
-                    ),
-                ));
-                c.data = Vec::new();
-            }
-        }
-    }
-    comma
-}
-
 /// The note on a tab- or semicolon-separated file, and on decimal commas read as points (quoted
 /// ones in a comma-separated file); None for comma-separated text with decimal points.
 fn layout_note(source: &str, delim: u8, decimal_commas: bool) -> Option<String> {
@@ -397,6 +580,7 @@ fn layout_note(source: &str, delim: u8, decimal_commas: bool) -> Option<String> 
 mod tests {
     use super::super::{Options, assemble};
     use super::*;
+    use std::fmt::Write as _;
 
     fn run(text: &str, opts: &Options) -> Result<super::super::Input> {
         assemble(read(text.as_bytes(), "x.csv", opts)?, "x.csv", opts)
@@ -475,6 +659,71 @@ mod tests {
         assert!(e.starts_with("x.csv:2:") && e.contains("3 fields"), "{e}");
         let e = run("t_s,a_seat_z\n0,1\n", &Options::default()).unwrap_err();
         assert!(e.to_string().contains("fewer than two"), "{e}");
+    }
+
+    /// A file large enough to be read in pieces, read on four threads and on one.
+    fn both_ways(text: &str) -> (Result<super::super::Input>, Result<super::super::Input>) {
+        let pool = |n| {
+            rayon::ThreadPoolBuilder::new()
+                .num_threads(n)
+                .build()
+                .unwrap()
+        };
+        let opts = Options::default();
+        (
+            pool(4).install(|| run(text, &opts)),
+            pool(1).install(|| run(text, &opts)),
+        )
+    }
+
+    #[test]
+    fn pieces_read_what_one_reader_reads() {
+        let mut s = String::from("# logger export\nt_s;a_seat_z;a_seat_x\n");
+        for i in 0..400_000 {
+            let (z, x) = ((i as f64 * 0.37).sin(), (i as f64 * 0.11).cos());
+            let _ = writeln!(
+                s,
+                "{:.3};{z:.6};{}",
+                i as f64 / 500.0,
+                format!("{x:.5}").replace('.', ",")
+            );
+            if i == 200_000 {
+                s.push_str("# a comment in the middle\n\n");
+            }
+        }
+        assert!(s.len() > 2 * CHUNK_BYTES);
+        let (many, one) = both_ways(&s);
+        let (many, one) = (many.unwrap(), one.unwrap());
+        assert_eq!(many.signals.data, one.signals.data);
+        assert_eq!(many.notes, one.notes);
+        assert_eq!(many.signals.len(), 400_000);
+        // A bad cell deep in the file: the same error, with its line.
+        let lines: Vec<&str> = s.lines().collect();
+        let mut bad = lines.clone();
+        let cell = bad[300_003].replacen(';', ";x", 1);
+        bad[300_003] = &cell;
+        let bad = bad.join("\n");
+        let (many, one) = both_ways(&bad);
+        let (many, one) = (many.unwrap_err().to_string(), one.unwrap_err().to_string());
+        assert_eq!(many, one);
+        assert!(
+            many.contains("x.csv:300004:") && many.contains("`a_seat_z`"),
+            "{many}"
+        );
+        bad_field_count(&s);
+    }
+
+    /// Only a short line, deep in the file: the error names it, read either way.
+    fn bad_field_count(s: &str) {
+        let mut lines: Vec<&str> = s.lines().collect();
+        lines[390_000] = "1;2";
+        let (many, one) = both_ways(&lines.join("\n"));
+        let (many, one) = (many.unwrap_err().to_string(), one.unwrap_err().to_string());
+        assert_eq!(many, one);
+        assert!(
+            many.contains("x.csv:390001:") && many.contains("2 fields"),
+            "{many}"
+        );
     }
 
     #[test]
