@@ -185,7 +185,20 @@ impl Report {
             signals.len(),
             opts,
         )?;
-        builder.push(&signals.data.iter().map(Vec::as_slice).collect::<Vec<_>>())?;
+        // In blocks (the builder gives the same report for any split), looking for a stop between.
+        const BLOCK: usize = 1 << 20;
+        let n = signals.len();
+        for start in (0..n).step_by(BLOCK) {
+            crate::cancel::check("an analysis")?;
+            let end = (start + BLOCK).min(n);
+            builder.push(
+                &signals
+                    .data
+                    .iter()
+                    .map(|c| &c[start..end])
+                    .collect::<Vec<_>>(),
+            )?;
+        }
         let mut report = builder.finish()?;
         // Acquisition faults in the analysed channels (a logger's dropouts, clipping, spikes):
         // the figures include them, the reader is told where they are.
