@@ -186,7 +186,7 @@ impl Report {
             opts,
         )?;
         // In blocks (the builder gives the same report for any split), looking for a stop between.
-        const BLOCK: usize = 1 << 20;
+        const BLOCK: usize = 1 << 18;
         let n = signals.len();
         for start in (0..n).step_by(BLOCK) {
             crate::cancel::check("an analysis")?;
