@@ -569,9 +569,6 @@ fn gap(
     document(py, &doc)
 }
 
-/// seat_test(model=None, classes=None, *, runs=None, occupant=None, seat_limit=None, damping_limit=None, contact_limit=None, duration=600.0, dt=0.001, seed=1, damping=True, fs=None, units=None)
-/// --
-///
 /// The ISO 10326-1 laboratory seat test (docs/seat-test.md): the document of
 /// ``wbv seat-test --json``.
 ///
@@ -605,7 +602,10 @@ fn gap(
 /// in Hz; ``machine``, ``defining``, ``scope``; ``notes``; ``unverified``), ``warnings`` and
 /// ``units``.
 #[pyfunction]
-#[pyo3(signature = (model=None, classes=None, *, runs=None, occupant=None, seat_limit=None, damping_limit=None, contact_limit=None, duration=None, dt=None, seed=1, damping=true, fs=None, units=None))]
+#[pyo3(
+    signature = (model=None, classes=None, *, runs=None, occupant=None, seat_limit=None, damping_limit=None, contact_limit=None, duration=None, dt=None, seed=1, damping=true, fs=None, units=None),
+    text_signature = "(model=None, classes=None, *, runs=None, occupant=None, seat_limit=None, damping_limit=None, contact_limit=None, duration=600.0, dt=0.001, seed=1, damping=True, fs=None, units=None)"
+)]
 #[allow(clippy::too_many_arguments)]
 fn seat_test(
     py: Python<'_>,
@@ -715,11 +715,7 @@ type Operation = ((Option<String>, Given), f64, Option<f64>);
 /// One operation of a working day as given: `(samples or file, hours)`, `(name, samples or
 /// file, hours)`, `(samples, fs, hours)`, `(name, samples, fs, hours)`, or an object with
 /// `channels`, `fs`, `hours` and optionally `name` (`wbv.Operation`).
-fn operation(
-    py: Python<'_>,
-    i: usize,
-    op: &Bound<'_, PyAny>,
-) -> PyResult<Operation> {
+fn operation(py: Python<'_>, i: usize, op: &Bound<'_, PyAny>) -> PyResult<Operation> {
     let what = format!("operations[{i}]");
     let shape = || {
         bad(format!(
@@ -783,9 +779,6 @@ fn operation(
     Ok((given, hours, fs))
 }
 
-/// exposure(operations, *, fs=None, units=None, iso2631_5=False, spine_sex="male", spine_start_age=None, spine_years=None, spine_days_per_year=None)
-/// --
-///
 /// A working day of several operations (docs/exposure.md): the document of
 /// ``wbv exposure --json``.
 ///

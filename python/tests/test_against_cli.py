@@ -218,7 +218,7 @@ def test_seat_test_on_measured_arrays_equals_the_command_on_files(tmp_path, wbv_
     doc = cli_json(wbv_bin, "seat-test", "--class", "iso7096-em3",
                    *[a for f in files for a in ("--run", f)])
     got = wbv.seat_test(None, "iso7096-em3", runs=[files[0], runs[1], runs[2]], fs=500.0)
-    assert [r["id"] for r in got["runs"]] == [str(files[0]), "runs[1]", "runs[2]"]
+    assert [r["id"] for r in got["classes"][0]["runs"]] == [str(files[0]), "runs[1]", "runs[2]"]
     assert got["source"] == "measured" and got["verdict"] is None
     assert_same(doc, got, rel=1e-9, skip={"id"})
 
