@@ -90,11 +90,14 @@ fn same_recording(a: &Signals, b: &Signals) -> bool {
 fn repeated(runs: &[(String, Signals)]) -> Vec<String> {
     let mut out = Vec::new();
     for (i, (id, s)) in runs.iter().enumerate() {
-        if let Some((first, _)) = runs[..i].iter().find(|(_, u)| same_recording(u, s)) {
+        if let Some(j) = runs[..i].iter().position(|(_, u)| same_recording(u, s)) {
+            let first = &runs[j].0;
             out.push(format!(
-                "run {id} is the same recording as {first} (platform and seat within {} of each \
-                 other): it counts twice in the mean, and the ±5 % agreement of ISO 10326-1 \
-                 10.2.1 says nothing; give runs made one after the other",
+                "run {} ({id}) is the same recording as run {} ({first}; platform and seat within \
+                 {} r.m.s. of each other): it counts twice in the mean, and the ±5 % agreement \
+                 of ISO 10326-1 10.2.1 says nothing; give runs made one after the other",
+                i + 1,
+                j + 1,
                 SAME_RECORDING
             ));
         }
