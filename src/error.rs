@@ -46,6 +46,13 @@ pub enum Error {
         #[source]
         source: std::io::Error,
     },
+    /// The work was stopped by SIGINT, SIGTERM or Python's `KeyboardInterrupt`
+    /// ([`crate::cancel`]).
+    #[error("interrupted during {during}")]
+    Interrupted {
+        /// What was running.
+        during: String,
+    },
 }
 
 /// Result alias used throughout the crate.

@@ -7,6 +7,7 @@
 #![warn(missing_docs)]
 
 pub mod analysis;
+pub mod cancel;
 pub mod diagnosis;
 pub mod error;
 pub mod excitation;

@@ -12,11 +12,42 @@ pub fn bad(message: impl Into<String>) -> PyErr {
     crate::WbvError::new_err(message.into())
 }
 
+/// A number given for `what` (`None` for Python's None or an absent argument): a `TypeError`
+/// naming it and the type given otherwise (`fs must be a number (got str)`).
+pub fn number(what: &str, obj: Option<&Bound<'_, PyAny>>) -> PyResult<Option<f64>> {
+    let Some(obj) = obj.filter(|o| !o.is_none()) else {
+        return Ok(None);
+    };
+    let type_error = || {
+        let got = obj
+            .get_type()
+            .name()
+            .map_or("?".to_string(), |n| n.to_string());
+        pyo3::exceptions::PyTypeError::new_err(format!("{what} must be a number (got {got})"))
+    };
+    // A bool is an int to Python, never a rate or a limit; a string is not a number here.
+    if obj.is_instance_of::<pyo3::types::PyBool>() || obj.is_instance_of::<PyString>() {
+        return Err(type_error());
+    }
+    obj.extract::<f64>().map(Some).map_err(|_| type_error())
+}
+
 /// The samples of `obj` (any array-like of numbers: a numpy array of any dtype, a pandas Series,
 /// a list) as f64; `what` names it in errors.
 pub fn samples(py: Python<'_>, what: &str, obj: &Bound<'_, PyAny>) -> PyResult<Vec<f64>> {
-    let array = py
-        .import("numpy")?
+    let numpy = py.import("numpy")?;
+    // Complex samples are refused before numpy would drop their imaginary part with a warning.
+    if numpy
+        .call_method1("iscomplexobj", (obj,))
+        .and_then(|c| c.extract::<bool>())
+        .unwrap_or(false)
+    {
+        return Err(bad(format!(
+            "{what}: complex samples; expected real numbers (an acceleration in m/s² or a force \
+             in N): give the real part, or the magnitude, explicitly"
+        )));
+    }
+    let array = numpy
         .call_method1("asarray", (obj, "float64"))
         .map_err(|e| bad(format!("{what}: expected an array of numbers ({e})")))?;
     let array = array.cast_into::<PyArray1<f64>>().map_err(|e| {

@@ -122,15 +122,16 @@ const VERSION: &str = env!("CARGO_PKG_VERSION");
 fn analyze(
     py: Python<'_>,
     channels: &Bound<'_, PyAny>,
-    fs: f64,
+    fs: &Bound<'_, PyAny>,
     units: Option<&Bound<'_, PyAny>>,
     exposure_hours: Option<f64>,
     resolution_hz: f64,
 ) -> PyResult<Py<PyAny>> {
+    let fs = convert::number("fs", Some(fs))?;
     let columns = convert::channels(py, "channels", channels)?;
     let input_args = InputArgs {
         units: convert::units(units)?,
-        fs: Some(fs),
+        fs,
         ..InputArgs::default()
     };
     let doc = work::run(py, None, move || {
@@ -536,10 +537,11 @@ fn gap(
     runs: &Bound<'_, PyAny>,
     check: &Bound<'_, PyAny>,
     model: String,
-    fs: Option<f64>,
+    fs: Option<&Bound<'_, PyAny>>,
     loggers: Option<Vec<String>>,
     units: Option<&Bound<'_, PyAny>>,
 ) -> PyResult<Py<PyAny>> {
+    let fs = convert::number("fs", fs)?;
     let mut train = Vec::new();
     for (i, r) in runs.try_iter()?.enumerate() {
         train.push(Given::of(py, format!("runs[{i}]"), &r?)?);
@@ -567,30 +569,78 @@ fn gap(
     document(py, &doc)
 }
 
-/// The ISO 10326-1 seat test: the document of `wbv seat-test --json`.
+/// The ISO 10326-1 laboratory seat test (docs/seat-test.md): the document of
+/// ``wbv seat-test --json``.
+///
+/// Simulated: ``model`` (a chain of masses with a seat, e.g. ``"scissor-seat"``) on each input
+/// spectral class of ``classes`` (a name, a comma-separated list or a list of names:
+/// ``"iso7096-em1"`` … ``"em9"``, ``"en13490-it1"`` … ``"it4"``, ``"iso5007-ag1"`` … ``"ag3"``;
+/// see ``excitations()``), for the light (53.5 kg) and heavy (100.5 kg) test person or the one
+/// ``occupant`` names (``"light"``, ``"heavy"``): runs of ``duration`` s each (default 600 s; the
+/// standard's duration not read) at time step ``dt`` s (default 0.001 s), run i with seed
+/// ``seed + i``, until three consecutive runs agree within ±5 % in a_wP (clause 10.2.1); then
+/// the damping test (clause 10.3, once: it does not depend on the class) unless ``damping`` is
+/// False. Three classes with the defaults take about 30 s of wall time on two cores.
+///
+/// Measured: ``model=None`` and ``runs``, three or more runs in the order made, each
+/// ``{channel: samples}`` at ``fs`` Hz with platform ``a_base_z`` and seat ``a_seat_z`` (m/s²
+/// unless ``units`` says otherwise: ``"g"``, or ``{"a_seat_z": "g"}``) or a file
+/// ``wbv seat-test --run`` reads; one class. A run given twice is a warning.
+///
+/// Limits (the application standard's; without any there is no verdict unless the suspension
+/// struck its end stops): ``seat_limit`` (SEAT, a ratio), ``damping_limit`` (damping-test
+/// transmissibility, a ratio), ``contact_limit`` (end-stop contacts per 10 min of run, each test
+/// person over the three runs used). Without a contact limit, impacts make the verdict
+/// ``"warning"``.
+///
+/// Returns ``summary`` (one row per class and test person: ``seat``, ``a_ws_corrected`` in m/s²,
+/// ``end_stop_contacts``, ``contacts_per_10_min``, ``damping_transmissibility``, ``verdict``),
+/// ``verdict`` (``"pass"``, ``"warning"``, ``"fail"`` or None), ``verdict_lines``, ``damping``
+/// (``f_r_hz`` in Hz, ``transmissibility``), ``classes`` (one test per class: ``a_wp``, ``a_ws``,
+/// ``a_ws_corrected``, ``intended_a_wp`` in m/s², Wk-weighted; ``seat``; ``occupants`` with their
+/// ``runs``, ``impacts`` (peak seat acceleration m/s², VDV added m/s^1.75) and seat resonance
+/// in Hz; ``machine``, ``defining``, ``scope``; ``notes``; ``unverified``), ``warnings`` and
+/// ``units``.
 #[pyfunction]
-#[pyo3(signature = (model, class_, *, runs=None, occupant=None, seat_limit=None, damping_limit=None, duration=wbv::study::seat_test::RUN_DURATION_S, dt=0.001, seed=1, damping=true, fs=None, units=None))]
+#[pyo3(
+    signature = (model=None, classes=None, *, runs=None, occupant=None, seat_limit=None, damping_limit=None, contact_limit=None, duration=None, dt=None, seed=1, damping=true, fs=None, units=None),
+    text_signature = "(model=None, classes=None, *, runs=None, occupant=None, seat_limit=None, damping_limit=None, contact_limit=None, duration=600.0, dt=0.001, seed=1, damping=True, fs=None, units=None)"
+)]
 #[allow(clippy::too_many_arguments)]
 fn seat_test(
     py: Python<'_>,
     model: Option<String>,
-    class_: String,
+    classes: Option<&Bound<'_, PyAny>>,
     runs: Option<&Bound<'_, PyAny>>,
     occupant: Option<String>,
-    seat_limit: Option<f64>,
-    damping_limit: Option<f64>,
-    duration: f64,
-    dt: f64,
+    seat_limit: Option<&Bound<'_, PyAny>>,
+    damping_limit: Option<&Bound<'_, PyAny>>,
+    contact_limit: Option<&Bound<'_, PyAny>>,
+    duration: Option<&Bound<'_, PyAny>>,
+    dt: Option<&Bound<'_, PyAny>>,
     seed: i128,
     damping: bool,
-    fs: Option<f64>,
+    fs: Option<&Bound<'_, PyAny>>,
     units: Option<&Bound<'_, PyAny>>,
 ) -> PyResult<Py<PyAny>> {
     use wbv::study::seat_test::{self as st, Limits, Occupant, Settings};
     let seed = self::seed(seed)?;
     let limits = Limits {
-        seat: seat_limit,
-        damping: damping_limit,
+        seat: convert::number("seat_limit", seat_limit)?,
+        damping: convert::number("damping_limit", damping_limit)?,
+        contacts_per_10_min: convert::number("contact_limit", contact_limit)?,
+    };
+    let duration = convert::number("duration", duration)?;
+    let dt = convert::number("dt", dt)?;
+    let fs = convert::number("fs", fs)?;
+    let classes: Vec<String> = match classes {
+        None => Vec::new(),
+        Some(c) => match c.extract::<String>() {
+            Ok(one) => vec![one],
+            Err(_) => c.extract::<Vec<String>>().map_err(|_| {
+                bad("classes: expected a class name, a comma-separated list or a list of names")
+            })?,
+        },
     };
     let measured = match runs {
         Some(runs) => {
@@ -598,6 +648,13 @@ fn seat_test(
                 return Err(bad(
                     "runs: measured runs are not simulated; give model=None and no occupant",
                 ));
+            }
+            for (v, name) in [(duration, "duration"), (dt, "dt")] {
+                if v.is_some() {
+                    return Err(bad(format!(
+                        "{name}: has no effect with runs (measured runs are not simulated)"
+                    )));
+                }
             }
             let mut given = Vec::new();
             for (i, r) in runs.try_iter()?.enumerate() {
@@ -609,9 +666,18 @@ fn seat_test(
     };
     let units = convert::units(units)?;
     let doc = work::run(py, None, move || {
-        let class = st::find_class(&class_)?;
+        let classes = st::find_classes(&classes)?;
         let test = match measured {
             Some(given) => {
+                let [class] = classes[..] else {
+                    return Err(wbv::Error::parameter(
+                        "classes",
+                        format!(
+                            "{} classes with runs: a lab's runs were made on one class",
+                            classes.len()
+                        ),
+                    ));
+                };
                 let (arrays, files) = read_options(fs, units)?;
                 let runs = given
                     .into_iter()
@@ -628,13 +694,13 @@ fn seat_test(
                         Some(o) => vec![Occupant::parse(o)?],
                         None => Occupant::BOTH.to_vec(),
                     },
-                    run_duration_s: duration,
-                    dt,
+                    run_duration_s: duration.unwrap_or(st::RUN_DURATION_S),
+                    dt: dt.unwrap_or(1e-3),
                     seed,
                     limits,
                     damping,
                 };
-                st::simulate(&catalog::resolve(&name)?, class, &settings)?
+                st::simulate(&catalog::resolve(&name)?, &classes, &settings)?
             }
         };
         json::seat_test(&test, Vec::new())
@@ -642,14 +708,107 @@ fn seat_test(
     document(py, &doc)
 }
 
-/// A working day of operations: the document of `wbv exposure --json`.
+/// An operation read from its arguments: (its name if given, its samples), hours a day, its
+/// arrays' rate in Hz if given.
+type Operation = ((Option<String>, Given), f64, Option<f64>);
+
+/// One operation of a working day as given: `(samples or file, hours)`, `(name, samples or
+/// file, hours)`, `(samples, fs, hours)`, `(name, samples, fs, hours)`, or an object with
+/// `channels`, `fs`, `hours` and optionally `name` (`wbv.Operation`).
+fn operation(py: Python<'_>, i: usize, op: &Bound<'_, PyAny>) -> PyResult<Operation> {
+    let what = format!("operations[{i}]");
+    let shape = || {
+        bad(format!(
+            "{what}: expected (samples or file, hours), (name, samples or file, hours), \
+             (samples, fs, hours), (name, samples, fs, hours) or wbv.Operation(channels, fs, \
+             hours)"
+        ))
+    };
+    let (name, source, fs, hours): (
+        Option<String>,
+        Bound<'_, PyAny>,
+        Option<Bound<'_, PyAny>>,
+        Bound<'_, PyAny>,
+    ) = if op.hasattr("hours")? && op.hasattr("channels")? {
+        let name: Option<String> = if op.hasattr("name")? {
+            op.getattr("name")?.extract()?
+        } else {
+            None
+        };
+        (
+            name,
+            op.getattr("channels")?,
+            Some(op.getattr("fs")?),
+            op.getattr("hours")?,
+        )
+    } else {
+        let parts: Vec<Bound<'_, PyAny>> = op.extract().map_err(|_| shape())?;
+        match parts.as_slice() {
+            [source, hours] => (None, source.clone(), None, hours.clone()),
+            // A mapping first is samples with their rate; anything else first is a name.
+            [samples, fs, hours] if samples.hasattr("items")? => {
+                (None, samples.clone(), Some(fs.clone()), hours.clone())
+            }
+            [first, source, hours] => (
+                Some(first.extract().map_err(|_| shape())?),
+                source.clone(),
+                None,
+                hours.clone(),
+            ),
+            [name, source, fs, hours] => (
+                Some(
+                    name.extract()
+                        .map_err(|_| bad(format!("{what}: the name is not a string")))?,
+                ),
+                source.clone(),
+                Some(fs.clone()),
+                hours.clone(),
+            ),
+            _ => return Err(shape()),
+        }
+    };
+    let hours = convert::number(&format!("{what}.hours"), Some(&hours))?
+        .ok_or_else(|| bad(format!("{what}.hours: expected the hours a day (a number)")))?;
+    let fs = convert::number(&format!("{what}.fs"), fs.as_ref())?;
+    let label = name.clone().unwrap_or_else(|| what.clone());
+    let given = match Given::of(py, label.clone(), &source)? {
+        // A file keeps its path as its name unless one was given, as on the command line.
+        Given::File(p) if name.is_none() => (None, Given::File(p)),
+        g => (Some(label), g),
+    };
+    Ok((given, hours, fs))
+}
+
+/// A working day of several operations (docs/exposure.md): the document of
+/// ``wbv exposure --json``.
+///
+/// Each operation is one of
+///
+/// - ``(samples, hours)`` or ``(name, samples, hours)``, ``samples`` a ``{channel: samples}``
+///   mapping at ``fs`` Hz (the keyword) or a file ``wbv exposure --operation FILE:HOURS`` reads
+///   (named by its path);
+/// - ``(samples, fs, hours)`` or ``(name, samples, fs, hours)``: arrays with their own rate in Hz;
+/// - ``wbv.Operation(channels, fs, hours, name=None)``.
+///
+/// ``hours`` is its hours a day (0 < h ≤ 24, at most 24 in all). Samples are m/s² unless
+/// ``units`` says otherwise. An operation whose samples last longer than 1.1 × its stated hours
+/// is a warning in the result (its rate or its hours are wrong).
+///
+/// Returns the day's ``a8`` (A(8), m/s², ISO 2631-1 Annex B and Directive 2002/44/EC, worst axis
+/// with k = 1.4, 1.4, 1), ``vdv_day`` (m/s^1.75), ``zone`` (``below_action``, ``above_action``,
+/// ``above_limit``), the hours to each action and limit value (h, None when a day never reaches
+/// it), ``operations`` (per operation k·a_w, k·VDV and its share of the day, its measured
+/// duration in s), ``axes``, ``warnings``, and with ``iso2631_5`` (or a seat crest factor above 9)
+/// the ISO 2631-5:2018 block ``iso2631_5`` (D_z, S_ed in MPa, R) for the exposure history
+/// ``spine_sex``, ``spine_start_age`` (years), ``spine_years``, ``spine_days_per_year`` (Annex C;
+/// unset: its worked example, a man from 20 years of age for 20 years, 120 days a year).
 #[pyfunction]
 #[pyo3(signature = (operations, *, fs=None, units=None, iso2631_5=false, spine_sex="male".to_string(), spine_start_age=None, spine_years=None, spine_days_per_year=None))]
 #[allow(clippy::too_many_arguments)]
 fn exposure(
     py: Python<'_>,
     operations: &Bound<'_, PyAny>,
-    fs: Option<f64>,
+    fs: Option<&Bound<'_, PyAny>>,
     units: Option<&Bound<'_, PyAny>>,
     iso2631_5: bool,
     spine_sex: String,
@@ -657,33 +816,10 @@ fn exposure(
     spine_years: Option<u32>,
     spine_days_per_year: Option<f64>,
 ) -> PyResult<Py<PyAny>> {
+    let fs = convert::number("fs", fs)?;
     let mut ops = Vec::new();
     for (i, op) in operations.try_iter()?.enumerate() {
-        let op = op?;
-        let what = format!("operations[{i}]");
-        let parts: Vec<Bound<'_, PyAny>> = op.extract().map_err(|_| {
-            bad(format!(
-                "{what}: expected (samples or file, hours) or (name, samples or file, hours)"
-            ))
-        })?;
-        let (name, source, hours) = match parts.as_slice() {
-            [source, hours] => (what.clone(), source, hours),
-            [name, source, hours] => (name.extract::<String>()?, source, hours),
-            _ => {
-                return Err(bad(format!(
-                    "{what}: expected (samples or file, hours) or (name, samples or file, hours)"
-                )));
-            }
-        };
-        let hours: f64 = hours
-            .extract()
-            .map_err(|_| bad(format!("{what}: the hours a day are not a number")))?;
-        let given = match Given::of(py, name.clone(), source)? {
-            // A file keeps its path as its name unless one was given, as on the command line.
-            Given::File(p) if parts.len() == 2 => (None, Given::File(p)),
-            g => (Some(name), g),
-        };
-        ops.push((given, hours));
+        ops.push(operation(py, i, &op?)?);
     }
     let units = convert::units(units)?;
     let doc = work::run(py, None, move || {
@@ -700,10 +836,11 @@ fn exposure(
             requested: iso2631_5,
             history,
         };
-        let (arrays, files) = read_options(fs, units)?;
         let read = ops
             .into_iter()
-            .map(|((name, g), hours)| {
+            .map(|((name, g), hours, op_fs)| {
+                // Each operation's arrays at their own rate, else at `fs`.
+                let (arrays, files) = read_options(op_fs.or(fs), units.clone())?;
                 let (origin, input) = g.read(&arrays, &files)?;
                 Ok((name.unwrap_or(origin), hours, input))
             })

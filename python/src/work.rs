@@ -1,9 +1,12 @@
 //! Running the library off the GIL: each call's work runs on its own thread while the calling
-//! thread waits with the GIL released, looking for signals every [`POLL`]. Ctrl-C raises
-//! `KeyboardInterrupt` at once; work that watches a cancellation flag (a simulation, through
-//! [`Cancel`]) stops within a step and is waited for, so that no file is left half-written;
-//! other work finishes in the background and its result is dropped. A panic is caught on the
-//! worker thread and raised as `WbvError`: none crosses into Python.
+//! thread waits with the GIL released, looking for signals every [`POLL`]. Ctrl-C sets the
+//! library's cancellation flag (`wbv::cancel`, which every long loop checks: a simulation's
+//! steps, the seat test's runs, a sweep's points, a working day's operations, the gap
+//! diagnosis), waits for the work to stop (within a fraction of a second, so that no file is left
+//! half-written and no thread keeps computing) and raises `KeyboardInterrupt`. The flag is the
+//! process's: work running meanwhile on other Python threads stops too (with `WbvError`,
+//! "interrupted"). A panic is caught on the worker thread and raised as `WbvError`: none crosses
+//! into Python.
 
 use pyo3::prelude::*;
 use std::panic::{AssertUnwindSafe, catch_unwind};
@@ -20,9 +23,34 @@ const POLL: Duration = Duration::from_millis(50);
 /// runs on.
 const STACK_BYTES: usize = 8 << 20;
 
-/// A library error as Python's `WbvError`, with the message `wbv` prints after `wbv: error:`.
+/// A library error as Python's `WbvError`, with the message `wbv` prints after `wbv: error:`,
+/// the parameter named as the Python keyword (`fs`, `seat_limit`) rather than the command's
+/// option (`--fs`, `--seat-limit`).
 pub fn error(e: wbv::Error) -> PyErr {
-    crate::WbvError::new_err(e.to_string())
+    let message = match &e {
+        wbv::Error::Parameter { parameter, message } => {
+            format!("{}: {message}", python_name(parameter))
+        }
+        _ => e.to_string(),
+    };
+    crate::WbvError::new_err(message)
+}
+
+/// The Python keyword of a command-line option: `--seat-limit` → `seat_limit`, and the options
+/// whose keyword is another word (`--operation` → `operations`, `--run` → `runs`).
+fn python_name(option: &str) -> String {
+    match option {
+        "--operation" => "operations".into(),
+        "--run" => "runs".into(),
+        "--class" => "classes".into(),
+        "--logger" => "loggers".into(),
+        "--contact-limit" => "contact_limit".into(),
+        "--column/--units/--format" => "units".into(),
+        o => match o.strip_prefix("--") {
+            Some(name) => name.replace('-', "_"),
+            None => o.to_string(),
+        },
+    }
 }
 
 /// The message of a caught panic.
@@ -74,9 +102,14 @@ where
                 if let Err(interrupt) = py.check_signals() {
                     if let Some(flag) = cancel {
                         flag.store(true, Ordering::Relaxed);
-                        // It stops within a step; its unfinished recording is removed on the way.
-                        let _ = py.detach(move || rx.recv());
                     }
+                    // Every long loop of the library looks at this flag (`wbv::cancel`): the
+                    // work stops within a fraction of a second, its unfinished recording
+                    // removed on the way, and no thread is left computing. Cleared once it
+                    // stopped, for the next call.
+                    wbv::cancel::request();
+                    let _ = py.detach(move || rx.recv());
+                    wbv::cancel::clear();
                     return Err(interrupt);
                 }
             }

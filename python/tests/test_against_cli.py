@@ -230,7 +230,7 @@ def test_seat_test_on_measured_arrays_equals_the_command_on_files(tmp_path, wbv_
     doc = cli_json(wbv_bin, "seat-test", "--class", "iso7096-em3",
                    *[a for f in files for a in ("--run", f)])
     got = wbv.seat_test(None, "iso7096-em3", runs=[files[0], runs[1], runs[2]], fs=500.0)
-    assert [r["id"] for r in got["runs"]] == [str(files[0]), "runs[1]", "runs[2]"]
+    assert [r["id"] for r in got["classes"][0]["runs"]] == [str(files[0]), "runs[1]", "runs[2]"]
     assert got["source"] == "measured" and got["verdict"] is None
     assert_same(doc, got, rel=1e-9, skip={"id"})
 
@@ -255,3 +255,27 @@ def test_exposure_on_arrays_equals_the_command_on_files(tmp_path, wbv_bin):
     # A file as the command reads it, named by its path.
     assert wbv.exposure([(tmp_path / "op0.csv", 3.0)])["operations"][0]["name"] == str(
         tmp_path / "op0.csv")
+
+
+def test_exposure_takes_a_rate_per_operation_and_equals_the_command(tmp_path, wbv_bin):
+    # Two loggers: 500 Hz and 2048 Hz. Each array carries its own rate; the command reads each
+    # file's rate from its time column. The same day, figure for figure.
+    a, b = seat_record(500.0, 40.0, 50), seat_record(2048.0, 40.0, 51)
+    write_csv(tmp_path / "a.csv", 500.0, a)
+    write_csv(tmp_path / "b.csv", 2048.0, b)
+    doc = cli_json(wbv_bin, "exposure", "--operation", f"{tmp_path / 'a.csv'}:3",
+                   "--operation", f"{tmp_path / 'b.csv'}:2.5")
+    as_tuples = wbv.exposure([(str(tmp_path / "a.csv"), a, 500.0, 3.0),
+                              (str(tmp_path / "b.csv"), b, 2048.0, 2.5)])
+    as_records = wbv.exposure([wbv.Operation(a, 500.0, 3.0, name=str(tmp_path / "a.csv")),
+                               wbv.Operation(b, 2048.0, 2.5, name=str(tmp_path / "b.csv"))])
+    for got in (as_tuples, as_records):
+        assert_same(doc, got, rel=1e-9, skip={"warnings"})
+        assert normalised_warnings(got, "") == normalised_warnings(doc, "")
+    # One rate for both (the old call) reads the 2048 Hz record as 164 s: another A(8).
+    wrong = wbv.exposure([(a, 3.0), (b, 2.5)], fs=500.0)
+    assert not math.isclose(wrong["a8"], doc["a8"], rel_tol=1e-3)
+    # A record longer than its operation's hours is a warning naming it.
+    short_day = wbv.exposure([(b, 500.0, 0.03)])
+    assert any("operations[0]: 0.05 h of samples" in w and "1.1×" in w
+               for w in short_day["warnings"]), short_day["warnings"]

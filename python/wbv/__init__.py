@@ -41,3 +41,22 @@ __all__ = [
     "simulate",
     "sweep",
 ]
+
+
+from dataclasses import dataclass as _dataclass
+from typing import Any as _Any, Mapping as _Mapping, Optional as _Optional
+
+
+@_dataclass(frozen=True)
+class Operation:
+    """One operation of a working day for :func:`exposure`: ``channels`` (``{name: samples}``,
+    m/s² unless ``exposure(units=…)`` says otherwise) sampled at ``fs`` Hz, done ``hours`` hours a
+    day (0 < h ≤ 24), named ``name`` in the document (``operations[i]`` when None)."""
+
+    channels: _Mapping[str, _Any]
+    fs: float
+    hours: float
+    name: _Optional[str] = None
+
+
+__all__.append("Operation")

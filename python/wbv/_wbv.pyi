@@ -23,8 +23,11 @@ Document = dict[str, Any]
 
 class WbvError(ValueError):
     """Bad input or a failed computation. ``str(error)`` is the message ``wbv`` prints after
-    ``wbv: error:``: it names the parameter (with the command's option name, e.g. ``--fs``), file
-    or line, and what was expected."""
+    ``wbv: error:``, the parameter named by its Python keyword (``fs: -5 Hz; expected a positive
+    sample rate``, ``operations[0]: -1 h; …``), a file or line, and what was expected; a sample
+    by its 0-based index as numpy counts (``sample 100 (index 99) is not finite``). A value of the
+    wrong type (``fs="1000"``) raises ``TypeError: fs must be a number (got str)`` instead, and
+    complex samples are refused."""
 
 def analyze(
     channels: Mapping[str, ArrayLike],
@@ -204,13 +207,14 @@ def sweep(
     """
 
 def seat_test(
-    model: Optional[str],
-    class_: str,
+    model: Optional[str] = None,
+    classes: Union[None, str, Sequence[str]] = None,
     *,
     runs: Optional[Sequence[Union[Mapping[str, ArrayLike], PathLike]]] = None,
     occupant: Optional[str] = None,
     seat_limit: Optional[float] = None,
     damping_limit: Optional[float] = None,
+    contact_limit: Optional[float] = None,
     duration: float = 600.0,
     dt: float = 0.001,
     seed: int = 1,
@@ -221,25 +225,31 @@ def seat_test(
     """The ISO 10326-1 laboratory seat test (docs/seat-test.md): the document of ``wbv seat-test
     --json``.
 
-    Simulated: ``model`` (a chain of masses with a seat, e.g. ``"scissor-seat"``) on input spectral
-    class ``class_`` (``"iso7096-em1"`` … ``"em9"``, ``"en13490-it1"`` … ``"it4"``, ``"iso5007-ag1"``
-    … ``"ag3"``; :func:`excitations`), for the light (53.5 kg) and heavy (100.5 kg) test person or
-    the one ``occupant`` names (``"light"``, ``"heavy"``): runs of ``duration`` s (600 s each; the
-    standard's duration not read) at step ``dt`` s, run i with seed ``seed + i``, until three
-    consecutive runs agree within ±5 % in a_wP (clause 10.2.1), then the damping test (clause
-    10.3) unless ``damping`` is false. Several minutes of CPU with the defaults.
+    Simulated: ``model`` (a chain of masses with a seat, e.g. ``"scissor-seat"``) on each input
+    spectral class of ``classes`` (a name, a comma-separated list or a list: ``"iso7096-em1"`` …
+    ``"em9"``, ``"en13490-it1"`` … ``"it4"``, ``"iso5007-ag1"`` … ``"ag3"``; :func:`excitations`),
+    for the light (53.5 kg) and heavy (100.5 kg) test person or the one ``occupant`` names
+    (``"light"``, ``"heavy"``): runs of ``duration`` s (600 s each; the standard's duration not
+    read) at step ``dt`` s, run i with seed ``seed + i``, until three consecutive runs agree within
+    ±5 % in a_wP (clause 10.2.1); then the damping test (clause 10.3), once, unless ``damping`` is
+    false. Three classes with the defaults: about 30 s of wall time on two cores (measured 32 s).
 
     Measured: ``model=None`` and ``runs``, three or more runs in the order made, each
     ``{channel: samples}`` at ``fs`` Hz with platform ``a_base_z`` and seat ``a_seat_z`` (m/s²
-    unless ``units`` says otherwise) or a file ``wbv seat-test --run`` reads.
+    unless ``units`` says otherwise) or a file ``wbv seat-test --run`` reads; one class. A run given
+    twice is a warning.
 
-    ``seat_limit`` (SEAT, ratio) and ``damping_limit`` (transmissibility) are the application
-    standard's; without them there is no verdict. Returns ``a_wp``, ``a_ws``, ``a_ws_corrected``
-    and ``intended_a_wp`` (Wk-weighted r.m.s., m/s²), ``seat`` (a_wS/a_wP, clause 10.2.2),
-    ``occupants`` (per test person, with every ``runs`` entry), ``damping`` (``f_r_hz``,
-    ``transmissibility``), ``psd_within_tolerance``, ``end_stop_contacts``, ``verdict``
-    (``"pass"``, ``"fail"`` or ``None``), ``verdict_reasons``, ``notes``, ``unverified`` (what is
-    not verified against the standards' text) and ``units``.
+    ``seat_limit`` (SEAT, ratio), ``damping_limit`` (transmissibility) and ``contact_limit``
+    (end-stop contacts per 10 min of run, each test person) are the application standard's;
+    without a contact limit, end-stop impacts make the verdict ``"warning"``. Returns ``summary``
+    (one row per class and test person: ``seat``, ``a_ws_corrected`` m/s², ``end_stop_contacts``,
+    ``contacts_per_10_min``, ``damping_transmissibility``, ``verdict``), ``verdict``
+    (``"pass"``, ``"warning"``, ``"fail"`` or ``None``), ``verdict_lines``, ``damping``
+    (``f_r_hz`` Hz, ``transmissibility``), ``classes`` (per class: ``a_wp``, ``a_ws``,
+    ``a_ws_corrected``, ``intended_a_wp`` m/s² Wk-weighted, ``seat`` (a_wS/a_wP, clause 10.2.2),
+    ``occupants`` with their ``runs``, ``impacts`` (``peak_seat_acceleration_m_s2``,
+    ``vdv_added_m_s1_75``) and ``seat_resonance_hz``, ``machine``, ``defining``, ``scope``,
+    ``verdict_line``, ``notes``, ``unverified``), ``warnings`` and ``units``.
     """
 
 def exposure(
@@ -247,6 +257,9 @@ def exposure(
         Union[
             tuple[Union[Mapping[str, ArrayLike], PathLike], float],
             tuple[str, Union[Mapping[str, ArrayLike], PathLike], float],
+            tuple[Mapping[str, ArrayLike], float, float],
+            tuple[str, Mapping[str, ArrayLike], float, float],
+            Any,  # wbv.Operation(channels, fs, hours, name=None)
         ]
     ],
     *,
@@ -261,14 +274,18 @@ def exposure(
     """A working day of several operations (docs/exposure.md): the document of ``wbv exposure
     --json``.
 
-    Each operation is ``(samples, hours)`` or ``(name, samples, hours)``: ``samples`` a
-    ``{channel: samples}`` mapping at ``fs`` Hz (m/s² unless ``units`` says otherwise) or a file
-    ``wbv exposure --operation FILE:HOURS`` reads (named by its path), ``hours`` its hours a day
-    (0 < h ≤ 24, at most 24 in all). Returns the day's ``a8`` (A(8), m/s², ISO 2631-1 Annex B and
-    Directive 2002/44/EC, worst axis with k = 1.4, 1.4, 1), ``vdv_day`` (m/s^1.75), ``zone``
-    (``below_action``, ``above_action``, ``above_limit``), the hours to each action and limit value
-    (h, ``None`` when a day never reaches it), ``operations`` (per operation k·a_w, k·VDV and its
-    share of the day), ``axes``, and with ``iso2631_5`` (or a seat crest factor above 9) the ISO
+    Each operation is ``(samples, hours)`` or ``(name, samples, hours)`` with ``samples`` a
+    ``{channel: samples}`` mapping at ``fs`` Hz or a file ``wbv exposure --operation FILE:HOURS``
+    reads (named by its path); ``(samples, fs, hours)`` or ``(name, samples, fs, hours)`` for
+    arrays with their own rate (Hz), or ``wbv.Operation(channels, fs, hours, name=None)``. Arrays from loggers at different rates
+    need their own: one ``fs`` for a 500 Hz and a 2048 Hz array reads one at the other's rate, as
+    another duration and another A(8). ``hours`` is its hours a day (0 < h ≤ 24, at most 24 in
+    all); a record lasting more than 1.1 × its hours is a warning (its rate or its hours are
+    wrong). Returns the day's ``a8`` (A(8), m/s², ISO 2631-1 Annex B and Directive 2002/44/EC,
+    worst axis with k = 1.4, 1.4, 1), ``vdv_day`` (m/s^1.75), ``zone`` (``below_action``,
+    ``above_action``, ``above_limit``), the hours to each action and limit value (h, ``None`` when
+    a day never reaches it), ``operations`` (per operation k·a_w, k·VDV and its share of the day),
+    ``axes``, ``warnings``, and with ``iso2631_5`` (or a seat crest factor above 9) the ISO
     2631-5:2018 block ``iso2631_5`` (D_z, S_ed in MPa, R) for the exposure history ``spine_*``
     (Annex C; unset: its worked example, a man from 20 years of age for 20 years, 120 days a
     year).

@@ -69,9 +69,13 @@ pub fn list(args: ListArgs) -> wbv::Result<()> {
             "  {name:width$}  {} {}: {}{rms}",
             c.standard.name(),
             c.code,
-            c.machine
+            c.scope_label()
         );
     }
+    println!(
+        "  [U]: not verified against the standard's text (its class table could not be read); \
+         [V]: read in a public source."
+    );
     println!(
         "\nUse a name, a TOML file, or build one: `--excitation random --rms 1.0 --band 0.5,80`, \
          `--excitation sine --freq 4 --amplitude 1`, `--excitation road --road-class C --speed 20`, \

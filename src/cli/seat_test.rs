@@ -4,7 +4,7 @@
 use std::path::PathBuf;
 use wbv::error::Error;
 use wbv::io::atomic::Overwrite;
-use wbv::study::seat_test::{self, Limits, Occupant, SeatTest, Settings, Verdict};
+use wbv::study::seat_test::{self, Limits, Occupant, SeatTest, SeatTests, Settings, Verdict};
 
 /// Arguments of `wbv seat-test`.
 #[derive(Debug, clap::Args)]
@@ -14,9 +14,10 @@ pub struct Args {
     #[arg(long)]
     model: Option<String>,
     /// Input spectral class: iso7096-em1 … em9, en13490-it1 … it4, iso5007-ag1 … ag3 (`wbv
-    /// excitations`).
-    #[arg(long)]
-    class: String,
+    /// excitations`). Repeat it, or give a comma-separated list, to test the seat on several
+    /// classes in one report (simulated tests only).
+    #[arg(long = "class", value_name = "CLASS[,CLASS…]", required = true)]
+    classes: Vec<String>,
     /// Test person: light or heavy (default: both, as the standard asks).
     #[arg(long)]
     occupant: Option<String>,
@@ -26,6 +27,10 @@ pub struct Args {
     /// The application standard's damping-test transmissibility limit.
     #[arg(long)]
     damping_limit: Option<f64>,
+    /// Most end-stop contacts allowed per 10 min of run, each test person (over the three runs
+    /// used: count × 600 s / their total duration). Without it, impacts make a WARNING verdict.
+    #[arg(long, value_name = "N")]
+    contact_limit: Option<f64>,
     /// Duration of each simulated run in s.
     #[arg(long, default_value_t = seat_test::RUN_DURATION_S)]
     duration: f64,
@@ -81,11 +86,13 @@ pub fn run(args: Args) -> wbv::Result<()> {
     if let Some(r) = &args.report {
         wbv::io::atomic::check_overwrite(r, overwrite)?;
     }
-    let class = seat_test::find_class(&args.class)?;
+    let classes = seat_test::find_classes(&args.classes)?;
     let limits = Limits {
         seat: args.seat_limit,
         damping: args.damping_limit,
+        contacts_per_10_min: args.contact_limit,
     };
+    limits.validate()?;
     let input = args.input.options()?;
     let test = if args.runs.is_empty() {
         if input != wbv::io::input::Options::default() {
@@ -111,11 +118,13 @@ pub fn run(args: Args) -> wbv::Result<()> {
             damping: !args.no_damping,
         };
         eprintln!(
-            "seat test of `{}` on {} {} ({}): {} s runs, {} test person(s){}",
+            "seat test of `{}` on {}: {} s runs, {} test person(s){}",
             model.name,
-            class.standard.name(),
-            class.code,
-            class.name,
+            classes
+                .iter()
+                .map(|c| format!("{} {} ({})", c.standard.name(), c.code, c.name))
+                .collect::<Vec<_>>()
+                .join(", "),
             args.duration,
             settings.occupants.len(),
             if settings.damping {
@@ -124,9 +133,18 @@ pub fn run(args: Args) -> wbv::Result<()> {
                 ""
             }
         );
-        seat_test::simulate(&model, class, &settings)?
+        seat_test::simulate(&model, &classes, &settings)?
     } else {
         refuse_with_runs(&args)?;
+        let [class] = classes[..] else {
+            return Err(Error::parameter(
+                "--class",
+                format!(
+                    "{} classes with --run: a lab's runs were made on one class",
+                    classes.len()
+                ),
+            ));
+        };
         seat_test::measured::measured(&args.runs, class, &input, limits)?
     };
     let mut written = Vec::new();
@@ -135,18 +153,91 @@ pub fn run(args: Args) -> wbv::Result<()> {
         eprintln!("wrote {}", r.display());
         written.push(wbv::report::json::Written::of(r)?);
     }
+    // The warnings (a run given twice) go to stderr as `wbv gap`'s do, and into the document.
+    for w in &test.warnings {
+        eprintln!("warning: {w}");
+    }
     if args.json {
         super::print_document(&wbv::report::json::seat_test(&test, written)?);
         return Ok(());
     }
-    print_text(&test);
+    print_all(&test);
     Ok(())
+}
+
+/// The summary table, the damping test, each class's tables and the verdict.
+fn print_all(t: &SeatTests) {
+    println!(
+        "  {:<12} {:<8} {:>7} {:>8} {:>22} {:>9}  verdict",
+        "class", "person", "SEAT", "a*_wS", "end-stop contacts", "damping T"
+    );
+    for r in &t.summary {
+        println!(
+            "  {:<12} {:<8} {:>7.3} {:>8.3} {:>22} {:>9}  {}",
+            r.class,
+            r.occupant,
+            r.seat,
+            r.a_ws_corrected,
+            match (r.end_stop_contacts, r.contacts_per_10_min) {
+                (Some(n), Some(p)) => format!("{n} ({p:.1} per 10 min)"),
+                (Some(n), None) => n.to_string(),
+                _ => "-".into(),
+            },
+            r.damping_transmissibility
+                .map_or("-".into(), |d| format!("{d:.2}")),
+            Verdict::cell(r.verdict)
+        );
+    }
+    match (&t.damping, &t.damping_skipped) {
+        (Some(d), _) => println!(
+            "\n  damping test ({} kg): resonance {:.2} Hz, T = {:.3} (platform ±{:.1} mm, {} end-stop contact(s))",
+            d.mass_kg,
+            d.f_r_hz,
+            d.transmissibility,
+            1e3 * d.platform_amplitude_m,
+            d.end_stop_contacts
+        ),
+        (None, Some(why)) => println!("\n  no damping test: {why}"),
+        _ => {}
+    }
+    for c in &t.classes {
+        println!();
+        print_text(c);
+    }
+    println!(
+        "\n  verdict: {}",
+        t.verdict.map_or(
+            "none (give --seat-limit, --damping-limit and/or --contact-limit from the application standard)",
+            Verdict::word
+        )
+    );
+    for l in &t.verdict_lines {
+        println!("    {l}");
+    }
+    let mut seen: Vec<&String> = Vec::new();
+    for u in t.classes.iter().flat_map(|c| &c.unverified) {
+        if !seen.contains(&u) {
+            seen.push(u);
+        }
+    }
+    println!(
+        "\n  not verified against the standards' text: {}",
+        seen.iter()
+            .map(|s| s.as_str())
+            .collect::<Vec<_>>()
+            .join("; ")
+    );
 }
 
 fn print_text(t: &SeatTest) {
     println!(
-        "{} {} ({}): intended input a*_wP = {:.3} m/s² (Wk)",
-        t.standard, t.class_code, t.machine, t.intended_a_wp
+        "{} {} ({}, {} {}): intended input a*_wP = {:.3} m/s² (Wk)",
+        t.standard,
+        t.class_code,
+        t.machine,
+        t.defining,
+        t.scope.mark(),
+        t.intended_a_wp
     );
     println!(
         "\n  {:<8} {:>9} {:>9} {:>9} {:>7} {:>10} {:>8} {:>9}",
@@ -171,32 +262,11 @@ fn print_text(t: &SeatTest) {
             );
         }
     }
-    match (&t.damping, &t.damping_skipped) {
-        (Some(d), _) => println!(
-            "\n  damping test ({} kg): resonance {:.2} Hz, T = {:.3} (platform ±{:.1} mm, {} end-stop contact(s))",
-            d.mass_kg,
-            d.f_r_hz,
-            d.transmissibility,
-            1e3 * d.platform_amplitude_m,
-            d.end_stop_contacts
-        ),
-        (None, Some(why)) => println!("\n  no damping test: {why}"),
-        _ => {}
-    }
     for n in &t.notes {
         println!("  note: {n}");
     }
-    let verdict = match t.verdict {
-        Some(Verdict::Pass) => "PASS",
-        Some(Verdict::Fail) => "FAIL",
-        None => "none (give --seat-limit and/or --damping-limit from the application standard)",
-    };
-    println!("\n  verdict: {verdict}");
+    println!("  {}", t.verdict_line);
     for r in &t.verdict_reasons {
         println!("    {r}");
     }
-    println!(
-        "\n  not verified against the standards' text: {}",
-        t.unverified.join("; ")
-    );
 }

@@ -53,6 +53,42 @@ impl Standard {
     }
 }
 
+/// How far a class's machine group and defining quantity are verified against the standard.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Scope {
+    /// Neither the machine group nor the quantity was read in the standard's class table **[U]**.
+    Unverified,
+    /// The quantity's ranges were read in a public source (ISO 5007's tractor categories by mass,
+    /// ≤ 3600 kg, 3600–6500 kg, > 6500 kg) **[V]**; which class is which category was not **[U]**.
+    RangesReadMappingUnverified,
+}
+
+impl Scope {
+    /// The mark printed beside the machine group: `[U]` or `[V ranges, U mapping]`.
+    pub fn mark(self) -> &'static str {
+        match self {
+            Scope::Unverified => "[U]",
+            Scope::RangesReadMappingUnverified => "[V ranges, U mapping]",
+        }
+    }
+
+    /// What is not verified, as a sentence.
+    pub fn sentence(self, standard: Standard) -> String {
+        match self {
+            Scope::Unverified => format!(
+                "machine group and defining quantity not read in {}'s class table",
+                standard.name()
+            ),
+            Scope::RangesReadMappingUnverified => format!(
+                "{}'s mass categories read in its public scope; which class belongs to which \
+                 category not read",
+                standard.name()
+            ),
+        }
+    }
+}
+
 /// A Butterworth filter: corner in Hz and order (1, 2, 4 or 8).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub struct Butterworth {
@@ -98,6 +134,11 @@ pub struct InputClass {
     pub standard: Standard,
     /// The machines the class stands for **[U]** (not read in the standard; see module doc).
     pub machine: &'static str,
+    /// The quantity that puts a machine in this class: the operating mass of ISO 7096's machine
+    /// types, the tractor's mass range of ISO 5007's categories, EN 13490's wheel and tyre type.
+    pub defining: &'static str,
+    /// How far [`InputClass::machine`] and [`InputClass::defining`] are verified.
+    pub scope: Scope,
     /// High-pass Butterworth filter H_hp of the target PSD `G_s·|H_hp·H_lp|²` **[S]**.
     pub high_pass: Butterworth,
     /// Low-pass Butterworth filter H_lp of the target PSD `G_s·|H_hp·H_lp|²` **[S]**.
@@ -136,7 +177,7 @@ const fn class(
     name: &'static str,
     code: &'static str,
     standard: Standard,
-    machine: &'static str,
+    (machine, defining): (&'static str, &'static str),
     high_pass: Butterworth,
     low_pass: Butterworth,
     gs_m2_s4_hz: f64,
@@ -146,8 +187,13 @@ const fn class(
     InputClass {
         name,
         code,
+        scope: match standard {
+            Standard::Iso5007 => Scope::RangesReadMappingUnverified,
+            _ => Scope::Unverified,
+        },
         standard,
         machine,
+        defining,
         high_pass,
         low_pass,
         gs_m2_s4_hz,
@@ -162,22 +208,22 @@ use Standard::{En13490, Iso5007, Iso7096};
 /// Every class, in the standards' order. Corners, orders, G_s and band r.m.s. **[S]** (module
 /// doc); machine groups **[U]**.
 pub const CLASSES: [InputClass; 16] = [
-    class("iso7096-em1", "EM1", Iso7096, "dumpers (rigid and articulated frame)", bw(1.5, 4), bw(2.5, 4), 2.82, 1.71, LOW),
-    class("iso7096-em2", "EM2", Iso7096, "scrapers without axle or frame suspension", bw(1.5, 4), bw(3.0, 4), 2.72, 2.05, LOW),
-    class("iso7096-em3", "EM3", Iso7096, "wheel loaders > 4500 kg", bw(1.5, 4), bw(3.0, 4), 1.93, 1.73, LOW),
-    class("iso7096-em4", "EM4", Iso7096, "graders", bw(1.5, 4), bw(3.0, 4), 0.60, 0.96, LOW),
-    class("iso7096-em5", "EM5", Iso7096, "wheel dozers, soil compactors", bw(1.5, 4), bw(3.5, 1), 1.11, 1.94, HIGH),
-    class("iso7096-em6", "EM6", Iso7096, "compact dumpers ≤ 4500 kg", bw(6.5, 2), bw(9.0, 2), 0.79, 1.65, HIGH),
-    class("iso7096-em7", "EM7", Iso7096, "crawler loaders, crawler dozers", bw(3.0, 8), bw(3.5, 8), 9.25, 2.36, LOW),
-    class("iso7096-em8", "EM8", Iso7096, "backhoe loaders, compact loaders", bw(3.0, 4), bw(3.0, 2), 1.45, 1.05, HIGH),
-    class("iso7096-em9", "EM9", Iso7096, "skid-steer loaders", bw(3.5, 4), bw(4.0, 2), 2.10, 1.63, HIGH),
-    class("en13490-it1", "IT1", En13490, "industrial trucks, class 1", bw(4.5, 4), bw(5.0, 2), 1.66, 1.58, HIGH),
-    class("en13490-it2", "IT2", En13490, "industrial trucks, class 2", bw(3.0, 4), bw(3.0, 2), 1.45, 1.05, HIGH),
-    class("en13490-it3", "IT3", En13490, "industrial trucks, class 3", bw(1.5, 4), bw(3.0, 4), 0.60, 0.96, LOW),
-    class("en13490-it4", "IT4", En13490, "industrial trucks, class 4", bw(1.5, 4), bw(3.0, 4), 1.64, 1.59, HIGH),
-    class("iso5007-ag1", "AG1", Iso5007, "tractors, category 1", bw(3.0, 8), bw(3.5, 8), 9.25, 2.26, LOW),
-    class("iso5007-ag2", "AG2", Iso5007, "tractors, category 2", bw(2.1, 8), bw(2.6, 8), 7.22, 1.94, LOW),
-    class("iso5007-ag3", "AG3", Iso5007, "tractors, category 3", bw(1.95, 8), bw(2.45, 8), 5.85, 1.74, LOW),
+    class("iso7096-em1", "EM1", Iso7096, ("dumpers (rigid and articulated frame)", "operating mass > 4500 kg"), bw(1.5, 4), bw(2.5, 4), 2.82, 1.71, LOW),
+    class("iso7096-em2", "EM2", Iso7096, ("scrapers without axle or frame suspension", "machine type, any mass"), bw(1.5, 4), bw(3.0, 4), 2.72, 2.05, LOW),
+    class("iso7096-em3", "EM3", Iso7096, ("wheel loaders", "operating mass > 4500 kg"), bw(1.5, 4), bw(3.0, 4), 1.93, 1.73, LOW),
+    class("iso7096-em4", "EM4", Iso7096, ("graders", "machine type, any mass"), bw(1.5, 4), bw(3.0, 4), 0.60, 0.96, LOW),
+    class("iso7096-em5", "EM5", Iso7096, ("wheel dozers, soil compactors", "machine type, any mass"), bw(1.5, 4), bw(3.5, 1), 1.11, 1.94, HIGH),
+    class("iso7096-em6", "EM6", Iso7096, ("compact dumpers", "operating mass ≤ 4500 kg"), bw(6.5, 2), bw(9.0, 2), 0.79, 1.65, HIGH),
+    class("iso7096-em7", "EM7", Iso7096, ("crawler loaders, crawler dozers", "machine type, any mass"), bw(3.0, 8), bw(3.5, 8), 9.25, 2.36, LOW),
+    class("iso7096-em8", "EM8", Iso7096, ("backhoe loaders, compact loaders", "compact loaders ≤ 4500 kg"), bw(3.0, 4), bw(3.0, 2), 1.45, 1.05, HIGH),
+    class("iso7096-em9", "EM9", Iso7096, ("skid-steer loaders", "operating mass ≤ 4500 kg"), bw(3.5, 4), bw(4.0, 2), 2.10, 1.63, HIGH),
+    class("en13490-it1", "IT1", En13490, ("industrial trucks, category 1", "wheel diameter and tyre type"), bw(4.5, 4), bw(5.0, 2), 1.66, 1.58, HIGH),
+    class("en13490-it2", "IT2", En13490, ("industrial trucks, category 2", "wheel diameter and tyre type"), bw(3.0, 4), bw(3.0, 2), 1.45, 1.05, HIGH),
+    class("en13490-it3", "IT3", En13490, ("industrial trucks, category 3", "wheel diameter and tyre type"), bw(1.5, 4), bw(3.0, 4), 0.60, 0.96, LOW),
+    class("en13490-it4", "IT4", En13490, ("industrial trucks, category 4", "wheel diameter and tyre type"), bw(1.5, 4), bw(3.0, 4), 1.64, 1.59, HIGH),
+    class("iso5007-ag1", "AG1", Iso5007, ("wheeled tractors, category 1", "tractor mass ≤ 3600 kg"), bw(3.0, 8), bw(3.5, 8), 9.25, 2.26, LOW),
+    class("iso5007-ag2", "AG2", Iso5007, ("wheeled tractors, category 2", "tractor mass 3600–6500 kg"), bw(2.1, 8), bw(2.6, 8), 7.22, 1.94, LOW),
+    class("iso5007-ag3", "AG3", Iso5007, ("wheeled tractors, category 3", "tractor mass > 6500 kg"), bw(1.95, 8), bw(2.45, 8), 5.85, 1.74, LOW),
 ];
 
 /// The class called `name` (`iso7096-em3`; case-insensitive).
@@ -234,14 +280,20 @@ impl InputClass {
         (g(0) + inner + g(n)) * h / 3.0
     }
 
-    /// One line for listings: `EM3, ISO 7096 (wheel loaders > 4500 kg): …`.
+    /// The machine group and its defining quantity with their mark:
+    /// `wheel loaders, operating mass > 4500 kg [U]`.
+    pub fn scope_label(&self) -> String {
+        format!("{}, {} {}", self.machine, self.defining, self.scope.mark())
+    }
+
+    /// One line for listings: `ISO 7096 EM3 input spectral class (wheel loaders, …): …`.
     pub fn describe(&self) -> String {
         format!(
-            "{} {} input spectral class ({}; machine group unverified): Gaussian random, \
+            "{} {} input spectral class ({}): Gaussian random, \
              {}-pole high-pass {} Hz, {}-pole low-pass {} Hz, G_s {} (m/s²)²/Hz",
             self.standard.name(),
             self.code,
-            self.machine,
+            self.scope_label(),
             self.high_pass.order,
             self.high_pass.corner_hz,
             self.low_pass.order,

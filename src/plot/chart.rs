@@ -140,6 +140,8 @@ pub struct Chart {
     pub floor_decades: Option<f64>,
     /// Labelled y ticks replacing the automatic ones (e.g. phase every 90°).
     pub y_ticks: Option<Vec<f64>>,
+    /// Labelled x ticks replacing the automatic ones (e.g. whole run numbers).
+    pub x_ticks: Option<Vec<f64>>,
     /// Reference lines.
     pub rules: Vec<Rule>,
     /// Shaded ranges, drawn under the curves.
@@ -239,7 +241,11 @@ impl Chart {
             .y_ticks
             .clone()
             .unwrap_or_else(|| t(y0, y1, self.log_y));
-        (t(x0, x1, self.log_x), y)
+        let x = self
+            .x_ticks
+            .clone()
+            .unwrap_or_else(|| t(x0, x1, self.log_x));
+        (x, y)
     }
 }
 /// A long signal reduced to at most `buckets` × 2 points: the minimum and maximum of each of

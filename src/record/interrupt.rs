@@ -5,13 +5,13 @@
 use super::meta;
 use mcap::records::Metadata;
 use std::path::{Path, PathBuf};
-use std::sync::atomic::{AtomicBool, Ordering};
-use std::sync::{Arc, Once, OnceLock};
+use std::sync::atomic::AtomicBool;
+use std::sync::{Arc, Once};
 
-/// Set by SIGINT or SIGTERM once [`install`] ran.
+/// Set by SIGINT or SIGTERM once [`install`] ran: the library's one cancellation flag
+/// ([`crate::cancel`]), so every loop that checks it stops too.
 fn flag() -> &'static Arc<AtomicBool> {
-    static FLAG: OnceLock<Arc<AtomicBool>> = OnceLock::new();
-    FLAG.get_or_init(|| Arc::new(AtomicBool::new(false)))
+    crate::cancel::flag()
 }
 
 /// Installs the handlers, once per process, when a recorder that closes on a signal
@@ -31,9 +31,9 @@ pub fn install() {
     });
 }
 
-/// Whether a signal asked the run to stop (never, unless [`install`] ran).
+/// Whether a signal (or the Python binding) asked the run to stop.
 pub fn requested() -> bool {
-    flag().load(Ordering::Relaxed)
+    crate::cancel::requested()
 }
 
 /// Steps between two looks at the interrupt flag (≈ 1 ms of simulation at 1 kHz, far less in

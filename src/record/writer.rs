@@ -382,7 +382,12 @@ impl Observer for McapRecorder {
         }
         self.record(step)?;
         self.record_scene(step)?;
-        if step.index.is_multiple_of(interrupt::CHECK_STEPS) && interrupt::requested() {
+        // A host that keeps its own handlers (Python) stops the run through the library's
+        // cancellation check instead, and the unfinished recording is removed.
+        if self.options.on_signal == OnSignal::CloseRecording
+            && step.index.is_multiple_of(interrupt::CHECK_STEPS)
+            && interrupt::requested()
+        {
             return Err(self.interrupt(step.t));
         }
         if self.block.steps.len() >= BLOCK_STEPS {

@@ -62,8 +62,14 @@ pub fn day(
     day_of(read, shocks)
 }
 
+/// How much longer than its stated daily hours an operation's record may last before the day
+/// warns (a record cannot outlast its operation; 10 % covers an hour stated in round figures).
+pub const LONGER_THAN_STATED: f64 = 1.1;
+
 /// Analyses and assesses a day of operations already read: `(name, hours a day, input)` each
-/// (from a file, or arrays through [`crate::io::input::from_columns`]); as [`day`].
+/// (from a file, or arrays through [`crate::io::input::from_columns`]); as [`day`]. An operation
+/// whose record lasts more than [`LONGER_THAN_STATED`] × its hours is a note (a warning of the
+/// document).
 pub fn day_of(
     operations: Vec<(String, f64, crate::io::input::Input)>,
     shocks: &ShockSettings,
@@ -74,6 +80,7 @@ pub fn day_of(
     let mut assessed = Vec::with_capacity(operations.len());
     let mut notes = Vec::new();
     for (name, hours, read) in &operations {
+        crate::cancel::check("the working day")?;
         let opts = Options {
             exposure_hours: Some(*hours),
             units_assumed: read.undeclared.clone(),
@@ -81,6 +88,16 @@ pub fn day_of(
             ..Options::default()
         };
         let report = Report::from_signals(&read.signals, &opts)?;
+        let measured_h = read.signals.duration_s() / 3600.0;
+        if measured_h > LONGER_THAN_STATED * *hours {
+            notes.push(format!(
+                "{name}: {measured_h:.2} h of samples at {} Hz for {hours} h a day: a record \
+                 cannot outlast its operation's daily hours by more than {LONGER_THAN_STATED}×; \
+                 the sample rate (a record sampled faster than the rate given reads as longer) \
+                 or the hours are wrong",
+                read.signals.sample_rate_hz
+            ));
+        }
         notes.extend(read.notes.iter().cloned());
         notes.extend(report.warnings.iter().cloned());
         assessed.push(Operation::from_report(name, *hours, &report)?);

@@ -162,6 +162,9 @@ pub fn run(
         }
         buf[0] = buf[block * s];
         done += block as u64;
+        // After the block's steps: a recorder saw this step index (a multiple of its own check
+        // interval) first, and closes its recording as interrupted.
+        crate::cancel::check("a simulation")?;
         if let Some(p) = progress {
             p(done);
         }

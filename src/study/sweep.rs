@@ -117,6 +117,7 @@ pub fn run(
                 let mut models = Vec::with_capacity(chunk.len());
                 let mut points = Vec::with_capacity(chunk.len());
                 for &index in chunk {
+                    crate::cancel::check("a sweep")?;
                     let mut m = model.clone();
                     apply(&mut m, &spec.params, &grid[index])?;
                     let (response, peak) = evaluate_model(&m, ev, &spec.freq_hz)?;

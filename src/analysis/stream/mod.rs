@@ -229,6 +229,7 @@ impl Report {
         // chains' intermediate samples of a whole hour would not.
         let mut at = 0;
         while at < signals.len() {
+            crate::cancel::check("an analysis")?;
             let end = (at + BLOCK).min(signals.len());
             builder.push(&signals.data.iter().map(|c| &c[at..end]).collect::<Vec<_>>())?;
             at = end;

@@ -350,7 +350,10 @@ where
         u
     };
     let take = |x: &[f64]| -> Vec<f64> { free.iter().map(|&i| x[i]).collect() };
-    let g = |v: &[f64]| f(&expand(v));
+    let g = |v: &[f64]| {
+        crate::cancel::check("the gap diagnosis")?;
+        f(&expand(v))
+    };
     let (lo, hi) = (take(lo), take(hi));
     let starts: Vec<Vec<f64>> = starts.iter().map(|s| take(s)).collect();
     let ft = if starts.len() == 1 {

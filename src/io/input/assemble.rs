@@ -14,7 +14,11 @@ fn implausible_sample(c: &Column, ch: &str) -> Option<(usize, String)> {
     if let Some(i) = c.data.iter().position(|v| !v.is_finite()) {
         return Some((
             i,
-            format!("column `{}`: sample {} is not finite", c.name, i + 1),
+            format!(
+                "column `{}`: sample {} (index {i}) is not finite",
+                c.name,
+                i + 1
+            ),
         ));
     }
     let (bound, unit) = if ch.starts_with("f_") {
@@ -26,8 +30,8 @@ fn implausible_sample(c: &Column, ch: &str) -> Option<(usize, String)> {
     Some((
         i,
         format!(
-            "column `{}` ({ch}): sample {} is {:.3e} {unit}, beyond the {bound:.0e} {unit} no \
-             vibration reaches: a damaged file, or a wrong --units or --sensitivity",
+            "column `{}` ({ch}): sample {} (index {i}) is {:.3e} {unit}, beyond the {bound:.0e} \
+             {unit} no vibration reaches: a damaged file, or a wrong --units or --sensitivity",
             c.name,
             i + 1,
             c.data[i]

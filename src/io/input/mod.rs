@@ -369,7 +369,7 @@ mod tests {
         let mut nan = g.clone();
         nan[3] = f64::NAN;
         let e = err(vec![("a_seat_z".into(), nan)], &opts);
-        assert!(e.contains("sample 4 is not finite"), "{e}");
+        assert!(e.contains("sample 4 (index 3) is not finite"), "{e}");
         let e = err(vec![("a_seat_z".into(), g[..1000].to_vec())], &opts);
         assert!(e.contains("at least 10 s"), "{e}");
         // Without units the samples are read as m/s², and said so.

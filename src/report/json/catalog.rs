@@ -61,6 +61,12 @@ pub struct ExcitationEntry {
     pub class: Option<&'static str>,
     /// For an input spectral class: the machines it stands for (unverified per class).
     pub machine: Option<&'static str>,
+    /// For an input spectral class: the quantity that puts a machine in it (`operating mass >
+    /// 4500 kg`, `tractor mass 3600–6500 kg`).
+    pub defining: Option<&'static str>,
+    /// For an input spectral class: how far `machine` and `defining` are verified (`unverified`,
+    /// `ranges_read_mapping_unverified`).
+    pub scope: Option<crate::excitation::classes::Scope>,
 }
 
 /// `wbv excitations`.
@@ -94,6 +100,8 @@ impl ExcitationEntry {
             standard: spec.input_class_def().map(|c| c.standard.name()),
             class: spec.input_class_def().map(|c| c.code),
             machine: spec.input_class_def().map(|c| c.machine),
+            defining: spec.input_class_def().map(|c| c.defining),
+            scope: spec.input_class_def().map(|c| c.scope),
         }
     }
 }

@@ -2,11 +2,12 @@
 
 use super::{Document, WithFiles, Written};
 use crate::error::Result;
-use crate::study::seat_test::SeatTest;
+use crate::study::seat_test::SeatTests;
 
 /// The document of `wbv seat-test --json` (and of the Python binding's `wbv.seat_test`): the
-/// test's keys ([`SeatTest`], with its `units` map) and the report file `written`, if any.
-pub fn seat_test(test: &SeatTest, written: Vec<Written>) -> Result<Document> {
+/// test's keys ([`SeatTests`]: `summary`, `verdict`, `verdict_lines`, `damping`, one entry per
+/// class in `classes`, its `units` map) and the report file `written`, if any.
+pub fn seat_test(test: &SeatTests, written: Vec<Written>) -> Result<Document> {
     Document::new(
         "seat-test",
         &WithFiles {
