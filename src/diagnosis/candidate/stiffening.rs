@@ -103,12 +103,13 @@ pub static CUSHION_BOTTOMING: Definition = Definition {
 pub static CUSHION_POWER_FOAM: Definition = Definition {
     id: "cushion-power-foam",
     family: Family::CushionStiffening,
-    // The sag from 0.5 mm to 10 cm (a seat foam sags 5–40 mm under a seated body); the exponent
-    // from linear (1) to a densifying foam's 6.
+    // The sag from 2 mm to 10 cm (a seat foam sags 5–40 mm under a seated body); the exponent
+    // from linear (1) to 4, a densifying foam's stiffness at twice its sag 27 times its tangent
+    // at rest (steeper laws turn a run's deepest compressions into stiffnesses no step resolves).
     params: || {
         vec![
-            Param::new("sag_m", 5e-4, 0.1, &[0.004, 0.02], true),
-            Param::new("n", 1.0, 6.0, &[2.0], false),
+            Param::new("sag_m", 2e-3, 0.1, &[0.004, 0.02], true),
+            Param::new("n", 1.0, 4.0, &[2.0], false),
         ]
     },
     applies_to: |s| !cushion_links(s).is_empty(),

@@ -214,17 +214,16 @@ pub(in crate::diagnosis) fn located(e: &Evidence, responses: &Verdict) -> Option
     if named.is_some_and(|c| site.admits(c) || (c.family == Family::Sensor && !marginal(c))) {
         return None;
     }
-    // The distortion places a law, not its form: a form is named on it only where it explains
-    // the runs. Its fit over all runs must be no worse than the null's (ΔBIC ≤ 0: the magnitudes
-    // between which the distortion grows are where an amplitude-dependent law shows). A support
-    // path adds a second load path, which moves the FRFs at every magnitude (a lift-off or a
-    // strap is its linear path at small motion), so it must also be detected on the held-out run;
-    // a law on the seat's own links (a one-sided foam whose linearisation barely moves the FRFs)
-    // need not be. Where no form of the site explains the runs, the honest verdict is the site
-    // without a form: unexplained, with where the nonlinearity is and how it grows.
+    // The distortion places a law; it says nothing of a second load path. A support path adds
+    // one, which moves the FRFs at every magnitude (a lift-off or a strap is its linear path at
+    // small motion), so it is named on the distortion only where the fit over all runs supports
+    // it (ΔBIC ≤ 0) and the held-out run detects it (ΔBIC ≤ −10); a law on the seat's own links
+    // (a one-sided foam whose linearisation barely moves the FRFs) needs no such support. Where
+    // no form of the site qualifies, the honest verdict is the site without a form: unexplained,
+    // with where the nonlinearity is and how it grows.
     let explains = |r: &Ranked, c: Candidate| {
-        r.delta_bic_all <= 0.0
-            && (c.family != Family::SupportPath || r.delta_bic <= ACCEPT_DELTA_BIC)
+        c.family != Family::SupportPath
+            || (r.delta_bic_all <= 0.0 && r.delta_bic <= ACCEPT_DELTA_BIC)
     };
     let Some(b) = e
         .cands
