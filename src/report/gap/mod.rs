@@ -156,7 +156,10 @@ pub fn section(out: &mut String, d: &Diagnosis, source: &str) -> Result<Summary>
     let _ = writeln!(
         out,
         "<p>The check run against the measurement: seat a<sub>w</sub> measured {:.4} m/s² (Wk), \
-         SEAT measured {:.1} %.</p>",
+         SEAT measured {:.1} %, both from the diagnosis's Welch spectra, as every model figure of \
+         this section is (the report's own ISO 2631-1 figures are the time-domain analysis of the \
+         whole record; the two estimates of one file differ by their estimator, not by the \
+         seat).</p>",
         check.aw_seat_meas, check.seat_meas
     );
     out.push_str(
@@ -166,7 +169,7 @@ pub fn section(out: &mut String, d: &Diagnosis, source: &str) -> Result<Summary>
     );
     let _ = write!(
         out,
-        "<tr><td>measured</td><td>{:.4}</td><td>–</td><td>{:.1}</td><td>–</td><td>–</td></tr>",
+        "<tr><td>measured (spectral estimate)</td><td>{:.4}</td><td>–</td><td>{:.1}</td><td>–</td><td>–</td></tr>",
         check.aw_seat_meas, check.seat_meas
     );
     for (label, s) in stages(d) {
