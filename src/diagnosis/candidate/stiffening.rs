@@ -156,9 +156,10 @@ mod tests {
         let law = Law::PowerFoam { sag, n };
         // Closed form of F₀·[1 − (1 − d/D₀)ⁿ], F₀ = k·D₀/n.
         let f = |d: f64| k * sag / n * (1.0 - (1.0 - d / sag).powf(n));
+        // Compressing (v < 0), the foam pushes at every deflection short of the sag.
         for d in [-0.02, -0.005, 0.0, 0.004, 0.009] {
-            let (got, kd, cv) = law.force(k, c, d, 0.1);
-            assert!((got - (f(d) + c * 0.1)).abs() < 1e-9 * k * sag, "{d}");
+            let (got, kd, cv) = law.force(k, c, d, -0.1);
+            assert!((got - (f(d) - c * 0.1)).abs() < 1e-9 * k * sag, "{d}");
             assert!((kd - k * (1.0 - d / sag).powf(n - 1.0)).abs() < 1e-9 * k);
             assert_eq!(cv, c);
         }
