@@ -59,9 +59,13 @@ def case_row(wbv, case):
     opts = input_options(cmd)
     mags = truth["nuisances"]["magnitudes_ms2"]
     where = "above" if mags[2] > mags[1] else "below" if mags[2] < mags[0] else "inside"
+    # A DC-coupled base accelerometer records gravity: `wbv simulate --excitation recorded` then
+    # drives the model with a 1 g step at its start, whose ringing inflates the run's a_w (an open
+    # defect, issue 73's note). Such cases are flagged and left out of the shares below.
+    dc = abs(truth["nuisances"].get("dc_offsets_ms2", {}).get("a_base_z", 0.0)) > 1.0
     row = {"case": os.path.basename(case), "family": truth["family"], "form": truth.get("form"),
            "magnitudes": mags, "check": where, "verdict": gap["verdict"],
-           "named": gap.get("named", [])}
+           "named": gap.get("named", []), "base_dc": dc}
     for stage, key in (("nominal", "a"), ("null", "b")):
         w = (gap[stage]["check"] if stage == "null" else gap[stage])["weighted"]
         row[key + "_aw_seat_pct"] = w["aw_gap_percent"]
@@ -94,16 +98,17 @@ def main():
         if "error" in r:
             print("| %s | error: %s |||||" % (r["case"], r["error"]))
             continue
-        print("| %s | %s/%s | %s %s | %s | %+.1f / %+.1f | %+.1f / %+.1f | %+.1f / %+.1f / %+.1f |" % (
+        print("| %s | %s/%s | %s %s | %s | %+.1f / %+.1f | %+.1f / %+.1f | %+.1f / %+.1f / %+.1f%s |" % (
             r["case"], r["family"], r["form"], r["check"], r["magnitudes"], r["verdict"],
             r["a_aw_seat_pct"], r["a_seat_pts"], r["b_aw_seat_pct"], r["b_seat_pts"],
-            r["c_aw_seat_pct"], r["c_aw_head_pct"], r["c_seat_pts"]))
-    ok = [r for r in rows if "error" not in r]
+            r["c_aw_seat_pct"], r["c_aw_head_pct"], r["c_seat_pts"],
+            " (base with 1 g: left out)" if r["base_dc"] else ""))
+    ok = [r for r in rows if "error" not in r and not r["base_dc"]]
     within = [r for r in ok if abs(r["c_aw_seat_pct"]) <= 2 and abs(r["c_seat_pts"]) <= 2]
     off = [r for r in ok if abs(r["b_aw_seat_pct"]) > 1]
     closer = [r for r in off if abs(r["c_aw_seat_pct"]) < abs(r["b_aw_seat_pct"])]
     print("\nwritten model within 2 %% a_w and 2 SEAT points: %d/%d; closer than the linear re-fit where "
-          "the re-fit is > 1 %% off: %d/%d; errors: %d" % (len(within), len(ok), len(closer), len(off),
+          "the re-fit is > 1 %% off: %d/%d; left out (base with 1 g) or errors: %d" % (len(within), len(ok), len(closer), len(off),
                                                        len(rows) - len(ok)))
     out = os.path.join(os.path.dirname(os.path.abspath(cases[0])), "extrapolation.json") if cases else None
     if out:
