@@ -6,31 +6,14 @@
 
 use super::candidate::{Candidate, Family};
 use super::fitting::{self, Base};
-use super::outcome::{Diagnosis, Estimate};
+use super::outcome::{Diagnosis, Estimate, ModelStatus};
 use super::predict::MagnitudeSchedule;
 use super::verdict::Verdict;
 use crate::error::Result;
 use crate::model::chain::Chain;
 use crate::numeric::lm as fit;
 use crate::system::System;
-use serde::{Deserialize, Serialize};
 use std::fmt::Write;
-
-/// What the corrected model of a diagnosis is ([`Diagnosis::model`] holds its file): whether the
-/// verdict accepted it, the warning where it did not, or why no file can be written.
-#[derive(Debug, Clone, Serialize, Deserialize)]
-pub struct ModelStatus {
-    /// Whether the verdict accepted the model: `false` where it is the re-fitted base model alone
-    /// because the verdict (`unexplained`, `not-identifiable`) accepted no effect.
-    pub accepted: bool,
-    /// Why the model is only the re-fit, naming the candidates that close part of the gap; printed
-    /// on stderr and written into the file.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub warning: Option<String>,
-    /// Why no model file could be written (the planar model has no file form of its edits).
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub not_written: Option<String>,
-}
 
 /// The fitted stack the verdict accepts and its fit: the named effect(s) with the base
 /// parameters fitted beside them, or the null re-fit (no effect) where the verdict names none.

@@ -42,10 +42,9 @@ mod thresholds;
 mod verdict;
 
 pub use candidate::separating_measurement;
-pub use corrected::ModelStatus;
 pub use outcome::{
-    BandCoverage, ChannelError, DataFault, Diagnosis, Estimate, IsoSigma, PartialEffect, Ranked,
-    RunSummary, Stage, VerdictId,
+    BandCoverage, ChannelError, DataFault, Diagnosis, Estimate, IsoSigma, ModelStatus,
+    PartialEffect, Ranked, RunSummary, Stage, VerdictId,
 };
 
 pub use thresholds::*;

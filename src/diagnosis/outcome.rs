@@ -456,13 +456,29 @@ pub struct Diagnosis {
     pub partial: Vec<PartialEffect>,
     /// The corrected model, a model file (TOML, docs/models.md): the re-fitted base with the
     /// named structural effects (`wbv gap --write-model`, [`super::corrected`]). `None` where none
-    /// can be written ([`ModelStatus::not_written`](super::ModelStatus)) and in files from before
+    /// can be written ([`ModelStatus::not_written`]) and in files from before
     /// wbv wrote it.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub model: Option<String>,
     /// Whether the verdict accepted the corrected model, its warning, or why it is not written.
     #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub model_status: Option<super::ModelStatus>,
+    pub model_status: Option<ModelStatus>,
+}
+
+/// What the corrected model of a diagnosis is ([`Diagnosis::model`] holds its file, `super::corrected` writes it): whether the
+/// verdict accepted it, the warning where it did not, or why no file can be written.
+#[derive(Debug, Clone, Serialize, Deserialize)]
+pub struct ModelStatus {
+    /// Whether the verdict accepted the model: `false` where it is the re-fitted base model alone
+    /// because the verdict (`unexplained`, `not-identifiable`) accepted no effect.
+    pub accepted: bool,
+    /// Why the model is only the re-fit, naming the candidates that close part of the gap; printed
+    /// on stderr and written into the file.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub warning: Option<String>,
+    /// Why no model file could be written (the planar model has no file form of its edits).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub not_written: Option<String>,
 }
 
 /// A candidate that closes part of a gap it does not explain.
