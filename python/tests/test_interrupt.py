@@ -86,8 +86,8 @@ def test_the_gil_is_released_while_simulating():
 WORK = {
     # Each takes many seconds uninterrupted; the SIGINT comes after one.
     "seat_test": "wbv.seat_test('scissor-seat', ['iso7096-em3', 'iso7096-em6', 'iso5007-ag2'])",
-    "sweep": "wbv.sweep('reference', {'link.cushion.k': '18000:22000:40'}, excitation='bell-214', "
-             "time_domain=True, duration=300)",
+    "sweep": "wbv.sweep('reference', {'link.cushion.k': '18000:22000:4'}, excitation='bell-214', "
+             "time_domain=True, duration=600)",
     "gap": "wbv.gap(runs, check, 'reference', fs=1000.0)",
     "exposure": "wbv.exposure([({'a_seat_z': day}, 1000.0, 1.0)] * 12, "
                 "iso2631_5=True)",
