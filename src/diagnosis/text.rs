@@ -220,9 +220,14 @@ fn held_out(
     ) + &tie_note
 }
 
-/// A nonlinearity the distortion places but no form at its site explains ([`Rule::DistortionSite`]
-/// with the verdict `unexplained`): where it is and how it grows, and the site's best.
-fn located_without_form(e: &Evidence) -> String {
+/// The distortion trend that located a nonlinearity, its site, and each path's rise in words.
+fn located(
+    e: &Evidence,
+) -> (
+    &super::distortion::Distortion,
+    super::distortion::Site,
+    String,
+) {
     let dist = e.distortion.as_ref().expect("located by the distortion");
     let site = dist.site.expect("a located site");
     let paths = dist
@@ -231,6 +236,13 @@ fn located_without_form(e: &Evidence) -> String {
         .map(|p| format!("{} {:+.1} dB", p.path, p.rise_db))
         .collect::<Vec<_>>()
         .join(", ");
+    (dist, site, paths)
+}
+
+/// A nonlinearity the distortion places but no form at its site explains ([`Rule::DistortionSite`]
+/// with the verdict `unexplained`): where it is and how it grows, and the site's best.
+fn located_without_form(e: &Evidence) -> String {
+    let (dist, site, paths) = located(e);
     let best = e
         .cands
         .iter()
@@ -255,14 +267,7 @@ fn located_without_form(e: &Evidence) -> String {
 
 /// Named on the distortion's evidence.
 fn distortion(e: &Evidence, b: &Ranked, responses: &super::outcome::VerdictId) -> String {
-    let dist = e.distortion.as_ref().expect("located by the distortion");
-    let site = dist.site.expect("a located site");
-    let paths = dist
-        .paths
-        .iter()
-        .map(|p| format!("{} {:+.1} dB", p.path, p.rise_db))
-        .collect::<Vec<_>>()
-        .join(", ");
+    let (dist, site, paths) = located(e);
     let phase = |name: &str| {
         dist.paths
             .iter()
